@@ -1,0 +1,31 @@
+// Exact CPU reference on CGAL's AABB tree, and the paper's vertex-to-vertex and vertex-to-plane
+// baselines. CGAL's headers stay inside the .cpp files.
+#pragma once
+
+#include <memory>
+
+#include "roving/distance_method.h"
+
+namespace roving {
+
+// All three semantics on an AABB tree of the test triangles, kernel Epick (exact predicates,
+// inexact constructions): whether a segment meets a triangle is decided exactly, so a line
+// through a shared edge or vertex is never lost; the hit point itself is computed in double.
+// First-hit and nearest come from one query: every intersection of the segment
+// [x + h n, x - h n] with M_C.
+std::unique_ptr<DistanceMethod> make_cgal_reference();
+
+enum class Search {
+  Naive,        // brute force over every test element, as the paper timed it (multi-threaded)
+  Accelerated,  // kd-tree over the vertices / AABB tree over the triangles
+};
+
+// Distance from each sample to the nearest vertex of M_C (referenced vertices only), signed by
+// (c - x) . n. Semantics: closest (to vertices). Always a hit.
+std::unique_ptr<DistanceMethod> make_vertex_to_vertex(Search search);
+
+// Distance from each sample to the nearest point of M_C's triangles, signed by (c - x) . n.
+// Semantics: closest. Always a hit.
+std::unique_ptr<DistanceMethod> make_vertex_to_plane(Search search);
+
+}  // namespace roving

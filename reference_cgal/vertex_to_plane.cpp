@@ -1,0 +1,45 @@
+// Vertex-to-plane baseline (the paper's Table 3): distance to the nearest point of M_C's
+// triangles. The naive form tests every triangle, as the paper timed it.
+#include "closest_point_baseline.h"
+#include "reference_cgal/cgal_reference.h"
+
+namespace roving {
+namespace {
+
+class NaiveVertexToPlane final : public ClosestPointBaseline {
+ public:
+  std::string name() const override { return "v2p-naive"; }
+  double build(const TriangleMesh& test) override {
+    const Stopwatch watch;
+    corners_.clear();
+    corners_.reserve(test.triangle_count());
+    const auto& p = test.positions();
+    for (const Triangle& t : test.triangles()) corners_.push_back({p[t[0]], p[t[1]], p[t[2]]});
+    built_ = true;
+    return watch.seconds();
+  }
+
+ protected:
+  Vec3 nearest(const Vec3& x) const override {
+    double best = std::numeric_limits<double>::infinity();
+    Vec3 best_point = x;
+    for (const auto& [a, b, c] : corners_) {
+      const Vec3 candidate = closest_point_on_triangle(x, a, b, c);
+      const double d = (candidate - x).squaredNorm();
+      if (d < best) best = d, best_point = candidate;
+    }
+    return best_point;
+  }
+
+ private:
+  std::vector<std::array<Vec3, 3>> corners_;
+};
+
+}  // namespace
+
+std::unique_ptr<DistanceMethod> make_vertex_to_plane(Search search) {
+  if (search == Search::Naive) return std::make_unique<NaiveVertexToPlane>();
+  return make_accelerated_vertex_to_plane();
+}
+
+}  // namespace roving

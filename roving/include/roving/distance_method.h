@@ -1,0 +1,85 @@
+// The one interface every distance method implements (references, baselines, the GL methods),
+// so that they can be swapped and cross-checked on the same samples.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "roving/sample_set.h"
+#include "roving/triangle_mesh.h"
+
+namespace roving {
+
+// What "the distance of a sample x with normal n to M_C" means (DESIGN.md "Definitions").
+enum class Semantics {
+  // Paper: first surface met by the ray from x + h n along -n, t in [0, 2h]; d = h - t.
+  FirstHit,
+  // The intersection of the normal line with M_C nearest to x, |d| <= h.
+  Nearest,
+  // Metro-style: distance to the nearest point c of M_C, signed by (c - x) . n. Always a hit.
+  Closest,
+};
+
+const char* to_string(Semantics semantics);
+// Parses "first-hit", "nearest", "closest"; throws roving::Error naming `--semantics` otherwise.
+Semantics parse_semantics(const std::string& text);
+
+// h as the user gives it: an absolute length ("0.01") or a percentage of M_R's bounding-box
+// diagonal ("5%", the default).
+struct MaxErrorSpec {
+  double value = 5;
+  bool percent_of_diagonal = true;
+
+  double resolve(double diagonal) const { return percent_of_diagonal ? value / 100 * diagonal : value; }
+  std::string to_string() const;
+};
+
+// Parses VALUE or P%; throws roving::Error naming `--max-error` unless it is a finite number > 0
+// (and a percentage <= 100).
+MaxErrorSpec parse_max_error(const std::string& text);
+
+struct DistanceOptions {
+  Semantics semantics = Semantics::FirstHit;
+  double max_error = 0;  // h: half-height of the view volume, model units, > 0
+};
+
+// Per-sample output. signed_distance[k] is meaningful only where hit[k] is set.
+struct DistanceResult {
+  std::vector<double> signed_distance;
+  std::vector<std::uint8_t> hit;
+  double build_seconds = 0;  // acceleration structures, uploads: once per test model
+  double query_seconds = 0;  // all samples
+
+  std::size_t hit_count() const;
+};
+
+class DistanceMethod {
+ public:
+  virtual ~DistanceMethod() = default;
+
+  virtual std::string name() const = 0;
+  // The semantics this method can compute; the first is its default.
+  virtual std::vector<Semantics> supported_semantics() const = 0;
+
+  // Prepares for queries against `test` (kept by reference: it must outlive the method).
+  // Returns the build time in seconds.
+  virtual double build(const TriangleMesh& test) = 0;
+
+  // Measures every sample; requires build(). Throws roving::Error on bad options
+  // (h <= 0 or not finite, unsupported semantics).
+  virtual DistanceResult measure(const SampleSet& samples, const DistanceOptions& options) = 0;
+
+  bool supports(Semantics semantics) const;
+};
+
+// Checks options against `method` and throws roving::Error naming the option on failure.
+void validate_options(const DistanceMethod& method, const DistanceOptions& options);
+
+// build() + measure(), with both times filled in.
+DistanceResult measure_distances(DistanceMethod& method, const TriangleMesh& test,
+                                 const SampleSet& samples, const DistanceOptions& options);
+
+}  // namespace roving

@@ -1,0 +1,81 @@
+// Triangle mesh: positions, triangles and the per-face / per-vertex quantities every method uses.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <vector>
+
+#include <limits>
+#include <string>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+namespace roving {
+
+using Vec3 = Eigen::Vector3d;
+using Triangle = std::array<int, 3>;
+
+struct BoundingBox {
+  Vec3 min = Vec3::Constant(std::numeric_limits<double>::infinity());
+  Vec3 max = Vec3::Constant(-std::numeric_limits<double>::infinity());
+
+  void extend(const Vec3& p) {
+    min = min.cwiseMin(p);
+    max = max.cwiseMax(p);
+  }
+  bool empty() const { return !(min.array() <= max.array()).all(); }
+  Vec3 size() const { return max - min; }
+  Vec3 centre() const { return 0.5 * (min + max); }
+  double diagonal() const { return size().norm(); }
+};
+
+// An indexed triangle soup with derived data. Construction validates: every coordinate finite,
+// every index within [0, vertex count); throws roving::Error naming `source` otherwise.
+// Degenerate (zero-area) triangles are kept: they are harmless to intersect, and sampling skips them.
+class TriangleMesh {
+ public:
+  TriangleMesh() = default;
+  TriangleMesh(std::vector<Vec3> positions, std::vector<Triangle> triangles,
+               const std::string& source = "mesh");
+
+  const std::vector<Vec3>& positions() const { return positions_; }
+  const std::vector<Triangle>& triangles() const { return triangles_; }
+  std::size_t vertex_count() const { return positions_.size(); }
+  std::size_t triangle_count() const { return triangles_.size(); }
+
+  // Unit face normal (right-hand rule); zero for a degenerate face.
+  const std::vector<Vec3>& face_normals() const { return face_normals_; }
+  const std::vector<double>& face_areas() const { return face_areas_; }
+  // Area-weighted average of the incident face normals, normalised; zero for unreferenced vertices.
+  const std::vector<Vec3>& vertex_normals() const { return vertex_normals_; }
+  // True for vertices that at least one triangle uses.
+  const std::vector<bool>& vertex_referenced() const { return vertex_referenced_; }
+  std::size_t unreferenced_vertex_count() const { return unreferenced_vertices_; }
+  std::size_t degenerate_triangle_count() const { return degenerate_triangles_; }
+  // Box over the referenced vertices only (stray points do not inflate h).
+  const BoundingBox& bounding_box() const { return bounding_box_; }
+  double total_area() const { return total_area_; }
+
+  Vec3 centroid(std::size_t face) const {
+    const Triangle& t = triangles_[face];
+    return (positions_[t[0]] + positions_[t[1]] + positions_[t[2]]) / 3.0;
+  }
+
+  // The same mesh with every position mapped p -> scale * (p - origin).
+  TriangleMesh transformed(const Vec3& origin, double scale) const;
+
+ private:
+  std::vector<Vec3> positions_;
+  std::vector<Triangle> triangles_;
+  std::vector<Vec3> face_normals_;
+  std::vector<double> face_areas_;
+  std::vector<Vec3> vertex_normals_;
+  std::vector<bool> vertex_referenced_;
+  std::size_t unreferenced_vertices_ = 0;
+  std::size_t degenerate_triangles_ = 0;
+  BoundingBox bounding_box_;
+  double total_area_ = 0;
+};
+
+}  // namespace roving

@@ -1,0 +1,46 @@
+// The table of distance methods by name.
+#include "method_registry.h"
+
+#include <functional>
+#include <utility>
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include "reference_cgal/cgal_reference.h"
+#include "reference_embree/embree_reference.h"
+#include "roving/error.h"
+
+namespace roving {
+namespace {
+
+using Factory = std::function<std::unique_ptr<DistanceMethod>()>;
+
+const std::vector<std::pair<std::string, Factory>>& registry() {
+  static const std::vector<std::pair<std::string, Factory>> methods = {
+      {"embree", [] { return make_embree_reference(); }},
+      {"cgal", [] { return make_cgal_reference(); }},
+      {"v2v-naive", [] { return make_vertex_to_vertex(Search::Naive); }},
+      {"v2v-kdtree", [] { return make_vertex_to_vertex(Search::Accelerated); }},
+      {"v2p-naive", [] { return make_vertex_to_plane(Search::Naive); }},
+      {"v2p-aabb", [] { return make_vertex_to_plane(Search::Accelerated); }},
+  };
+  return methods;
+}
+
+}  // namespace
+
+std::vector<std::string> method_names() {
+  std::vector<std::string> names;
+  for (const auto& [name, factory] : registry()) names.push_back(name);
+  return names;
+}
+
+std::unique_ptr<DistanceMethod> make_method(const std::string& name) {
+  for (const auto& [known, factory] : registry()) {
+    if (known == name) return factory();
+  }
+  throw Error(fmt::format("--method: expected one of {}, found '{}'", fmt::join(method_names(), ", "), name));
+}
+
+}  // namespace roving

@@ -1,0 +1,20 @@
+#!/usr/bin/env bash
+# Installs the build and run-time dependencies from Debian 12's archive (idempotent, as root).
+set -euo pipefail
+packages=(
+  build-essential cmake ninja-build pkg-config
+  libcgal-dev libembree-dev libopenmesh-dev libeigen3-dev libtbb-dev
+  libosmesa6-dev libegl-dev libegl-mesa0 libgles-dev libgl-dev
+  libbenchmark-dev libgtest-dev libgmock-dev
+  libcli11-dev nlohmann-json3-dev libfmt-dev
+)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  sudo_cmd=""
+  [ "$(id -u)" -eq 0 ] || sudo_cmd="sudo"
+  $sudo_cmd apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo_cmd apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi

@@ -1,0 +1,89 @@
+// Sample sets and statistics: counts on the real bunny, reproducibility, and statistics of
+// hand-computed cases.
+#include <gtest/gtest.h>
+
+#include "roving/error.h"
+#include "roving/sample_set.h"
+#include "roving/statistics.h"
+#include "test_support.h"
+
+namespace roving {
+namespace {
+
+TEST(Samples, BunnyFacesGiveThePapersCount) {
+  const SampleSet samples = make_samples(testing::bunny(), {});
+  EXPECT_EQ(samples.size(), 69451u);  // the paper's Table 1
+  EXPECT_EQ(samples.skipped_degenerate_faces, 0u);
+  double area = 0;
+  for (double w : samples.weights) area += w;
+  EXPECT_NEAR(area, testing::bunny().total_area(), 1e-12 * area);
+}
+
+TEST(Samples, VertexSamplingSkipsTheBunnysUnreferencedVertices) {
+  const TriangleMesh& bunny = testing::bunny();
+  EXPECT_EQ(bunny.vertex_count(), 35947u);
+  EXPECT_EQ(bunny.unreferenced_vertex_count(), 1113u);
+  const SampleSet samples = make_samples(bunny, {SampleSpec::Kind::Vertices});
+  EXPECT_EQ(samples.skipped_unreferenced_vertices, 1113u);
+  EXPECT_EQ(samples.size() + samples.skipped_unreferenced_vertices + samples.skipped_zero_normal_vertices,
+            35947u);
+  for (const Vec3& n : samples.normals) ASSERT_NEAR(n.norm(), 1.0, 1e-12);
+}
+
+TEST(Samples, AreaSamplingIsReproducibleAndLiesOnTheSurface) {
+  const TriangleMesh cube = testing::box(1.0);
+  const SampleSet a = make_samples(cube, parse_sample_spec("area:1000"));
+  const SampleSet b = make_samples(cube, parse_sample_spec("area:1000"));
+  ASSERT_EQ(a.size(), 1000u);
+  for (std::size_t k = 0; k < a.size(); ++k) {
+    ASSERT_EQ(a.positions[k], b.positions[k]);
+    // On the box surface: the largest |coordinate| is 1, and the normal is the matching axis.
+    EXPECT_NEAR(a.positions[k].cwiseAbs().maxCoeff(), 1.0, 1e-12);
+    Eigen::Index axis;
+    a.positions[k].cwiseAbs().maxCoeff(&axis);
+    EXPECT_NEAR(std::abs(a.normals[k][axis]), 1.0, 1e-12);
+  }
+}
+
+TEST(Samples, BadSpecsNameTheOption) {
+  for (const char* bad : {"", "face", "area:", "area:0", "area:-3", "area:12x", "area:99999999999999"}) {
+    try {
+      parse_sample_spec(bad);
+      ADD_FAILURE() << "accepted '" << bad << "'";
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("--samples"), std::string::npos) << e.what();
+    }
+  }
+}
+
+TEST(Statistics, HandComputedCase) {
+  // d = {1, -2, 3} (hits) and one no-hit, h = 4: the no-hit counts as +4.
+  const std::vector<double> d = {1, -2, 3, 0};
+  const std::vector<std::uint8_t> hit = {1, 1, 1, 0};
+  const std::vector<double> w = {1, 1, 2, 0};
+  const Statistics s = compute_statistics(d, hit, w, 4.0, 8);
+  EXPECT_EQ(s.no_hit_count, 1u);
+  EXPECT_DOUBLE_EQ(s.siad, (1 - 2 + 3 + 4) / 4.0);
+  EXPECT_DOUBLE_EQ(s.usiad, (1 + 2 + 3 + 4) / 4.0);
+  EXPECT_DOUBLE_EQ(s.rms, std::sqrt((1 + 4 + 9 + 16) / 4.0));
+  EXPECT_NEAR(s.std_signed, std::sqrt((1 + 4 + 9 + 16) / 4.0 - 1.5 * 1.5), 1e-12);
+  EXPECT_DOUBLE_EQ(s.max_abs, 4);
+  EXPECT_DOUBLE_EQ(s.siad_area, (1 - 2 + 6) / 4.0);  // the no-hit has weight 0 here
+  EXPECT_DOUBLE_EQ(s.usiad_area, (1 + 2 + 6) / 4.0);
+  EXPECT_DOUBLE_EQ(s.siad_hits, 2.0 / 3.0);
+  EXPECT_DOUBLE_EQ(s.usiad_hits, 2.0);
+  EXPECT_DOUBLE_EQ(s.p50, 2);  // nearest rank of {1, 2, 3, 4}
+  EXPECT_DOUBLE_EQ(s.p99, 4);
+  // Bins of width 1 over [-4, 4]: -2 in bin 2, 1 in bin 5, 3 in bin 7.
+  EXPECT_EQ(s.histogram.counts, (std::vector<std::size_t>{0, 0, 1, 0, 0, 1, 0, 1}));
+}
+
+TEST(Statistics, RejectsEmptyAndMismatchedInput) {
+  EXPECT_THROW(compute_statistics({}, {}, {}, 1.0), Error);
+  EXPECT_THROW(compute_statistics({1.0}, {1, 1}, {}, 1.0), Error);
+  EXPECT_THROW(compute_statistics({1.0}, {1}, {}, 0.0), Error);
+  EXPECT_THROW(compute_statistics({1.0}, {1}, {}, std::nan("")), Error);
+}
+
+}  // namespace
+}  // namespace roving

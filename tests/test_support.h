@@ -1,0 +1,61 @@
+// Shared helpers of the test suites: where the real models are, and small closed-form meshes.
+#pragma once
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "roving/mesh_io.h"
+#include "roving/triangle_mesh.h"
+
+namespace roving::testing {
+
+// Path of a real model in $ROVING_DATA or ../shared/data beside the checkout. A test that needs
+// one fails (never skips) when neither holds it: CI must not pass without the data.
+inline std::string data_file(const std::string& name) {
+  std::filesystem::path folder;
+  if (const char* env = std::getenv("ROVING_DATA"); env && *env) {
+    folder = env;
+  } else {
+    folder = std::filesystem::path(ROVING_SOURCE_DIR) / ".." / "shared" / "data";
+  }
+  const auto path = folder / name;
+  if (!std::filesystem::exists(path)) {
+    throw std::runtime_error("test data '" + name + "' not found in " + folder.string() +
+                             ": set ROVING_DATA to the folder holding the real models");
+  }
+  return path.string();
+}
+
+// The bunny, loaded once per test binary.
+inline const TriangleMesh& bunny() {
+  static const TriangleMesh mesh = load_mesh(data_file("stanford-bunny.obj")).mesh;
+  return mesh;
+}
+
+// Axis-aligned box [-s, s]^3 centred at the origin, 12 outward-facing triangles.
+inline TriangleMesh box(double s) {
+  std::vector<Vec3> p;
+  for (int i = 0; i < 8; ++i) p.emplace_back(i & 1 ? s : -s, i & 2 ? s : -s, i & 4 ? s : -s);
+  const std::vector<Triangle> t = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6}, {0, 1, 4}, {1, 5, 4},
+                                   {2, 6, 3}, {3, 6, 7}, {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
+  return TriangleMesh(std::move(p), t);
+}
+
+// `mesh` with every vertex moved along its normal by amplitude * a smooth wave of wavelength
+// `wavelength`: a test model that stays close to the reference everywhere.
+inline TriangleMesh perturbed(const TriangleMesh& mesh, double amplitude, double wavelength) {
+  std::vector<Vec3> moved = mesh.positions();
+  const double k = 2 * M_PI / wavelength;
+  for (std::size_t v = 0; v < moved.size(); ++v) {
+    const Vec3& p = moved[v];
+    const double wave = std::sin(k * p.x()) * std::cos(k * p.y() + 0.5) * std::sin(k * p.z() + 1.0);
+    moved[v] += amplitude * wave * mesh.vertex_normals()[v];
+  }
+  return TriangleMesh(std::move(moved), mesh.triangles());
+}
+
+}  // namespace roving::testing
