@@ -27,10 +27,49 @@ using Segment = Kernel::Segment_3;
 using TriangleList = std::vector<Kernel::Triangle_3>;
 using Primitive = CGAL::AABB_triangle_primitive<Kernel, TriangleList::const_iterator>;
 using Tree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, Primitive>>;
-using SegmentHit = Tree::Intersection_and_primitive_id<Segment>::Type;
 
 Point to_point(const Vec3& v) { return Point(v.x(), v.y(), v.z()); }
 Vec3 to_vec(const Point& p) { return Vec3(p.x(), p.y(), p.z()); }
+
+// Traversal that lists every triangle a segment meets. CGAL's own listing tests boxes with
+// interval arithmetic, which was most of the query time; here boxes are tested in plain double
+// after inflating them by `margin`, far above the slab test's rounding, so a box can only be
+// let in wrongly, never kept out. The triangle test stays Epick's exact predicate.
+class CrossedTriangles {
+ public:
+  CrossedTriangles(const Segment& segment, double margin, std::vector<Primitive::Id>& crossed)
+      : start_(to_vec(segment.source())), delta_(to_vec(segment.target()) - start_), margin_(margin), crossed_(crossed) {}
+
+  bool go_further() const { return true; }
+
+  void intersection(const Segment& segment, const Primitive& primitive) {
+    if (CGAL::do_intersect(segment, *primitive.id())) crossed_.push_back(primitive.id());
+  }
+
+  template <class Node>
+  bool do_intersect(const Segment&, const Node& node) const {
+    const CGAL::Bbox_3& box = node.bbox();
+    double enter = 0, leave = 1;  // segment parameter range inside the slabs so far
+    for (int axis = 0; axis < 3; ++axis) {
+      const double low = box.min(axis) - margin_, high = box.max(axis) + margin_;
+      if (delta_[axis] == 0) {
+        if (start_[axis] < low || start_[axis] > high) return false;
+        continue;
+      }
+      double t0 = (low - start_[axis]) / delta_[axis], t1 = (high - start_[axis]) / delta_[axis];
+      if (t0 > t1) std::swap(t0, t1);
+      enter = std::max(enter, t0);
+      leave = std::min(leave, t1);
+      if (enter > leave) return false;
+    }
+    return true;
+  }
+
+ private:
+  Vec3 start_, delta_;
+  double margin_;
+  std::vector<Primitive::Id>& crossed_;
+};
 
 class CgalAabbMethod final : public DistanceMethod {
  public:
@@ -53,6 +92,10 @@ class CgalAabbMethod final : public DistanceMethod {
     tree_.clear();
     tree_.insert(triangles_.begin(), triangles_.end());
     tree_.build();
+    // 1e-9 of the model's extent: ~1e7 ulps of the coordinates, so the double slab test errs
+    // only on the side of letting a box in.
+    box_margin_ = 1e-9 * (test.bounding_box().diagonal() + test.bounding_box().max.cwiseAbs().maxCoeff() +
+                          test.bounding_box().min.cwiseAbs().maxCoeff());
     if (supports(Semantics::Closest)) tree_.accelerate_distance_queries();
     built_ = true;
     return watch.seconds();
@@ -67,12 +110,12 @@ class CgalAabbMethod final : public DistanceMethod {
     result.hit.assign(samples.size(), 0);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, samples.size(), 128),
                       [&](const tbb::blocked_range<std::size_t>& range) {
-      std::vector<SegmentHit> hits;
+      std::vector<Primitive::Id> crossed;
       for (std::size_t k = range.begin(); k != range.end(); ++k) {
         const std::optional<double> d =
             options.semantics == Semantics::Closest
                 ? std::optional<double>(closest(samples.positions[k], samples.normals[k]))
-                : along_normal(samples.positions[k], samples.normals[k], options, hits);
+                : along_normal(samples.positions[k], samples.normals[k], options, crossed);
         if (d) {
           result.hit[k] = 1;
           result.signed_distance[k] = *d;
@@ -84,36 +127,44 @@ class CgalAabbMethod final : public DistanceMethod {
   }
 
  private:
-  // Every crossing of the segment from x + h n (t = 0) to x - h n (t = 2h); d = h - t. First-hit
-  // keeps the smallest t, nearest the smallest |d|. A segment lying in a triangle's plane meets
-  // it in a segment: its end nearest the segment's start is the first point, and for nearest
-  // the point of that overlap nearest to x.
+  // Every crossing of the segment from x + h n to x - h n, as d = (p - x) . n in [-h, h]:
+  // first-hit keeps the largest d (the first crossing from x + h n), nearest the smallest |d|.
+  // The tree decides exactly which triangles the segment meets (filtered predicates, no
+  // constructions); each crossing is then the segment's line against the triangle's plane, in
+  // double. A triangle containing the segment (parallel, coplanar) contributes its overlap.
   std::optional<double> along_normal(const Vec3& x, const Vec3& n, const DistanceOptions& options,
-                                     std::vector<SegmentHit>& hits) const {
+                                     std::vector<Primitive::Id>& crossed) const {
     const double h = options.max_error;
-    const Vec3 start = x + h * n;
-    hits.clear();
-    tree_.all_intersections(Segment(to_point(start), to_point(x - h * n)), std::back_inserter(hits));
+    const Segment segment(to_point(x + h * n), to_point(x - h * n));
+    crossed.clear();
+    CrossedTriangles traversal(segment, box_margin_, crossed);
+    tree_.traversal(segment, traversal);
     std::optional<double> best;
     const auto consider = [&](double d) {
       d = std::clamp(d, -h, h);
-      const bool better = !best || (options.semantics == Semantics::FirstHit
-                                        ? d > *best
-                                        : std::abs(d) < std::abs(*best));
+      const bool better = !best || (options.semantics == Semantics::FirstHit ? d > *best
+                                                                             : std::abs(d) < std::abs(*best));
       if (better) best = d;
     };
-    for (const SegmentHit& hit : hits) {
-      if (const Point* point = boost::get<Point>(&hit.first)) {
+    for (const Primitive::Id& id : crossed) {
+      const Kernel::Triangle_3& triangle = *id;
+      const Vec3 a = to_vec(triangle[0]);
+      const Vec3 normal = (to_vec(triangle[1]) - a).cross(to_vec(triangle[2]) - a);
+      const double denominator = normal.dot(n);
+      if (std::abs(denominator) > 1e-12 * normal.norm()) {
+        consider(normal.dot(a - x) / denominator);
+        continue;
+      }
+      const auto overlap = CGAL::intersection(segment, triangle);
+      if (!overlap) continue;
+      if (const Point* point = boost::get<Point>(&*overlap)) {
         consider((to_vec(*point) - x).dot(n));
-      } else if (const Segment* overlap = boost::get<Segment>(&hit.first)) {
-        const double d0 = (to_vec(overlap->source()) - x).dot(n);
-        const double d1 = (to_vec(overlap->target()) - x).dot(n);
+      } else if (const Segment* part = boost::get<Segment>(&*overlap)) {
+        const double d0 = (to_vec(part->source()) - x).dot(n), d1 = (to_vec(part->target()) - x).dot(n);
         if (options.semantics == Semantics::FirstHit) {
           consider(std::max(d0, d1));
         } else {
-          consider(std::min(d0, d1) <= 0 && std::max(d0, d1) >= 0 ? 0.0
-                   : std::abs(d0) < std::abs(d1)                  ? d0
-                                                                  : d1);
+          consider(d0 * d1 <= 0 ? 0.0 : (std::abs(d0) < std::abs(d1) ? d0 : d1));
         }
       }
     }
@@ -128,6 +179,7 @@ class CgalAabbMethod final : public DistanceMethod {
   std::vector<Semantics> semantics_;
   TriangleList triangles_;
   Tree tree_;
+  double box_margin_ = 0;
   bool built_ = false;
 };
 

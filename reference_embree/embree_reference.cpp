@@ -79,7 +79,8 @@ class EmbreeReference final : public DistanceMethod {
     diagonal_ = test.bounding_box().diagonal();
 
     scene_ = rtcNewScene(device_);
-    rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
+    // Context filters collect every crossing for nearest-on-line.
+    rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION);
     rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_MEDIUM);
     RTCGeometry geometry = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
     auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
@@ -120,12 +121,14 @@ class EmbreeReference final : public DistanceMethod {
         const Vec3& n = samples.normals[k];
         std::optional<double> d;
         switch (options.semantics) {
-          case Semantics::FirstHit: {
-            // d = h - t for the first hit of the ray from x + h n along -n, t in [0, 2h].
-            if (const auto t = first_hit(x + h * n, -n, 2 * h)) d = h - *t;
+          case Semantics::FirstHit:
+          case Semantics::Nearest: {
+            // The ray from x + h n along -n, t in [0, 2h], d = h - t: its first crossing, or
+            // the crossing nearest to x (t = h).
+            const auto target = options.semantics == Semantics::Nearest ? std::optional<double>(h) : std::nullopt;
+            if (const auto t = trace(x + h * n, -n, 2 * h, target)) d = h - *t;
             break;
           }
-          case Semantics::Nearest: d = nearest_on_line(x, n, h); break;
           case Semantics::Closest: d = closest_point(x, n); break;
         }
         if (d) {
@@ -139,64 +142,87 @@ class EmbreeReference final : public DistanceMethod {
   }
 
  private:
-  // Distance t in [0, t_max] to the first triangle along origin + t * direction, if any.
-  std::optional<double> first_hit(const Vec3& origin, const Vec3& direction, double t_max) const {
-    if (auto t = cast(origin - origin_, direction, t_max)) return t;
-    return cast_around(origin - origin_, direction, t_max);
+  // Along the line origin + t * direction, t in [0, t_max] (world coordinates): the first
+  // crossing of M_C, or with `t_target` the crossing nearest to t_target. A miss is re-cast from
+  // four origins offset across the line (a line through a shared edge or vertex can slip between
+  // its triangles); whatever they hit is intersected with the original line.
+  std::optional<double> trace(const Vec3& origin, const Vec3& direction, double t_max,
+                              std::optional<double> t_target) const {
+    const Vec3 line_origin = origin - origin_;
+    if (auto t = trace_once(line_origin, line_origin, direction, t_max, t_target)) return t;
+    const Vec3 helper = std::abs(direction.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
+    const Vec3 e1 = direction.cross(helper).normalized();
+    const Vec3 e2 = direction.cross(e1);
+    const double offset = 1e-6 * diagonal_;
+    const std::array<Vec3, 4> shifts = {offset * e1, -offset * e1, offset * e2, -offset * e2};
+    std::optional<double> best;
+    for (const Vec3& shift : shifts) {
+      if (const auto t = trace_once(line_origin + shift, line_origin, direction, t_max, t_target)) {
+        if (!best || closer(*t, *best, t_target)) best = t;
+      }
+    }
+    return best;
   }
 
-  std::optional<double> cast(const Vec3& origin, const Vec3& direction, double t_max) const {
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
+  static bool closer(double t, double than, std::optional<double> t_target) {
+    return t_target ? std::abs(t - *t_target) < std::abs(than - *t_target) : t < than;
+  }
+
+  // Embree's context, extended with what the collecting filter needs (Embree 3 passes the
+  // context pointer through to filters, so it must be the first member).
+  struct CollectingContext {
+    RTCIntersectContext embree;
+    const EmbreeReference* self;
+    Vec3 line_origin, direction;
+    double t_max, t_target;
+    std::optional<double> best;
+  };
+
+  // Records each crossing and rejects it, so that traversal goes on to the next one.
+  static void collect_crossing(const RTCFilterFunctionNArguments* args) {
+    auto* context = reinterpret_cast<CollectingContext*>(args->context);
+    const unsigned face = RTCHitN_primID(args->hit, args->N, 0);
+    if (const auto t = context->self->plane_distance(face, context->line_origin, context->direction, context->t_max)) {
+      if (!context->best || closer(*t, *context->best, context->t_target)) context->best = t;
+    }
+    args->valid[0] = 0;
+  }
+
+  // One ray from `ray_origin`; the triangle it hits is intersected with the line through
+  // `line_origin` (the same point unless this is a re-cast), in double.
+  std::optional<double> trace_once(const Vec3& ray_origin, const Vec3& line_origin, const Vec3& direction,
+                                   double t_max, std::optional<double> t_target) const {
+    CollectingContext context;
+    rtcInitIntersectContext(&context.embree);
+    if (t_target) {
+      context.embree.filter = collect_crossing;
+      context.self = this;
+      context.line_origin = line_origin;
+      context.direction = direction;
+      context.t_max = t_max;
+      context.t_target = *t_target;
+    }
     RTCRayHit rayhit;
-    rayhit.ray.org_x = static_cast<float>(origin.x());
-    rayhit.ray.org_y = static_cast<float>(origin.y());
-    rayhit.ray.org_z = static_cast<float>(origin.z());
+    rayhit.ray.org_x = static_cast<float>(ray_origin.x());
+    rayhit.ray.org_y = static_cast<float>(ray_origin.y());
+    rayhit.ray.org_z = static_cast<float>(ray_origin.z());
     rayhit.ray.dir_x = static_cast<float>(direction.x());
     rayhit.ray.dir_y = static_cast<float>(direction.y());
     rayhit.ray.dir_z = static_cast<float>(direction.z());
     rayhit.ray.tnear = 0.0f;
-    rayhit.ray.tfar = static_cast<float>(t_max);
+    // A hair beyond t_max so that float rounding cannot cull a crossing at the very end;
+    // plane_distance() decides in double.
+    rayhit.ray.tfar = static_cast<float>(t_max * (1 + 1e-6));
     rayhit.ray.time = 0.0f;
     rayhit.ray.mask = 0xFFFFFFFFu;  // Debian's Embree has ray masks on: mask 0 hits nothing
     rayhit.ray.id = 0;
     rayhit.ray.flags = 0;
     rayhit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rayhit.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-    rtcIntersect1(scene_, &context, &rayhit);
+    rtcIntersect1(scene_, &context.embree, &rayhit);
+    if (t_target) return context.best;
     if (rayhit.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
-    // Recompute t in double against the hit triangle's plane: Embree's float t carries the
-    // rounding of the float origin; the plane is exact for the triangle we know was hit.
-    return plane_distance(rayhit.hit.primID, origin, direction, t_max);
-  }
-
-  // The re-cast of a missed ray: four parallel rays offset across it; the triangles they hit
-  // are intersected with the original line. Finds what an edge or vertex crossing lost.
-  std::optional<double> cast_around(const Vec3& origin, const Vec3& direction, double t_max) const {
-    const Vec3 helper = std::abs(direction.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
-    const Vec3 e1 = direction.cross(helper).normalized();
-    const Vec3 e2 = direction.cross(e1);
-    const double offset = 1e-6 * diagonal_;
-    std::optional<double> best;
-    for (const Vec3& shift : {Vec3(offset * e1), Vec3(-offset * e1), Vec3(offset * e2), Vec3(-offset * e2)}) {
-      RTCIntersectContext context;
-      rtcInitIntersectContext(&context);
-      RTCRayHit rayhit{};
-      const Vec3 o = origin + shift;
-      rayhit.ray.org_x = float(o.x()), rayhit.ray.org_y = float(o.y()), rayhit.ray.org_z = float(o.z());
-      rayhit.ray.dir_x = float(direction.x()), rayhit.ray.dir_y = float(direction.y());
-      rayhit.ray.dir_z = float(direction.z());
-      rayhit.ray.tnear = 0.0f;
-      rayhit.ray.tfar = static_cast<float>(t_max * (1 + 1e-6));
-      rayhit.ray.mask = 0xFFFFFFFFu;
-      rayhit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-      rtcIntersect1(scene_, &context, &rayhit);
-      if (rayhit.hit.geomID == RTC_INVALID_GEOMETRY_ID) continue;
-      if (const auto t = plane_distance(rayhit.hit.primID, origin, direction, t_max)) {
-        if (!best || *t < *best) best = t;
-      }
-    }
-    return best;
+    return plane_distance(rayhit.hit.primID, line_origin, direction, t_max);
   }
 
   // t where origin + t * direction meets the plane of triangle `face` (centred frame), clamped
@@ -214,17 +240,6 @@ class EmbreeReference final : public DistanceMethod {
     // fall a hair outside. Beyond 1e-6 of t_max it is a genuine out-of-range hit.
     if (hit_t < -1e-6 * t_max || hit_t > t_max * (1 + 1e-6)) return std::nullopt;
     return std::clamp(hit_t, 0.0, t_max);
-  }
-
-  // Signed distance to the intersection of the line x + s n nearest to x, |s| <= h: one ray each
-  // way, both starting a hair behind x so that a crossing at x itself is seen by both.
-  std::optional<double> nearest_on_line(const Vec3& x, const Vec3& n, double h) const {
-    const double behind = 1e-6 * h;
-    std::optional<double> outward, inward;
-    if (const auto t = first_hit(x - behind * n, n, h + behind)) outward = *t - behind;
-    if (const auto t = first_hit(x + behind * n, -n, h + behind)) inward = behind - *t;
-    if (outward && inward) return std::abs(*inward) < std::abs(*outward) ? inward : outward;
-    return outward ? outward : inward;
   }
 
   double closest_point(const Vec3& x, const Vec3& n) const {

@@ -11,8 +11,8 @@ namespace roving {
 // All three semantics on an AABB tree of the test triangles, kernel Epick (exact predicates,
 // inexact constructions): whether a segment meets a triangle is decided exactly, so a line
 // through a shared edge or vertex is never lost; the hit point itself is computed in double.
-// First-hit and nearest come from one query: every intersection of the segment
-// [x + h n, x - h n] with M_C.
+// First-hit and nearest come from one query: every triangle the segment [x + h n, x - h n]
+// meets (exact predicate), each crossing computed against the triangle's plane in double.
 std::unique_ptr<DistanceMethod> make_cgal_reference();
 
 enum class Search {
