@@ -2,10 +2,10 @@
 // face samples against its 10,459-triangle quadric decimation (the paper's middle mesh).
 // Every benchmark first checks its answer against the other reference and refuses to time a
 // wrong one.
+#include <benchmark/benchmark.h>
+
 #include <cstdlib>
 #include <filesystem>
-
-#include <benchmark/benchmark.h>
 
 #include "decimate.h"
 #include "method_registry.h"
@@ -48,9 +48,11 @@ bool references_agree(Semantics semantics, std::string& why) {
   const double tolerance = 1e-5 * p.reference.bounding_box().diagonal();
   for (std::size_t k = 0; k < a.hit.size(); ++k) {
     same += a.hit[k] == b.hit[k];
-    if (a.hit[k] && b.hit[k]) ++common, close += std::abs(a.signed_distance[k] - b.signed_distance[k]) <= tolerance;
+    if (a.hit[k] && b.hit[k])
+      ++common, close += std::abs(a.signed_distance[k] - b.signed_distance[k]) <= tolerance;
   }
-  why = std::to_string(a.hit.size() - same) + " flags and " + std::to_string(common - close) + " distances differ";
+  why = std::to_string(a.hit.size() - same) + " flags and " + std::to_string(common - close) +
+        " distances differ";
   return same >= 0.999 * a.hit.size() && close >= 0.9999 * common;
 }
 
@@ -85,18 +87,20 @@ void BM_Query(benchmark::State& state, const std::string& method_name, Semantics
 void register_all() {
   for (const char* name : {"embree", "cgal", "v2v-kdtree", "v2p-aabb"}) {
     benchmark::RegisterBenchmark((std::string("build/") + name).c_str(), BM_Build, std::string(name))
-        ->Unit(benchmark::kMillisecond)->UseRealTime();
+        ->Unit(benchmark::kMillisecond)
+        ->UseRealTime();
   }
   for (const char* name : {"embree", "cgal"}) {
     for (Semantics s : {Semantics::FirstHit, Semantics::Nearest, Semantics::Closest}) {
       benchmark::RegisterBenchmark((std::string("query/") + name + "/" + to_string(s)).c_str(), BM_Query,
                                    std::string(name), s)
-          ->Unit(benchmark::kMillisecond)->UseRealTime();
+          ->Unit(benchmark::kMillisecond)
+          ->UseRealTime();
     }
   }
   for (const char* name : {"v2v-kdtree", "v2p-aabb", "v2v-naive", "v2p-naive"}) {
-    auto* b = benchmark::RegisterBenchmark((std::string("query/") + name).c_str(), BM_Query, std::string(name),
-                                           Semantics::Closest);
+    auto* b = benchmark::RegisterBenchmark((std::string("query/") + name).c_str(), BM_Query,
+                                           std::string(name), Semantics::Closest);
     b->Unit(benchmark::kMillisecond)->UseRealTime();
     if (std::string(name).find("naive") != std::string::npos) b->Iterations(1);  // seconds each
   }

@@ -1,12 +1,12 @@
 // Quadric-error decimation to an exact triangle count with OpenMesh's DecimaterT + ModQuadricT.
 #include "decimate.h"
 
-#include <limits>
+#include <fmt/format.h>
 
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 #include <OpenMesh/Tools/Decimater/DecimaterT.hh>
 #include <OpenMesh/Tools/Decimater/ModQuadricT.hh>
-#include <fmt/format.h>
+#include <limits>
 
 #include "roving/error.h"
 
@@ -47,7 +47,8 @@ TriangleMesh decimate_quadric(const TriangleMesh& input, std::size_t target_tria
     double best_length = std::numeric_limits<double>::infinity();
     for (const auto h : mesh.halfedges()) {
       if (!mesh.is_boundary(mesh.opposite_halfedge_handle(h))) continue;
-      const double length = (mesh.point(mesh.to_vertex_handle(h)) - mesh.point(mesh.from_vertex_handle(h))).norm();
+      const double length =
+          (mesh.point(mesh.to_vertex_handle(h)) - mesh.point(mesh.from_vertex_handle(h))).norm();
       if (length < best_length && mesh.is_collapse_ok(h)) best = h, best_length = length;
     }
     if (best.is_valid()) mesh.collapse(best);

@@ -1,11 +1,11 @@
 // `roving-datasets`: writes the derived test models (normalised and decimated copies of the real
 // models) into a folder, with a JSON manifest of what made each file.
+#include <fmt/format.h>
+
+#include <CLI/CLI.hpp>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-
-#include <CLI/CLI.hpp>
-#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "decimate.h"
@@ -29,7 +29,8 @@ int main(int argc, char** argv) {
   CLI::App app{"roving-datasets: normalised and decimated test models from the real ones"};
   std::string data = default_data_folder();
   std::string out = "build/datasets";
-  app.add_option("--data", data, "folder of the real models ($ROVING_DATA or ../shared/data)")->capture_default_str();
+  app.add_option("--data", data, "folder of the real models ($ROVING_DATA or ../shared/data)")
+      ->capture_default_str();
   app.add_option("--out", out, "folder to write into")->capture_default_str();
   try {
     app.parse(argc, argv);
@@ -43,11 +44,14 @@ int main(int argc, char** argv) {
   try {
     fs::create_directories(out);
     nlohmann::json manifest = nlohmann::json::array();
-    const auto write = [&](const roving::TriangleMesh& mesh, const std::string& name, nlohmann::json made_by) {
+    const auto write = [&](const roving::TriangleMesh& mesh, const std::string& name,
+                           nlohmann::json made_by) {
       const std::string path = (fs::path(out) / name).string();
       roving::save_mesh(mesh, path, true);
-      manifest.push_back({{"file", name}, {"made_by", std::move(made_by)},
-                          {"vertices", mesh.vertex_count()}, {"triangles", mesh.triangle_count()}});
+      manifest.push_back({{"file", name},
+                          {"made_by", std::move(made_by)},
+                          {"vertices", mesh.vertex_count()},
+                          {"triangles", mesh.triangle_count()}});
       std::fprintf(stderr, "wrote %s (%zu triangles)\n", path.c_str(), mesh.triangle_count());
     };
 
@@ -59,8 +63,10 @@ int main(int argc, char** argv) {
     for (std::size_t target : {800u, 10459u}) {
       const roving::Stopwatch watch;
       write(roving::decimate_quadric(bunny, target), fmt::format("bunny-{}.ply", target),
-            {{"source", "bunny.ply"}, {"operation", "quadric decimation (OpenMesh DecimaterT + ModQuadricT)"},
-             {"target_triangles", target}, {"seconds", watch.seconds()}});
+            {{"source", "bunny.ply"},
+             {"operation", "quadric decimation (OpenMesh DecimaterT + ModQuadricT)"},
+             {"target_triangles", target},
+             {"seconds", watch.seconds()}});
     }
     std::ofstream(fs::path(out) / "manifest.json") << manifest.dump(2) << "\n";
     return 0;

@@ -2,17 +2,15 @@
 // vertex-to-plane baseline, which is its closest-point query.
 #include "reference_cgal/cgal_reference.h"
 
-#include <algorithm>
-#include <cmath>
-#include <limits>
-#include <optional>
-
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
 #include <CGAL/AABB_triangle_primitive.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <optional>
 
 #include "roving/error.h"
 #include "roving/geometry.h"
@@ -28,8 +26,12 @@ using TriangleList = std::vector<Kernel::Triangle_3>;
 using Primitive = CGAL::AABB_triangle_primitive<Kernel, TriangleList::const_iterator>;
 using Tree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, Primitive>>;
 
-Point to_point(const Vec3& v) { return Point(v.x(), v.y(), v.z()); }
-Vec3 to_vec(const Point& p) { return Vec3(p.x(), p.y(), p.z()); }
+Point to_point(const Vec3& v) {
+  return Point(v.x(), v.y(), v.z());
+}
+Vec3 to_vec(const Point& p) {
+  return Vec3(p.x(), p.y(), p.z());
+}
 
 // Traversal that lists every triangle a segment meets. CGAL's own listing tests boxes with
 // interval arithmetic, which was most of the query time; here boxes are tested in plain double
@@ -38,7 +40,10 @@ Vec3 to_vec(const Point& p) { return Vec3(p.x(), p.y(), p.z()); }
 class CrossedTriangles {
  public:
   CrossedTriangles(const Segment& segment, double margin, std::vector<Primitive::Id>& crossed)
-      : start_(to_vec(segment.source())), delta_(to_vec(segment.target()) - start_), margin_(margin), crossed_(crossed) {}
+      : start_(to_vec(segment.source())),
+        delta_(to_vec(segment.target()) - start_),
+        margin_(margin),
+        crossed_(crossed) {}
 
   bool go_further() const { return true; }
 
@@ -104,26 +109,12 @@ class CgalAabbMethod final : public DistanceMethod {
   DistanceResult measure(const SampleSet& samples, const DistanceOptions& options) override {
     if (!built_) throw Error(name_ + ": measure() called before build()");
     validate_options(*this, options);
-    const Stopwatch watch;
-    DistanceResult result;
-    result.signed_distance.assign(samples.size(), 0.0);
-    result.hit.assign(samples.size(), 0);
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, samples.size(), 128),
-                      [&](const tbb::blocked_range<std::size_t>& range) {
-      std::vector<Primitive::Id> crossed;
-      for (std::size_t k = range.begin(); k != range.end(); ++k) {
-        const std::optional<double> d =
-            options.semantics == Semantics::Closest
-                ? std::optional<double>(closest(samples.positions[k], samples.normals[k]))
-                : along_normal(samples.positions[k], samples.normals[k], options, crossed);
-        if (d) {
-          result.hit[k] = 1;
-          result.signed_distance[k] = *d;
-        }
-      }
+    return measure_each(samples.size(), [&](std::size_t k) {
+      const Vec3& x = samples.positions[k];
+      const Vec3& n = samples.normals[k];
+      return options.semantics == Semantics::Closest ? std::optional<double>(closest(x, n))
+                                                     : along_normal(x, n, options);
     });
-    result.query_seconds = watch.seconds();
-    return result;
   }
 
  private:
@@ -132,18 +123,18 @@ class CgalAabbMethod final : public DistanceMethod {
   // The tree decides exactly which triangles the segment meets (filtered predicates, no
   // constructions); each crossing is then the segment's line against the triangle's plane, in
   // double. A triangle containing the segment (parallel, coplanar) contributes its overlap.
-  std::optional<double> along_normal(const Vec3& x, const Vec3& n, const DistanceOptions& options,
-                                     std::vector<Primitive::Id>& crossed) const {
+  std::optional<double> along_normal(const Vec3& x, const Vec3& n, const DistanceOptions& options) const {
     const double h = options.max_error;
     const Segment segment(to_point(x + h * n), to_point(x - h * n));
+    thread_local std::vector<Primitive::Id> crossed;  // scratch, reused across queries
     crossed.clear();
     CrossedTriangles traversal(segment, box_margin_, crossed);
     tree_.traversal(segment, traversal);
     std::optional<double> best;
     const auto consider = [&](double d) {
       d = std::clamp(d, -h, h);
-      const bool better = !best || (options.semantics == Semantics::FirstHit ? d > *best
-                                                                             : std::abs(d) < std::abs(*best));
+      const bool better =
+          !best || (options.semantics == Semantics::FirstHit ? d > *best : std::abs(d) < std::abs(*best));
       if (better) best = d;
     };
     for (const Primitive::Id& id : crossed) {

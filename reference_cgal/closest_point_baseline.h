@@ -4,9 +4,6 @@
 
 #include <string>
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-
 #include "roving/distance_method.h"
 #include "roving/error.h"
 #include "roving/geometry.h"
@@ -21,19 +18,11 @@ class ClosestPointBaseline : public DistanceMethod {
   DistanceResult measure(const SampleSet& samples, const DistanceOptions& options) override {
     if (!built_) throw Error(name() + ": measure() called before build()");
     validate_options(*this, options);
-    const Stopwatch watch;
-    DistanceResult result;
-    result.signed_distance.assign(samples.size(), 0.0);
-    result.hit.assign(samples.size(), 1);  // a nearest point always exists
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, samples.size(), 16),
-                      [&](const tbb::blocked_range<std::size_t>& range) {
-      for (std::size_t k = range.begin(); k != range.end(); ++k) {
-        const Vec3& x = samples.positions[k];
-        result.signed_distance[k] = signed_offset(x, samples.normals[k], nearest(x));
-      }
+    // A nearest point always exists: every sample is a hit.
+    return measure_each(samples.size(), [&](std::size_t k) {
+      const Vec3& x = samples.positions[k];
+      return std::optional<double>(signed_offset(x, samples.normals[k], nearest(x)));
     });
-    result.query_seconds = watch.seconds();
-    return result;
   }
 
  protected:

@@ -1,14 +1,12 @@
 // Exact reference distances by Embree ray casting and point queries (DESIGN.md "Definitions").
 #include "reference_embree/embree_reference.h"
 
+#include <embree3/rtcore.h>
+#include <fmt/format.h>
+
 #include <cmath>
 #include <limits>
 #include <optional>
-
-#include <embree3/rtcore.h>
-#include <fmt/format.h>
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
 
 #include "roving/error.h"
 #include "roving/geometry.h"
@@ -109,36 +107,17 @@ class EmbreeReference final : public DistanceMethod {
   DistanceResult measure(const SampleSet& samples, const DistanceOptions& options) override {
     if (!scene_) throw Error("embree: measure() called before build()");
     validate_options(*this, options);
-    const Stopwatch watch;
-    DistanceResult result;
-    result.signed_distance.assign(samples.size(), 0.0);
-    result.hit.assign(samples.size(), 0);
     const double h = options.max_error;
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, samples.size(), 256),
-                      [&](const tbb::blocked_range<std::size_t>& range) {
-      for (std::size_t k = range.begin(); k != range.end(); ++k) {
-        const Vec3& x = samples.positions[k];
-        const Vec3& n = samples.normals[k];
-        std::optional<double> d;
-        switch (options.semantics) {
-          case Semantics::FirstHit:
-          case Semantics::Nearest: {
-            // The ray from x + h n along -n, t in [0, 2h], d = h - t: its first crossing, or
-            // the crossing nearest to x (t = h).
-            const auto target = options.semantics == Semantics::Nearest ? std::optional<double>(h) : std::nullopt;
-            if (const auto t = trace(x + h * n, -n, 2 * h, target)) d = h - *t;
-            break;
-          }
-          case Semantics::Closest: d = closest_point(x, n); break;
-        }
-        if (d) {
-          result.hit[k] = 1;
-          result.signed_distance[k] = *d;
-        }
-      }
+    return measure_each(samples.size(), [&](std::size_t k) -> std::optional<double> {
+      const Vec3& x = samples.positions[k];
+      const Vec3& n = samples.normals[k];
+      if (options.semantics == Semantics::Closest) return closest_point(x, n);
+      // The ray from x + h n along -n, t in [0, 2h], d = h - t: its first crossing, or the
+      // crossing nearest to x (t = h).
+      const auto target = options.semantics == Semantics::Nearest ? std::optional<double>(h) : std::nullopt;
+      if (const auto t = trace(x + h * n, -n, 2 * h, target)) return h - *t;
+      return std::nullopt;
     });
-    result.query_seconds = watch.seconds();
-    return result;
   }
 
  private:
@@ -182,7 +161,8 @@ class EmbreeReference final : public DistanceMethod {
   static void collect_crossing(const RTCFilterFunctionNArguments* args) {
     auto* context = reinterpret_cast<CollectingContext*>(args->context);
     const unsigned face = RTCHitN_primID(args->hit, args->N, 0);
-    if (const auto t = context->self->plane_distance(face, context->line_origin, context->direction, context->t_max)) {
+    if (const auto t =
+            context->self->plane_distance(face, context->line_origin, context->direction, context->t_max)) {
       if (!context->best || closer(*t, *context->best, context->t_target)) context->best = t;
     }
     args->valid[0] = 0;
@@ -266,6 +246,8 @@ class EmbreeReference final : public DistanceMethod {
 
 }  // namespace
 
-std::unique_ptr<DistanceMethod> make_embree_reference() { return std::make_unique<EmbreeReference>(); }
+std::unique_ptr<DistanceMethod> make_embree_reference() {
+  return std::make_unique<EmbreeReference>();
+}
 
 }  // namespace roving

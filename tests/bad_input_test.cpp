@@ -1,9 +1,9 @@
 // Bad input: every malformed, truncated, empty or absurd file the loaders see gets a
 // roving::Error that names the file and says what was expected and what was found.
+#include <gtest/gtest.h>
+
 #include <filesystem>
 #include <fstream>
-
-#include <gtest/gtest.h>
 
 #include "roving/error.h"
 #include "roving/mesh_io.h"
@@ -45,7 +45,9 @@ class BadFiles : public ::testing::Test {
 
 const char* kTriangleObj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
 
-TEST_F(BadFiles, MissingFile) { expect_error((folder_ / "absent.obj").string(), {"cannot open"}); }
+TEST_F(BadFiles, MissingFile) {
+  expect_error((folder_ / "absent.obj").string(), {"cannot open"});
+}
 
 TEST_F(BadFiles, UnknownOrMissingExtension) {
   expect_error(write("model.xyz", kTriangleObj), {"unknown mesh format", ".xyz"});
@@ -93,11 +95,13 @@ TEST_F(BadFiles, PlyMalformedHeader) {
                {"line 3", "COUNT", "'element vertex three'"});
   expect_error(write("nomagic.ply", "this is not a ply file\n"), {"magic", "'this is not a ply file'"});
   expect_error(write("format.ply", "ply\nformat utf8 1.0\nend_header\n"), {"format ascii"});
-  expect_error(write("type.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty quaternion x\nend_header\n0\n"),
-               {"property type"});
+  expect_error(
+      write("type.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty quaternion x\nend_header\n0\n"),
+      {"property type"});
   expect_error(write("noend.ply", "ply\nformat ascii 1.0\nelement vertex 1\n"), {"end_header"});
-  expect_error(write("huge.ply", "ply\nformat ascii 1.0\nelement vertex 99999999999\nproperty float x\n"
-                                 "end_header\n0\n"),
+  expect_error(write("huge.ply",
+                     "ply\nformat ascii 1.0\nelement vertex 99999999999\nproperty float x\n"
+                     "end_header\n0\n"),
                {"truncated"});
 }
 

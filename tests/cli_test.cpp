@@ -1,11 +1,11 @@
 // The `roving` executable end to end: a correct run, its outputs, and one-line errors with a
 // non-zero exit for every bad option or file.
+#include <gtest/gtest.h>
+
 #include <array>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-
-#include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
 #include "test_support.h"
@@ -34,7 +34,9 @@ CliRun run_cli(const std::string& arguments) {
   return run;
 }
 
-std::string bunny() { return roving::testing::data_file("stanford-bunny.obj"); }
+std::string bunny() {
+  return roving::testing::data_file("stanford-bunny.obj");
+}
 
 void expect_error(const std::string& arguments, std::initializer_list<const char*> fragments) {
   const CliRun run = run_cli(arguments);
@@ -48,8 +50,8 @@ TEST(Cli, MeasuresAndWritesEveryOutput) {
   const fs::path folder = fs::temp_directory_path() / ("roving-cli-" + std::to_string(::getpid()));
   fs::create_directories(folder);
   const std::string csv = (folder / "samples.csv").string(), ply = (folder / "heat.ply").string();
-  const CliRun run = run_cli("measure " + bunny() + " " + bunny() + " --samples area:500 --json - --samples-out " +
-                          csv + " --heatmap " + ply);
+  const CliRun run = run_cli("measure " + bunny() + " " + bunny() +
+                             " --samples area:500 --json - --samples-out " + csv + " --heatmap " + ply);
   ASSERT_EQ(run.exit_code, 0) << run.err;
   const auto json = nlohmann::json::parse(run.out);
   EXPECT_EQ(json["samples"]["count"], 500);
@@ -71,7 +73,8 @@ TEST(Cli, MeasuresAndWritesEveryOutput) {
 TEST(Cli, TextReportShowsTheMetroFields) {
   const CliRun run = run_cli("measure " + bunny() + " " + bunny() + " --samples area:200 --method cgal");
   ASSERT_EQ(run.exit_code, 0) << run.err;
-  for (const char* field : {"bounding-box diagonal", "USiAD", "/ diagonal", "no hit", "build", "query", "load"}) {
+  for (const char* field :
+       {"bounding-box diagonal", "USiAD", "/ diagonal", "no hit", "build", "query", "load"}) {
     EXPECT_NE(run.out.find(field), std::string::npos) << field;
   }
 }
@@ -89,7 +92,8 @@ TEST(Cli, BadOptionsGiveOneLineErrors) {
   expect_error("measure " + pair + " --samples area:0", {"--samples", "'area:0'"});
   expect_error("measure " + pair + " --method magic", {"--method", "'magic'", "embree"});
   expect_error("measure " + pair + " --semantics sideways", {"--semantics", "'sideways'"});
-  expect_error("measure " + pair + " --method v2v-kdtree --semantics first-hit", {"--semantics", "v2v-kdtree"});
+  expect_error("measure " + pair + " --method v2v-kdtree --semantics first-hit",
+               {"--semantics", "v2v-kdtree"});
   expect_error("measure " + pair + " --histogram-bins 0", {"--histogram-bins"});
 }
 

@@ -33,8 +33,7 @@ std::vector<Case> surface_cases() {
 
 class SurfaceMethods : public ::testing::TestWithParam<Case> {
  protected:
-  DistanceResult run(const TriangleMesh& reference, const TriangleMesh& test, SampleSpec spec,
-                     double h) {
+  DistanceResult run(const TriangleMesh& reference, const TriangleMesh& test, SampleSpec spec, double h) {
     auto method = make_method(GetParam().method);
     const SampleSet samples = make_samples(reference, spec);
     return measure_distances(*method, test, samples, {GetParam().semantics, h});
@@ -100,7 +99,7 @@ TEST_P(RayMethods, EmptyViewVolumeIsANoHitCountedAsMaxError) {
 TEST_P(RayMethods, FirstHitSeesTheNearerLayerNearestSeesTheCloserOne) {
   // Two parallel planes (z = +0.3 and z = -0.1) against samples on z = 0 with normal +z, h = 0.5:
   // first-hit meets z = +0.3 first (d = +0.3), nearest-on-line takes z = -0.1 (d = -0.1).
-  const std::vector<Vec3> p = {{-2, -2, 0.3}, {2, -2, 0.3}, {2, 2, 0.3}, {-2, 2, 0.3},
+  const std::vector<Vec3> p = {{-2, -2, 0.3},  {2, -2, 0.3},  {2, 2, 0.3},  {-2, 2, 0.3},
                                {-2, -2, -0.1}, {2, -2, -0.1}, {2, 2, -0.1}, {-2, 2, -0.1}};
   const TriangleMesh planes(p, {{0, 1, 2}, {0, 2, 3}, {4, 5, 6}, {4, 6, 7}});
   const TriangleMesh reference({{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}}, {{0, 1, 2}, {0, 2, 3}});
@@ -148,7 +147,8 @@ TEST_P(RayMethods, LinesThroughVerticesAndEdgesAreNeverLost) {
   for (Semantics s : {Semantics::FirstHit, Semantics::Nearest, Semantics::Closest}) {
     const auto result = measure_distances(*method, grid, samples, {s, 0.05});
     for (std::size_t k = 0; k < samples.size(); ++k) {
-      ASSERT_TRUE(result.hit[k]) << to_string(s) << ": line through " << samples.positions[k].transpose() << " lost";
+      ASSERT_TRUE(result.hit[k]) << to_string(s) << ": line through " << samples.positions[k].transpose()
+                                 << " lost";
       EXPECT_NEAR(result.signed_distance[k], 0.0, kExact);
     }
   }

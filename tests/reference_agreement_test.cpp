@@ -74,7 +74,8 @@ TEST(Baselines, NaiveAndAcceleratedAgreeOnTheBunny) {
   // A subset keeps the brute force short (2,000 x 69,451 triangles).
   const SampleSet samples = make_samples(bunny, {SampleSpec::Kind::Area, 2000});
   const DistanceOptions options{Semantics::Closest, 0.05 * diagonal};
-  for (const auto& [naive, accelerated] : {std::pair{"v2v-naive", "v2v-kdtree"}, std::pair{"v2p-naive", "v2p-aabb"}}) {
+  for (const auto& [naive, accelerated] :
+       {std::pair{"v2v-naive", "v2v-kdtree"}, std::pair{"v2p-naive", "v2p-aabb"}}) {
     auto a = make_method(naive);
     auto b = make_method(accelerated);
     const auto ra = measure_distances(*a, test, samples, options);

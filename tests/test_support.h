@@ -1,12 +1,12 @@
 // Shared helpers of the test suites: where the real models are, and small closed-form meshes.
 #pragma once
 
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <string>
-
-#include <gtest/gtest.h>
 
 #include "roving/mesh_io.h"
 #include "roving/triangle_mesh.h"

@@ -1,10 +1,10 @@
 // `roving`: measure the shape dissimilarity of a test model M_C from a reference model M_R.
+#include <fmt/format.h>
+
+#include <CLI/CLI.hpp>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
-
-#include <CLI/CLI.hpp>
-#include <fmt/format.h>
 
 #include "method_registry.h"
 #include "report.h"
@@ -44,8 +44,8 @@ int run_measure(const MeasureArguments& args) {
   const SampleSpec sample_spec = parse_sample_spec(args.samples);
   const MaxErrorSpec max_error = parse_max_error(args.max_error);
   DistanceOptions options;
-  options.semantics = args.semantics.empty() ? method->supported_semantics().front()
-                                             : parse_semantics(args.semantics);
+  options.semantics =
+      args.semantics.empty() ? method->supported_semantics().front() : parse_semantics(args.semantics);
   options.max_error = 1;  // placeholder until the diagonal is known; checked for support now
   validate_options(*method, options);
 
@@ -87,22 +87,25 @@ int run_measure(const MeasureArguments& args) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"surface roving: shape dissimilarity between 3D models (Z-buffer surface roving, "
-               "with exact CPU references and classic baselines)"};
+  CLI::App app{
+      "surface roving: shape dissimilarity between 3D models (Z-buffer surface roving, "
+      "with exact CPU references and classic baselines)"};
   app.require_subcommand(1);
   MeasureArguments args;
   CLI::App* measure = app.add_subcommand("measure", "measure distances from REF's samples to TEST");
   measure->add_option("REF", args.reference_path, "reference model M_R (.obj .ply .off .stl)")->required();
   measure->add_option("TEST", args.test_path, "test model M_C (.obj .ply .off .stl)")->required();
-  measure->add_option("--method", args.method,
-                      fmt::format("distance method: {}", fmt::join(roving::method_names(), ", ")))
+  measure
+      ->add_option("--method", args.method,
+                   fmt::format("distance method: {}", fmt::join(roving::method_names(), ", ")))
       ->capture_default_str();
   measure->add_option("--semantics", args.semantics,
                       "first-hit (paper), nearest (on the normal line) or closest (Metro); "
                       "default: the method's own");
   measure->add_option("--samples", args.samples, "faces, vertices or area:N")->capture_default_str();
-  measure->add_option("--max-error", args.max_error,
-                      "h, the view volume's half-height: a length or P% of the reference's diagonal")
+  measure
+      ->add_option("--max-error", args.max_error,
+                   "h, the view volume's half-height: a length or P% of the reference's diagonal")
       ->capture_default_str();
   measure->add_option("--json", args.json_path, "write the report as JSON to FILE, or - for stdout");
   measure->add_option("--samples-out", args.samples_csv_path, "write one CSV row per sample");

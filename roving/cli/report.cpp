@@ -9,25 +9,28 @@ namespace {
 nlohmann::json mesh_json(const LoadedMesh& loaded) {
   const TriangleMesh& m = loaded.mesh;
   const BoundingBox& box = m.bounding_box();
-  return {{"path", loaded.path},
-          {"vertices", m.vertex_count()},
-          {"triangles", m.triangle_count()},
-          {"unreferenced_vertices", m.unreferenced_vertex_count()},
-          {"degenerate_triangles", m.degenerate_triangle_count()},
-          {"dropped_repeated_vertex_faces", loaded.dropped_repeated_vertex_faces},
-          {"triangulated_polygons", loaded.triangulated_polygons},
-          {"area", m.total_area()},
-          {"bounding_box", {{"min", {box.min.x(), box.min.y(), box.min.z()}},
-                            {"max", {box.max.x(), box.max.y(), box.max.z()}}}},
-          {"diagonal", box.diagonal()}};
+  return {
+      {"path", loaded.path},
+      {"vertices", m.vertex_count()},
+      {"triangles", m.triangle_count()},
+      {"unreferenced_vertices", m.unreferenced_vertex_count()},
+      {"degenerate_triangles", m.degenerate_triangle_count()},
+      {"dropped_repeated_vertex_faces", loaded.dropped_repeated_vertex_faces},
+      {"triangulated_polygons", loaded.triangulated_polygons},
+      {"area", m.total_area()},
+      {"bounding_box",
+       {{"min", {box.min.x(), box.min.y(), box.min.z()}}, {"max", {box.max.x(), box.max.y(), box.max.z()}}}},
+      {"diagonal", box.diagonal()}};
 }
 
 std::string mesh_line(const char* role, const LoadedMesh& loaded) {
   const TriangleMesh& m = loaded.mesh;
-  std::string line = fmt::format("{:<10} {}: {} vertices, {} triangles", role, loaded.path,
-                                 m.vertex_count(), m.triangle_count());
-  if (m.unreferenced_vertex_count()) line += fmt::format(", {} unreferenced vertices", m.unreferenced_vertex_count());
-  if (m.degenerate_triangle_count()) line += fmt::format(", {} zero-area triangles", m.degenerate_triangle_count());
+  std::string line = fmt::format("{:<10} {}: {} vertices, {} triangles", role, loaded.path, m.vertex_count(),
+                                 m.triangle_count());
+  if (m.unreferenced_vertex_count())
+    line += fmt::format(", {} unreferenced vertices", m.unreferenced_vertex_count());
+  if (m.degenerate_triangle_count())
+    line += fmt::format(", {} zero-area triangles", m.degenerate_triangle_count());
   if (loaded.dropped_repeated_vertex_faces) {
     line += fmt::format(", {} faces with a repeated vertex dropped", loaded.dropped_repeated_vertex_faces);
   }
@@ -44,9 +47,12 @@ std::string format_text(const MeasureReport& r) {
   out += mesh_line("test", *r.test);
   out += fmt::format("{:<10} bounding-box diagonal {:.6g} (reference)\n", "", diagonal);
   out += fmt::format("{:<10} {}: {}", "samples", r.samples->kind, r.samples->size());
-  if (r.samples->skipped_degenerate_faces) out += fmt::format(", {} zero-area faces skipped", r.samples->skipped_degenerate_faces);
-  if (r.samples->skipped_unreferenced_vertices) out += fmt::format(", {} unreferenced vertices skipped", r.samples->skipped_unreferenced_vertices);
-  if (r.samples->skipped_zero_normal_vertices) out += fmt::format(", {} vertices without a normal skipped", r.samples->skipped_zero_normal_vertices);
+  if (r.samples->skipped_degenerate_faces)
+    out += fmt::format(", {} zero-area faces skipped", r.samples->skipped_degenerate_faces);
+  if (r.samples->skipped_unreferenced_vertices)
+    out += fmt::format(", {} unreferenced vertices skipped", r.samples->skipped_unreferenced_vertices);
+  if (r.samples->skipped_zero_normal_vertices)
+    out += fmt::format(", {} vertices without a normal skipped", r.samples->skipped_zero_normal_vertices);
   out += "\n";
   out += fmt::format("{:<10} {}, semantics {}, max error h = {:.6g} ({})\n\n", "method", r.method,
                      to_string(r.semantics), r.max_error, r.max_error_text);
@@ -70,38 +76,50 @@ std::string format_text(const MeasureReport& r) {
   row("RMS, area-weighted", s.rms_area);
   row("SiAD, hits only", s.siad_hits);
   row("USiAD, hits only", s.usiad_hits);
-  out += fmt::format("\n  no hit within h: {} of {} samples ({:.4g}%), counted as d = +h\n",
-                     s.no_hit_count, s.sample_count, 100 * s.no_hit_fraction);
-  out += fmt::format("  time: load {:.3f} s (reference {:.3f}, test {:.3f}), build {:.3f} s, "
-                     "query {:.3f} s ({:.3g} samples/s), total {:.3f} s\n",
-                     r.load_reference_seconds + r.load_test_seconds, r.load_reference_seconds,
-                     r.load_test_seconds, r.build_seconds, r.query_seconds,
-                     r.query_seconds > 0 ? s.sample_count / r.query_seconds : 0.0, r.total_seconds);
+  out += fmt::format("\n  no hit within h: {} of {} samples ({:.4g}%), counted as d = +h\n", s.no_hit_count,
+                     s.sample_count, 100 * s.no_hit_fraction);
+  out += fmt::format(
+      "  time: load {:.3f} s (reference {:.3f}, test {:.3f}), build {:.3f} s, "
+      "query {:.3f} s ({:.3g} samples/s), total {:.3f} s\n",
+      r.load_reference_seconds + r.load_test_seconds, r.load_reference_seconds, r.load_test_seconds,
+      r.build_seconds, r.query_seconds, r.query_seconds > 0 ? s.sample_count / r.query_seconds : 0.0,
+      r.total_seconds);
   return out;
 }
 
 nlohmann::json to_json(const MeasureReport& r) {
   const Statistics& s = r.statistics;
   const double diagonal = r.reference->mesh.bounding_box().diagonal();
-  nlohmann::json stats = {
-      {"siad", s.siad}, {"usiad", s.usiad}, {"std_signed", s.std_signed},
-      {"std_unsigned", s.std_unsigned}, {"rms", s.rms}, {"max_abs", s.max_abs},
-      {"p50", s.p50}, {"p90", s.p90}, {"p95", s.p95}, {"p99", s.p99},
-      {"siad_area", s.siad_area}, {"usiad_area", s.usiad_area}, {"rms_area", s.rms_area},
-      {"siad_hits", s.siad_hits}, {"usiad_hits", s.usiad_hits}};
+  nlohmann::json stats = {{"siad", s.siad},
+                          {"usiad", s.usiad},
+                          {"std_signed", s.std_signed},
+                          {"std_unsigned", s.std_unsigned},
+                          {"rms", s.rms},
+                          {"max_abs", s.max_abs},
+                          {"p50", s.p50},
+                          {"p90", s.p90},
+                          {"p95", s.p95},
+                          {"p99", s.p99},
+                          {"siad_area", s.siad_area},
+                          {"usiad_area", s.usiad_area},
+                          {"rms_area", s.rms_area},
+                          {"siad_hits", s.siad_hits},
+                          {"usiad_hits", s.usiad_hits}};
   nlohmann::json relative;
   for (const auto& [key, value] : stats.items()) relative[key] = value.get<double>() / diagonal;
   return {
       {"reference", mesh_json(*r.reference)},
       {"test", mesh_json(*r.test)},
-      {"samples", {{"kind", r.samples->kind},
-                   {"count", r.samples->size()},
-                   {"skipped_degenerate_faces", r.samples->skipped_degenerate_faces},
-                   {"skipped_unreferenced_vertices", r.samples->skipped_unreferenced_vertices},
-                   {"skipped_zero_normal_vertices", r.samples->skipped_zero_normal_vertices}}},
+      {"samples",
+       {{"kind", r.samples->kind},
+        {"count", r.samples->size()},
+        {"skipped_degenerate_faces", r.samples->skipped_degenerate_faces},
+        {"skipped_unreferenced_vertices", r.samples->skipped_unreferenced_vertices},
+        {"skipped_zero_normal_vertices", r.samples->skipped_zero_normal_vertices}}},
       {"method", r.method},
       {"semantics", to_string(r.semantics)},
-      {"max_error", {{"value", r.max_error}, {"given_as", r.max_error_text}, {"relative", r.max_error / diagonal}}},
+      {"max_error",
+       {{"value", r.max_error}, {"given_as", r.max_error_text}, {"relative", r.max_error / diagonal}}},
       {"diagonal", diagonal},
       {"statistics", stats},
       {"statistics_relative_to_diagonal", relative},
@@ -109,11 +127,18 @@ nlohmann::json to_json(const MeasureReport& r) {
       {"no_hits", s.no_hit_count},
       {"no_hit_fraction", s.no_hit_fraction},
       {"no_hit_rule", "counted as d = +max_error"},
-      {"histogram", {{"low", s.histogram.low}, {"high", s.histogram.high},
-                     {"counts", s.histogram.counts}, {"below", s.histogram.below},
-                     {"above", s.histogram.above}}},
-      {"seconds", {{"load_reference", r.load_reference_seconds}, {"load_test", r.load_test_seconds},
-                   {"build", r.build_seconds}, {"query", r.query_seconds}, {"total", r.total_seconds}}},
+      {"histogram",
+       {{"low", s.histogram.low},
+        {"high", s.histogram.high},
+        {"counts", s.histogram.counts},
+        {"below", s.histogram.below},
+        {"above", s.histogram.above}}},
+      {"seconds",
+       {{"load_reference", r.load_reference_seconds},
+        {"load_test", r.load_test_seconds},
+        {"build", r.build_seconds},
+        {"query", r.query_seconds},
+        {"total", r.total_seconds}}},
   };
 }
 

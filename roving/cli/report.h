@@ -1,9 +1,8 @@
 // The `roving measure` report: what was measured, every statistic, timings; as text or JSON.
 #pragma once
 
-#include <string>
-
 #include <nlohmann/json.hpp>
+#include <string>
 
 #include "roving/distance_method.h"
 #include "roving/mesh_io.h"

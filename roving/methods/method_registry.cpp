@@ -1,11 +1,11 @@
 // The table of distance methods by name.
 #include "method_registry.h"
 
-#include <functional>
-#include <utility>
-
 #include <fmt/format.h>
 #include <fmt/ranges.h>
+
+#include <functional>
+#include <utility>
 
 #include "reference_cgal/cgal_reference.h"
 #include "reference_embree/embree_reference.h"

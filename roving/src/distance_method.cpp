@@ -1,10 +1,10 @@
 // Shared checks and the build-then-measure helper of the distance-method interface.
 #include "roving/distance_method.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
-
-#include <fmt/format.h>
 
 #include "roving/error.h"
 
@@ -44,9 +44,10 @@ MaxErrorSpec parse_max_error(const std::string& text) {
   }
   if (!parsed || !std::isfinite(spec.value) || !(spec.value > 0) ||
       (spec.percent_of_diagonal && spec.value > 100)) {
-    throw Error(fmt::format("--max-error: expected a length > 0 or a percentage of the diagonal in "
-                            "(0%, 100%], found '{}'",
-                            text));
+    throw Error(
+        fmt::format("--max-error: expected a length > 0 or a percentage of the diagonal in "
+                    "(0%, 100%], found '{}'",
+                    text));
   }
   return spec;
 }
@@ -69,13 +70,13 @@ void validate_options(const DistanceMethod& method, const DistanceOptions& optio
     for (Semantics s : method.supported_semantics()) {
       supported += (supported.empty() ? "" : ", ") + std::string(to_string(s));
     }
-    throw Error(fmt::format("--semantics: method '{}' computes {}; found '{}'", method.name(),
-                            supported, to_string(options.semantics)));
+    throw Error(fmt::format("--semantics: method '{}' computes {}; found '{}'", method.name(), supported,
+                            to_string(options.semantics)));
   }
 }
 
-DistanceResult measure_distances(DistanceMethod& method, const TriangleMesh& test,
-                                 const SampleSet& samples, const DistanceOptions& options) {
+DistanceResult measure_distances(DistanceMethod& method, const TriangleMesh& test, const SampleSet& samples,
+                                 const DistanceOptions& options) {
   validate_options(method, options);
   const double build_seconds = method.build(test);
   DistanceResult result = method.measure(samples, options);

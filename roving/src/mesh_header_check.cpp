@@ -1,14 +1,14 @@
 // Header checks of PLY, OFF and STL files (see mesh_header_check.h for why).
 #include "mesh_header_check.h"
 
+#include <fmt/format.h>
+
 #include <charconv>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <map>
 #include <sstream>
-
-#include <fmt/format.h>
 
 #include "roving/error.h"
 
@@ -22,8 +22,8 @@ bool parse_count(const std::string& text, unsigned long long& count) {
 
 std::size_t ply_type_size(const std::string& type) {
   static const std::map<std::string, std::size_t> sizes = {
-      {"char", 1}, {"uchar", 1}, {"int8", 1}, {"uint8", 1}, {"short", 2}, {"ushort", 2},
-      {"int16", 2}, {"uint16", 2}, {"int", 4}, {"uint", 4}, {"int32", 4}, {"uint32", 4},
+      {"char", 1},  {"uchar", 1},   {"int8", 1},   {"uint8", 1},  {"short", 2}, {"ushort", 2},
+      {"int16", 2}, {"uint16", 2},  {"int", 4},    {"uint", 4},   {"int32", 4}, {"uint32", 4},
       {"float", 4}, {"float32", 4}, {"double", 8}, {"float64", 8}};
   const auto it = sizes.find(type);
   return it == sizes.end() ? 0 : it->second;
@@ -48,7 +48,8 @@ void check_ply(const std::string& path, std::ifstream& file, std::uintmax_t file
     std::string keyword;
     words >> keyword;
     const auto bad = [&](const std::string& expected) {
-      return Error(fmt::format("{}: header line {}: expected {}, found '{}'", path, line_number, expected, line));
+      return Error(
+          fmt::format("{}: header line {}: expected {}, found '{}'", path, line_number, expected, line));
     };
     if (keyword == "format") {
       std::string format, version;
@@ -61,7 +62,8 @@ void check_ply(const std::string& path, std::ifstream& file, std::uintmax_t file
       close_element();
       std::string count_text;
       words >> element_name >> count_text;
-      if (!parse_count(count_text, element_count)) throw bad("'element NAME COUNT' with a whole-number COUNT");
+      if (!parse_count(count_text, element_count))
+        throw bad("'element NAME COUNT' with a whole-number COUNT");
       element_min_size = 0;
     } else if (keyword == "property") {
       std::string type;
@@ -89,8 +91,8 @@ void check_ply(const std::string& path, std::ifstream& file, std::uintmax_t file
   close_element();
   const auto body = file_size - static_cast<std::uintmax_t>(file.tellg());
   if (promised > body) {
-    throw Error(fmt::format("{}: truncated: the header promises at least {} bytes of data, found {}",
-                            path, promised, body));
+    throw Error(fmt::format("{}: truncated: the header promises at least {} bytes of data, found {}", path,
+                            promised, body));
   }
 }
 
@@ -132,7 +134,8 @@ void check_off(const std::string& path, std::ifstream& file, std::uintmax_t file
       words >> token;
       double value = 0;
       const auto [end, error] = std::from_chars(token.data(), token.data() + token.size(), value);
-      if (token.empty() || error != std::errc() || end != token.data() + token.size() || !std::isfinite(value)) {
+      if (token.empty() || error != std::errc() || end != token.data() + token.size() ||
+          !std::isfinite(value)) {
         throw Error(fmt::format("{}: vertex {}: expected 3 finite numbers, found '{}'", path, v, line));
       }
     }
@@ -151,7 +154,8 @@ void check_stl(const std::string& path, std::ifstream& file, std::uintmax_t file
     if (84 + 50ull * count != file_size) return;
   }
   if (file_size < 84) {
-    throw Error(fmt::format("{}: truncated: a binary STL needs an 84-byte header, found {} bytes", path, file_size));
+    throw Error(
+        fmt::format("{}: truncated: a binary STL needs an 84-byte header, found {} bytes", path, file_size));
   }
   file.seekg(80);
   std::uint32_t count = 0;

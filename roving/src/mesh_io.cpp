@@ -1,18 +1,18 @@
 // Mesh files through OpenMesh's readers and writers, with the checks OpenMesh leaves to its caller.
 #include "roving/mesh_io.h"
 
+#include <fmt/format.h>
+
+#include <OpenMesh/Core/IO/IOManager.hh>
+#include <OpenMesh/Core/IO/MeshIO.hh>
+#include <OpenMesh/Core/IO/importer/ImporterT.hh>
+#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 #include <algorithm>
 #include <cctype>
 #include <fstream>
 #include <iostream>
 #include <optional>
 #include <sstream>
-
-#include <OpenMesh/Core/IO/IOManager.hh>
-#include <OpenMesh/Core/IO/MeshIO.hh>
-#include <OpenMesh/Core/IO/importer/ImporterT.hh>
-#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
-#include <fmt/format.h>
 
 #include "mesh_header_check.h"
 #include "obj_reader.h"
@@ -129,8 +129,8 @@ LoadedMesh read_with_openmesh(const std::string& path, const std::string& ext) {
   }
   if (importer.bad_index) {
     const auto& bad = *importer.bad_index;
-    throw Error(fmt::format("{}: face {} refers to vertex {}; expected an index in [0, {})", path,
-                            bad.face, bad.index, bad.vertex_count));
+    throw Error(fmt::format("{}: face {} refers to vertex {}; expected an index in [0, {})", path, bad.face,
+                            bad.index, bad.vertex_count));
   }
 
   std::vector<Vec3> positions(om.n_vertices());
@@ -171,12 +171,12 @@ LoadedMesh load_mesh(const std::string& path) {
   LoadedMesh loaded = ext == "obj" ? read_obj(path) : read_with_openmesh(path, ext);
   const TriangleMesh& mesh = loaded.mesh;
   if (mesh.triangle_count() == 0) {
-    throw Error(fmt::format("{}: no faces found ({} vertices); expected a triangle mesh", path,
-                            mesh.vertex_count()));
+    throw Error(
+        fmt::format("{}: no faces found ({} vertices); expected a triangle mesh", path, mesh.vertex_count()));
   }
   if (mesh.degenerate_triangle_count() == mesh.triangle_count()) {
-    throw Error(fmt::format("{}: all {} triangles have zero area; expected a surface", path,
-                            mesh.triangle_count()));
+    throw Error(
+        fmt::format("{}: all {} triangles have zero area; expected a surface", path, mesh.triangle_count()));
   }
   return loaded;
 }
@@ -188,13 +188,13 @@ void save_mesh(const TriangleMesh& mesh, const std::string& path, bool binary) {
   for (const Vec3& p : mesh.positions()) om.add_vertex(OpenMesh::Vec3d(p.x(), p.y(), p.z()));
   // Built face by face without the manifold check: a soup writes out as it came in.
   for (const Triangle& t : mesh.triangles()) {
-    om.add_face(OpenMesh::VertexHandle(t[0]), OpenMesh::VertexHandle(t[1]),
-                OpenMesh::VertexHandle(t[2]));
+    om.add_face(OpenMesh::VertexHandle(t[0]), OpenMesh::VertexHandle(t[1]), OpenMesh::VertexHandle(t[2]));
   }
   if (om.n_faces() != mesh.triangle_count()) {
-    throw Error(fmt::format("{}: cannot write a non-manifold mesh through OpenMesh ({} of {} "
-                            "faces accepted)",
-                            path, om.n_faces(), mesh.triangle_count()));
+    throw Error(
+        fmt::format("{}: cannot write a non-manifold mesh through OpenMesh ({} of {} "
+                    "faces accepted)",
+                    path, om.n_faces(), mesh.triangle_count()));
   }
   OpenMesh::IO::Options options;
   if (binary && (ext == "ply" || ext == "stl")) options += OpenMesh::IO::Options::Binary;

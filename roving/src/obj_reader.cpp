@@ -3,18 +3,20 @@
 // std::from_chars and names the line of the first bad record.
 #include "obj_reader.h"
 
+#include <fmt/format.h>
+
 #include <charconv>
 #include <fstream>
 #include <string_view>
-
-#include <fmt/format.h>
 
 #include "roving/error.h"
 
 namespace roving {
 namespace {
 
-bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r'; }
+bool is_space(char c) {
+  return c == ' ' || c == '\t' || c == '\r';
+}
 
 std::string_view next_token(std::string_view& rest) {
   std::size_t begin = 0;
@@ -79,9 +81,10 @@ LoadedMesh read_obj(const std::string& path) {
         const long count = static_cast<long>(positions.size());
         const long resolved = index > 0 ? index - 1 : count + index;  // 1-based; negative: relative
         if (index == 0 || resolved < 0 || resolved >= count) {
-          throw fail(fmt::format("face refers to vertex {}; expected 1..{} or -1..-{} (vertices "
-                                 "defined so far)",
-                                 index, count, count));
+          throw fail(
+              fmt::format("face refers to vertex {}; expected 1..{} or -1..-{} (vertices "
+                          "defined so far)",
+                          index, count, count));
         }
         corners.push_back(static_cast<int>(resolved));
       }

@@ -1,12 +1,12 @@
 // CSV and PLY per-sample outputs.
 #include "roving/sample_output.h"
 
+#include <fmt/format.h>
+#include <fmt/os.h>
+
 #include <algorithm>
 #include <cstdio>
 #include <memory>
-
-#include <fmt/format.h>
-#include <fmt/os.h>
 
 #include "roving/error.h"
 
@@ -52,8 +52,8 @@ void write_samples_csv(const std::string& path, const SampleSet& samples, const 
   finish(file, path);
 }
 
-void write_heatmap_ply(const std::string& path, const SampleSet& samples,
-                       const DistanceResult& result, double range) {
+void write_heatmap_ply(const std::string& path, const SampleSet& samples, const DistanceResult& result,
+                       double range) {
   if (!(range > 0)) range = 1;
   File file = open_for_writing(path);
   fmt::print(file.get(),
@@ -70,9 +70,9 @@ void write_heatmap_ply(const std::string& path, const SampleSet& samples,
     const bool hit = result.hit[k] != 0;
     const double d = hit ? result.signed_distance[k] : 0.0;
     const auto colour = hit ? diverging_colour(d / range) : std::array<unsigned char, 3>{128, 128, 128};
-    fmt::print(file.get(), "{} {} {} {} {} {} {} {} {} {}\n", float(p.x()), float(p.y()),
-               float(p.z()), float(n.x()), float(n.y()), float(n.z()), colour[0], colour[1],
-               colour[2], hit ? float(d) : 0.0f);
+    fmt::print(file.get(), "{} {} {} {} {} {} {} {} {} {}\n", float(p.x()), float(p.y()), float(p.z()),
+               float(n.x()), float(n.y()), float(n.z()), colour[0], colour[1], colour[2],
+               hit ? float(d) : 0.0f);
   }
   finish(file, path);
 }

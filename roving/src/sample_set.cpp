@@ -1,11 +1,11 @@
 // Sample sets on the reference model (DESIGN.md "Samples").
 #include "roving/sample_set.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <charconv>
 #include <random>
-
-#include <fmt/format.h>
 
 #include "roving/error.h"
 
@@ -39,9 +39,10 @@ SampleSpec parse_sample_spec(const std::string& text) {
       return spec;
     }
   }
-  throw Error(fmt::format("--samples: expected 'faces', 'vertices' or 'area:N' with N in [1, 2^31], "
-                          "found '{}'",
-                          text));
+  throw Error(
+      fmt::format("--samples: expected 'faces', 'vertices' or 'area:N' with N in [1, 2^31], "
+                  "found '{}'",
+                  text));
 }
 
 SampleSet SampleSet::head(std::size_t n) const {
@@ -86,8 +87,7 @@ void sample_vertices(const TriangleMesh& mesh, SampleSet& samples) {
   }
 }
 
-void sample_area(const TriangleMesh& mesh, std::size_t count, std::uint64_t seed,
-                 SampleSet& samples) {
+void sample_area(const TriangleMesh& mesh, std::size_t count, std::uint64_t seed, SampleSet& samples) {
   // Inverse-CDF over cumulative face areas, then uniform barycentrics (Turk 1990's square-root
   // map). std::mt19937_64 and our own uniform mapping keep it reproducible across libstdc++s.
   std::vector<double> cumulative(mesh.triangle_count());

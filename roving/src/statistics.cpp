@@ -1,24 +1,23 @@
 // SiAD, USiAD, STD (paper eq. 1 and 2) and the rest of the report's statistics.
 #include "roving/statistics.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
-
-#include <fmt/format.h>
 
 #include "roving/error.h"
 
 namespace roving {
 
 Statistics compute_statistics(const std::vector<double>& signed_distance,
-                              const std::vector<std::uint8_t>& hit,
-                              const std::vector<double>& weights, double max_error,
-                              std::size_t histogram_bins) {
+                              const std::vector<std::uint8_t>& hit, const std::vector<double>& weights,
+                              double max_error, std::size_t histogram_bins) {
   const std::size_t n = signed_distance.size();
   if (n == 0) throw Error("statistics: expected at least one sample, found none");
   if (hit.size() != n || (!weights.empty() && weights.size() != n)) {
-    throw Error(fmt::format("statistics: {} distances but {} hit flags and {} weights", n,
-                            hit.size(), weights.size()));
+    throw Error(fmt::format("statistics: {} distances but {} hit flags and {} weights", n, hit.size(),
+                            weights.size()));
   }
   if (!(max_error > 0) || !std::isfinite(max_error)) {
     throw Error(fmt::format("statistics: expected a finite max error > 0, found {}", max_error));

@@ -1,10 +1,10 @@
 // Triangle mesh construction, validation and derived per-face / per-vertex data.
 #include "roving/triangle_mesh.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
-
-#include <fmt/format.h>
 
 #include "roving/error.h"
 
@@ -15,17 +15,18 @@ TriangleMesh::TriangleMesh(std::vector<Vec3> positions, std::vector<Triangle> tr
     : positions_(std::move(positions)), triangles_(std::move(triangles)) {
   for (std::size_t i = 0; i < positions_.size(); ++i) {
     if (!positions_[i].allFinite()) {
-      throw Error(fmt::format("{}: vertex {} has a non-finite coordinate ({}, {}, {}); expected "
-                              "finite numbers",
-                              source, i, positions_[i].x(), positions_[i].y(), positions_[i].z()));
+      throw Error(
+          fmt::format("{}: vertex {} has a non-finite coordinate ({}, {}, {}); expected "
+                      "finite numbers",
+                      source, i, positions_[i].x(), positions_[i].y(), positions_[i].z()));
     }
   }
   const int vertex_count = static_cast<int>(positions_.size());
   for (std::size_t f = 0; f < triangles_.size(); ++f) {
     for (int corner : triangles_[f]) {
       if (corner < 0 || corner >= vertex_count) {
-        throw Error(fmt::format("{}: triangle {} refers to vertex {}; expected an index in [0, {})",
-                                source, f, corner, vertex_count));
+        throw Error(fmt::format("{}: triangle {} refers to vertex {}; expected an index in [0, {})", source,
+                                f, corner, vertex_count));
       }
     }
   }
@@ -42,10 +43,9 @@ TriangleMesh::TriangleMesh(std::vector<Vec3> positions, std::vector<Triangle> tr
     total_area_ += face_areas_[f];
     // Degenerate: the area vanishes at double precision relative to the squared longest edge,
     // so that its normal would be rounding noise.
-    const double longest_edge_squared =
-        std::max({(positions_[t[1]] - positions_[t[0]]).squaredNorm(),
-                  (positions_[t[2]] - positions_[t[1]]).squaredNorm(),
-                  (positions_[t[0]] - positions_[t[2]]).squaredNorm()});
+    const double longest_edge_squared = std::max({(positions_[t[1]] - positions_[t[0]]).squaredNorm(),
+                                                  (positions_[t[2]] - positions_[t[1]]).squaredNorm(),
+                                                  (positions_[t[0]] - positions_[t[2]]).squaredNorm()});
     const bool degenerate = !(twice_area > 1e-12 * longest_edge_squared);
     face_normals_[f] = degenerate ? Vec3::Zero() : Vec3(cross / twice_area);
     if (degenerate) ++degenerate_triangles_;

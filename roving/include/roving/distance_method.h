@@ -2,6 +2,9 @@
 // so that they can be swapped and cross-checked on the same samples.
 #pragma once
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -9,6 +12,7 @@
 #include <vector>
 
 #include "roving/sample_set.h"
+#include "roving/stopwatch.h"
 #include "roving/triangle_mesh.h"
 
 namespace roving {
@@ -75,11 +79,34 @@ class DistanceMethod {
   bool supports(Semantics semantics) const;
 };
 
+// Calls `distance_of(k)` for k in [0, count) on all cores (TBB) and gathers the answers: a value
+// is a hit with that signed distance, nullopt a no-hit. query_seconds is the wall time taken.
+// `distance_of` must be safe to call from several threads at once. A template, so that the
+// per-sample call inlines (std::function cost 4% of an Embree query).
+template <class DistanceOf>
+DistanceResult measure_each(std::size_t count, const DistanceOf& distance_of) {
+  const Stopwatch watch;
+  DistanceResult result;
+  result.signed_distance.assign(count, 0.0);
+  result.hit.assign(count, 0);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, 256),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
+                      for (std::size_t k = range.begin(); k != range.end(); ++k) {
+                        if (const std::optional<double> d = distance_of(k)) {
+                          result.hit[k] = 1;
+                          result.signed_distance[k] = *d;
+                        }
+                      }
+                    });
+  result.query_seconds = watch.seconds();
+  return result;
+}
+
 // Checks options against `method` and throws roving::Error naming the option on failure.
 void validate_options(const DistanceMethod& method, const DistanceOptions& options);
 
 // build() + measure(), with both times filled in.
-DistanceResult measure_distances(DistanceMethod& method, const TriangleMesh& test,
-                                 const SampleSet& samples, const DistanceOptions& options);
+DistanceResult measure_distances(DistanceMethod& method, const TriangleMesh& test, const SampleSet& samples,
+                                 const DistanceOptions& options);
 
 }  // namespace roving

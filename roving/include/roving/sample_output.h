@@ -16,7 +16,7 @@ void write_samples_csv(const std::string& path, const SampleSet& samples, const 
 // (blue: M_C inside M_R, white: 0, red: outside) over the symmetric legend range [-range, range];
 // no-hits are grey. Each vertex also carries d as a scalar property (`quality`), read by
 // MeshLab and CloudCompare; the legend range is written in a header comment.
-void write_heatmap_ply(const std::string& path, const SampleSet& samples,
-                       const DistanceResult& result, double range);
+void write_heatmap_ply(const std::string& path, const SampleSet& samples, const DistanceResult& result,
+                       double range);
 
 }  // namespace roving

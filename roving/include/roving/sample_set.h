@@ -27,8 +27,8 @@ SampleSpec parse_sample_spec(const std::string& text);
 
 struct SampleSet {
   std::vector<Vec3> positions;
-  std::vector<Vec3> normals;   // unit length
-  std::vector<double> weights; // area each sample stands for (eq. 1); sums to M_R's area
+  std::vector<Vec3> normals;    // unit length
+  std::vector<double> weights;  // area each sample stands for (eq. 1); sums to M_R's area
   std::string kind;
   // Elements of M_R that gave no sample: zero-area faces, unreferenced vertices, or vertices
   // whose incident normals cancel.

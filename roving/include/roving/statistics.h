@@ -8,9 +8,9 @@
 namespace roving {
 
 struct Histogram {
-  double low = 0, high = 0;            // range of signed d covered by the bins
-  std::vector<std::size_t> counts;     // equal-width bins over [low, high]
-  std::size_t below = 0, above = 0;    // hits outside the range
+  double low = 0, high = 0;          // range of signed d covered by the bins
+  std::vector<std::size_t> counts;   // equal-width bins over [low, high]
+  std::size_t below = 0, above = 0;  // hits outside the range
 };
 
 struct Statistics {
@@ -19,10 +19,10 @@ struct Statistics {
   std::size_t no_hit_count = 0;
   double no_hit_fraction = 0;
   // Plain means over all samples (eq. 2); a no-hit counts as d = +h (the paper's MAX_ERROR).
-  double siad = 0;             // mean signed d
-  double usiad = 0;            // mean |d|
-  double std_signed = 0;       // standard deviation of signed d (the paper's STD)
-  double std_unsigned = 0;     // standard deviation of |d|
+  double siad = 0;          // mean signed d
+  double usiad = 0;         // mean |d|
+  double std_signed = 0;    // standard deviation of signed d (the paper's STD)
+  double std_unsigned = 0;  // standard deviation of |d|
   double rms = 0;
   double max_abs = 0;
   // Area-weighted means (eq. 1) with the same no-hit rule.
@@ -40,8 +40,7 @@ struct Statistics {
 // `signed_distance` and `hit` per sample, `weights` per sample (area, may be empty for uniform),
 // `max_error` = h (> 0). Throws roving::Error on size mismatch or an empty input.
 Statistics compute_statistics(const std::vector<double>& signed_distance,
-                              const std::vector<std::uint8_t>& hit,
-                              const std::vector<double>& weights, double max_error,
-                              std::size_t histogram_bins = 64);
+                              const std::vector<std::uint8_t>& hit, const std::vector<double>& weights,
+                              double max_error, std::size_t histogram_bins = 64);
 
 }  // namespace roving

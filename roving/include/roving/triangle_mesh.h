@@ -1,15 +1,13 @@
 // Triangle mesh: positions, triangles and the per-face / per-vertex quantities every method uses.
 #pragma once
 
-#include <array>
-#include <cstddef>
-#include <vector>
-
-#include <limits>
-#include <string>
-
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <array>
+#include <cstddef>
+#include <limits>
+#include <string>
+#include <vector>
 
 namespace roving {
 
