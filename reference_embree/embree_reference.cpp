@@ -154,6 +154,7 @@ class EmbreeReference final : public DistanceMethod {
     const EmbreeReference* self;
     Vec3 line_origin, direction;
     double t_max, t_target;
+    bool recast;
     std::optional<double> best;
   };
 
@@ -161,8 +162,8 @@ class EmbreeReference final : public DistanceMethod {
   static void collect_crossing(const RTCFilterFunctionNArguments* args) {
     auto* context = reinterpret_cast<CollectingContext*>(args->context);
     const unsigned face = RTCHitN_primID(args->hit, args->N, 0);
-    if (const auto t =
-            context->self->plane_distance(face, context->line_origin, context->direction, context->t_max)) {
+    if (const auto t = context->self->plane_distance(face, context->line_origin, context->direction,
+                                                     context->t_max, context->recast)) {
       if (!context->best || closer(*t, *context->best, context->t_target)) context->best = t;
     }
     args->valid[0] = 0;
@@ -172,6 +173,7 @@ class EmbreeReference final : public DistanceMethod {
   // `line_origin` (the same point unless this is a re-cast), in double.
   std::optional<double> trace_once(const Vec3& ray_origin, const Vec3& line_origin, const Vec3& direction,
                                    double t_max, std::optional<double> t_target) const {
+    const bool recast = ray_origin != line_origin;
     CollectingContext context;
     rtcInitIntersectContext(&context.embree);
     if (t_target) {
@@ -181,6 +183,7 @@ class EmbreeReference final : public DistanceMethod {
       context.direction = direction;
       context.t_max = t_max;
       context.t_target = *t_target;
+      context.recast = recast;
     }
     RTCRayHit rayhit;
     rayhit.ray.org_x = static_cast<float>(ray_origin.x());
@@ -202,13 +205,13 @@ class EmbreeReference final : public DistanceMethod {
     rtcIntersect1(scene_, &context.embree, &rayhit);
     if (t_target) return context.best;
     if (rayhit.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
-    return plane_distance(rayhit.hit.primID, line_origin, direction, t_max);
+    return plane_distance(rayhit.hit.primID, line_origin, direction, t_max, recast);
   }
 
   // t where origin + t * direction meets the plane of triangle `face` (centred frame), clamped
   // into [0, t_max] when rounding put it just outside; nullopt for a parallel ray.
-  std::optional<double> plane_distance(unsigned face, const Vec3& origin, const Vec3& direction,
-                                       double t_max) const {
+  std::optional<double> plane_distance(unsigned face, const Vec3& origin, const Vec3& direction, double t_max,
+                                       bool on_triangle_only) const {
     const Triangle& t = test_->triangles()[face];
     const auto& p = test_->positions();
     const Vec3 a = p[t[0]] - origin_;
@@ -219,6 +222,13 @@ class EmbreeReference final : public DistanceMethod {
     // Float traversal may accept a hit a few ulps beyond [0, t_max]; the double plane may then
     // fall a hair outside. Beyond 1e-6 of t_max it is a genuine out-of-range hit.
     if (hit_t < -1e-6 * t_max || hit_t > t_max * (1 + 1e-6)) return std::nullopt;
+    if (on_triangle_only) {
+      // A re-cast ray found this triangle; the original line must cross it, up to rounding
+      // (1e-9 of the diagonal), not pass beside it (e.g. just outside a boundary edge).
+      const Vec3 crossing = origin + hit_t * direction;
+      const Vec3 closest = closest_point_on_triangle(crossing, a, p[t[1]] - origin_, p[t[2]] - origin_);
+      if ((closest - crossing).norm() > 1e-9 * diagonal_) return std::nullopt;
+    }
     return std::clamp(hit_t, 0.0, t_max);
   }
 

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The main job (until roving-bench exists): set up, build, make the derived models, measure the
-# bunny against its 10,459-triangle quadric decimation with every CPU method, and time the
-# references, writing everything into results/.
+# bunny against its quadric decimations with every method, check the GL methods against Embree
+# at full size, and time the references, writing everything into results/.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
@@ -21,6 +21,11 @@ mkdir -p results
         echo '```'
       done
     done
+    for method in roving cooperative viewpoint; do
+      echo; echo "## $test, $method (GL, OSMesa), first-hit"; echo; echo '```'
+      ./build/roving/roving measure build/datasets/bunny.ply "build/datasets/$test.ply" --method "$method"
+      echo '```'
+    done
     for method in v2v-naive v2v-kdtree v2p-naive v2p-aabb; do
       echo; echo "## $test, $method"; echo; echo '```'
       ./build/roving/roving measure build/datasets/bunny.ply "build/datasets/$test.ply" --method "$method"
@@ -35,6 +40,7 @@ mkdir -p results
   { time ./build/roving/roving measure build/datasets/bunny.obj build/datasets/bunny-10459.ply --method embree ; } 2>&1
   echo '```'
 } > results/measure-end-to-end.md
+./build/bench/gl-accuracy --data "$data" > results/gl-accuracy.md
 ./build/bench/reference_benchmarks --benchmark_repetitions=3 --benchmark_report_aggregates_only=true \
   --benchmark_out=results/reference-benchmarks.json --benchmark_out_format=json | tee results/reference-benchmarks.txt
 echo "results written to results/"

@@ -95,6 +95,24 @@ TEST(Cli, BadOptionsGiveOneLineErrors) {
   expect_error("measure " + pair + " --method v2v-kdtree --semantics first-hit",
                {"--semantics", "v2v-kdtree"});
   expect_error("measure " + pair + " --histogram-bins 0", {"--histogram-bins"});
+  expect_error("measure " + pair + " --method cooperative --views 24", {"--views", "'24'"});
+  expect_error("measure " + pair + " --method roving --backend vulkan", {"--backend", "'vulkan'"});
+  expect_error("measure " + pair + " --method viewpoint --resolution 0", {"--resolution"});
+  expect_error("measure " + pair + " --method roving --semantics nearest", {"--semantics", "roving"});
+}
+
+TEST(Cli, GlMethodsReportObservations) {
+  const CliRun run = run_cli("measure " + bunny() + " " + bunny() +
+                             " --samples area:300 --method cooperative --views 12x6 "
+                             "--resolution 256 --json -");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const auto json = nlohmann::json::parse(run.out);
+  EXPECT_EQ(json["gl"]["views"], "12x6");
+  EXPECT_EQ(json["gl"]["observations"].get<int>(),
+            json["gl"]["views_rendered"].get<int>() + json["gl"]["sample_cameras"].get<int>());
+  EXPECT_EQ(json["gl"]["resolved_by_view"].get<int>() + json["gl"]["resolved_by_camera"].get<int>() +
+                json["gl"]["unresolved"].get<int>(),
+            300);
 }
 
 TEST(Cli, BadFilesNameTheFile) {

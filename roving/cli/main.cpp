@@ -24,6 +24,8 @@ struct MeasureArguments {
   std::string max_error = "5%";
   std::string json_path, samples_csv_path, heatmap_path;
   std::size_t histogram_bins = 64;
+  std::string views = "24x12", backend = "osmesa";
+  int resolution = 1024;
 };
 
 void write_json(const std::string& path, const nlohmann::json& json) {
@@ -40,7 +42,11 @@ int run_measure(const MeasureArguments& args) {
   using namespace roving;
   const Stopwatch total;
   // Parse every option before the (slow) loads, so a typo fails at once.
-  const auto method = make_method(args.method);
+  GlMethodOptions gl;
+  parse_views(args.views, gl.views_h, gl.views_v);
+  gl.backend = parse_gl_backend(args.backend);
+  gl.resolution = args.resolution;
+  const auto method = make_method(args.method, gl);
   const SampleSpec sample_spec = parse_sample_spec(args.samples);
   const MaxErrorSpec max_error = parse_max_error(args.max_error);
   DistanceOptions options;
@@ -71,6 +77,7 @@ int run_measure(const MeasureArguments& args) {
   report.statistics = compute_statistics(result.signed_distance, result.hit, samples.weights,
                                          options.max_error, args.histogram_bins);
   report.build_seconds = result.build_seconds;
+  report.gl = result.gl ? &*result.gl : nullptr;
   report.query_seconds = result.query_seconds;
 
   if (!args.samples_csv_path.empty()) write_samples_csv(args.samples_csv_path, samples, result);
@@ -110,6 +117,11 @@ int main(int argc, char** argv) {
   measure->add_option("--json", args.json_path, "write the report as JSON to FILE, or - for stdout");
   measure->add_option("--samples-out", args.samples_csv_path, "write one CSV row per sample");
   measure->add_option("--heatmap", args.heatmap_path, "write the samples coloured by d as PLY");
+  measure->add_option("--views", args.views, "viewpoint sampling: H x V directions")->capture_default_str();
+  measure->add_option("--resolution", args.resolution, "viewpoint sampling: view side in pixels")
+      ->check(CLI::Range(1, 16384))
+      ->capture_default_str();
+  measure->add_option("--backend", args.backend, "GL backend: osmesa or egl")->capture_default_str();
   measure->add_option("--histogram-bins", args.histogram_bins, "bins of the signed-d histogram")
       ->check(CLI::Range(1, 100000))
       ->capture_default_str();

@@ -3,6 +3,8 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+
 namespace roving {
 namespace {
 
@@ -21,6 +23,10 @@ nlohmann::json mesh_json(const LoadedMesh& loaded) {
       {"bounding_box",
        {{"min", {box.min.x(), box.min.y(), box.min.z()}}, {"max", {box.max.x(), box.max.y(), box.max.z()}}}},
       {"diagonal", box.diagonal()}};
+}
+
+std::size_t count(const GlReport& gl, Resolution how) {
+  return static_cast<std::size_t>(std::count(gl.resolved_by.begin(), gl.resolved_by.end(), how));
 }
 
 std::string mesh_line(const char* role, const LoadedMesh& loaded) {
@@ -78,6 +84,19 @@ std::string format_text(const MeasureReport& r) {
   row("USiAD, hits only", s.usiad_hits);
   out += fmt::format("\n  no hit within h: {} of {} samples ({:.4g}%), counted as d = +h\n", s.no_hit_count,
                      s.sample_count, 100 * s.no_hit_fraction);
+  if (r.gl) {
+    const GlReport& g = *r.gl;
+    out += fmt::format("  GL: {}\n", g.renderer);
+    out += fmt::format(
+        "  observations: {} ({} views of {}x{} at {} px + {} per-sample cameras); resolved by views {}, by "
+        "cameras {}, unresolved {}\n",
+        g.observations(), g.views_rendered, g.views_h, g.views_v, g.resolution, g.sample_cameras,
+        count(g, Resolution::View), count(g, Resolution::Camera), count(g, Resolution::Unresolved));
+    out += fmt::format(
+        "  precision (model units): view pixel {:.4g}, view depth step {:.3g}, camera half-width "
+        "{:.3g}, camera depth step {:.3g}\n",
+        g.view_pixel_size, g.view_depth_step, g.camera_half_width, g.camera_depth_step);
+  }
   out += fmt::format(
       "  time: load {:.3f} s (reference {:.3f}, test {:.3f}), build {:.3f} s, "
       "query {:.3f} s ({:.3g} samples/s), total {:.3f} s\n",
@@ -107,7 +126,7 @@ nlohmann::json to_json(const MeasureReport& r) {
                           {"usiad_hits", s.usiad_hits}};
   nlohmann::json relative;
   for (const auto& [key, value] : stats.items()) relative[key] = value.get<double>() / diagonal;
-  return {
+  nlohmann::json json = {
       {"reference", mesh_json(*r.reference)},
       {"test", mesh_json(*r.test)},
       {"samples",
@@ -140,6 +159,23 @@ nlohmann::json to_json(const MeasureReport& r) {
         {"query", r.query_seconds},
         {"total", r.total_seconds}}},
   };
+  if (r.gl) {
+    const GlReport& g = *r.gl;
+    json["gl"] = {{"renderer", g.renderer},
+                  {"observations", g.observations()},
+                  {"views_rendered", g.views_rendered},
+                  {"sample_cameras", g.sample_cameras},
+                  {"views", fmt::format("{}x{}", g.views_h, g.views_v)},
+                  {"resolution", g.resolution},
+                  {"resolved_by_view", count(g, Resolution::View)},
+                  {"resolved_by_camera", count(g, Resolution::Camera)},
+                  {"unresolved", count(g, Resolution::Unresolved)},
+                  {"view_pixel_size", g.view_pixel_size},
+                  {"view_depth_step", g.view_depth_step},
+                  {"camera_half_width", g.camera_half_width},
+                  {"camera_depth_step", g.camera_depth_step}};
+  }
+  return json;
 }
 
 }  // namespace roving

@@ -21,6 +21,7 @@ struct MeasureReport {
   Statistics statistics;
   double load_reference_seconds = 0, load_test_seconds = 0;
   double build_seconds = 0, query_seconds = 0, total_seconds = 0;
+  const GlReport* gl = nullptr;  // GL methods: observations and precision
 };
 
 // Metro-style plain text: counts, diagonal, each statistic in model units and relative to the

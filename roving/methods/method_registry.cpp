@@ -14,16 +14,19 @@
 namespace roving {
 namespace {
 
-using Factory = std::function<std::unique_ptr<DistanceMethod>()>;
+using Factory = std::function<std::unique_ptr<DistanceMethod>(const GlMethodOptions&)>;
 
 const std::vector<std::pair<std::string, Factory>>& registry() {
   static const std::vector<std::pair<std::string, Factory>> methods = {
-      {"embree", [] { return make_embree_reference(); }},
-      {"cgal", [] { return make_cgal_reference(); }},
-      {"v2v-naive", [] { return make_vertex_to_vertex(Search::Naive); }},
-      {"v2v-kdtree", [] { return make_vertex_to_vertex(Search::Accelerated); }},
-      {"v2p-naive", [] { return make_vertex_to_plane(Search::Naive); }},
-      {"v2p-aabb", [] { return make_vertex_to_plane(Search::Accelerated); }},
+      {"embree", [](const GlMethodOptions&) { return make_embree_reference(); }},
+      {"cgal", [](const GlMethodOptions&) { return make_cgal_reference(); }},
+      {"v2v-naive", [](const GlMethodOptions&) { return make_vertex_to_vertex(Search::Naive); }},
+      {"v2v-kdtree", [](const GlMethodOptions&) { return make_vertex_to_vertex(Search::Accelerated); }},
+      {"v2p-naive", [](const GlMethodOptions&) { return make_vertex_to_plane(Search::Naive); }},
+      {"v2p-aabb", [](const GlMethodOptions&) { return make_vertex_to_plane(Search::Accelerated); }},
+      {"roving", [](const GlMethodOptions& gl) { return make_surface_roving(gl); }},
+      {"viewpoint", [](const GlMethodOptions& gl) { return make_viewpoint_sampling(gl); }},
+      {"cooperative", [](const GlMethodOptions& gl) { return make_cooperative(gl); }},
   };
   return methods;
 }
@@ -36,9 +39,13 @@ std::vector<std::string> method_names() {
   return names;
 }
 
-std::unique_ptr<DistanceMethod> make_method(const std::string& name) {
+bool is_gl_method(const std::string& name) {
+  return name == "roving" || name == "viewpoint" || name == "cooperative";
+}
+
+std::unique_ptr<DistanceMethod> make_method(const std::string& name, const GlMethodOptions& gl) {
   for (const auto& [known, factory] : registry()) {
-    if (known == name) return factory();
+    if (known == name) return factory(gl);
   }
   throw Error(fmt::format("--method: expected one of {}, found '{}'", fmt::join(method_names(), ", "), name));
 }

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "roving/distance_method.h"
+#include "roving/gl_methods.h"
 
 namespace roving {
 
@@ -13,6 +14,10 @@ namespace roving {
 std::vector<std::string> method_names();
 
 // Throws roving::Error naming `--method`, listing the known names, for an unknown one.
-std::unique_ptr<DistanceMethod> make_method(const std::string& name);
+// `gl` configures the GL methods (roving, viewpoint, cooperative); the others ignore it.
+std::unique_ptr<DistanceMethod> make_method(const std::string& name, const GlMethodOptions& gl = {});
+
+// True for the methods that render with GL.
+bool is_gl_method(const std::string& name);
 
 }  // namespace roving

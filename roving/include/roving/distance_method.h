@@ -50,12 +50,33 @@ struct DistanceOptions {
   double max_error = 0;  // h: half-height of the view volume, model units, > 0
 };
 
+// How a GL method resolved one sample.
+enum class Resolution : std::uint8_t { Unresolved = 0, View = 1, Camera = 2 };
+
+// What a GL method reports beside the distances: the paper's observations (Table 1: views
+// rendered plus per-sample cameras), per-sample resolution, and the precision its tolerances
+// are derived from.
+struct GlReport {
+  std::string renderer;                 // backend and GL_RENDERER
+  std::size_t views_rendered = 0;       // viewpoint-sampling views drawn (directions with samples)
+  std::size_t sample_cameras = 0;       // surface-roving cameras (one-pixel views)
+  std::vector<Resolution> resolved_by;  // per sample; Unresolved = no hit
+  int views_h = 0, views_v = 0, resolution = 0;
+  double view_pixel_size = 0;    // model units per view pixel
+  double view_depth_step = 0;    // model units per ulp of float depth near 1 in a view
+  double camera_half_width = 0;  // half-width of a roving camera's view volume (one pixel)
+  double camera_depth_step = 0;  // model units per ulp of float depth near 1 in a roving camera
+
+  std::size_t observations() const { return views_rendered + sample_cameras; }
+};
+
 // Per-sample output. signed_distance[k] is meaningful only where hit[k] is set.
 struct DistanceResult {
   std::vector<double> signed_distance;
   std::vector<std::uint8_t> hit;
-  double build_seconds = 0;  // acceleration structures, uploads: once per test model
-  double query_seconds = 0;  // all samples
+  double build_seconds = 0;    // acceleration structures, uploads: once per test model
+  double query_seconds = 0;    // all samples
+  std::optional<GlReport> gl;  // GL methods only
 
   std::size_t hit_count() const;
 };

@@ -1,0 +1,151 @@
+// OSMesa and EGL offscreen contexts (GL 4.5 core profile; rendering goes to FBOs).
+#include "gl_context.h"
+
+#include <EGL/egl.h>
+#include <EGL/eglext.h>
+#include <GL/osmesa.h>
+#include <fmt/format.h>
+
+#include <cstring>
+#include <vector>
+
+#include "roving/error.h"
+
+namespace roving::gl {
+namespace {
+
+class OsMesaContext final : public Context {
+ public:
+  OsMesaContext() {
+    const int attributes[] = {OSMESA_FORMAT,
+                              OSMESA_RGBA,
+                              OSMESA_DEPTH_BITS,
+                              24,
+                              OSMESA_PROFILE,
+                              OSMESA_CORE_PROFILE,
+                              OSMESA_CONTEXT_MAJOR_VERSION,
+                              4,
+                              OSMESA_CONTEXT_MINOR_VERSION,
+                              5,
+                              0};
+    context_ = OSMesaCreateContextAttribs(attributes, nullptr);
+    if (!context_)
+      throw Error("osmesa: cannot create a GL 4.5 core context (OSMesaCreateContextAttribs failed)");
+    // OSMesa needs a colour buffer to be current; all rendering goes to FBOs, so 1 x 1 will do.
+    if (!OSMesaMakeCurrent(context_, pixel_, GL_UNSIGNED_BYTE, 1, 1)) {
+      OSMesaDestroyContext(context_);
+      throw Error("osmesa: cannot make the context current");
+    }
+  }
+  ~OsMesaContext() override { OSMesaDestroyContext(context_); }
+
+  void* proc_address(const char* name) const override {
+    return reinterpret_cast<void*>(OSMesaGetProcAddress(name));
+  }
+  std::string platform() const override { return "osmesa"; }
+
+ private:
+  OSMesaContext context_ = nullptr;
+  unsigned char pixel_[4] = {};
+};
+
+class EglContext final : public Context {
+ public:
+  EglContext() {
+    const char* client_extensions = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
+    const auto has = [&](const char* name) {
+      return client_extensions && std::strstr(client_extensions, name);
+    };
+    auto get_platform_display =
+        reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(eglGetProcAddress("eglGetPlatformDisplayEXT"));
+    if (!get_platform_display)
+      throw Error("egl: eglGetPlatformDisplayEXT is missing (no EGL_EXT_platform_base)");
+
+    // A device display reaches a real GPU; Mesa's software device is skipped in its favour only
+    // when a hardware one exists, and surfaceless is the fallback.
+    std::string failures;
+    if (has("EGL_EXT_platform_device")) {
+      auto query_devices =
+          reinterpret_cast<PFNEGLQUERYDEVICESEXTPROC>(eglGetProcAddress("eglQueryDevicesEXT"));
+      EGLint count = 0;
+      if (query_devices && query_devices(0, nullptr, &count) && count > 0) {
+        std::vector<EGLDeviceEXT> devices(count);
+        query_devices(count, devices.data(), &count);
+        for (EGLDeviceEXT device : devices) {
+          if (try_display(get_platform_display(EGL_PLATFORM_DEVICE_EXT, device, nullptr), "egl-device",
+                          failures))
+            return;
+        }
+      }
+    }
+    if (has("EGL_MESA_platform_surfaceless") &&
+        try_display(get_platform_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr),
+                    "egl-surfaceless", failures)) {
+      return;
+    }
+    throw Error("egl: no display gives a GL 4.5 core context (" +
+                (failures.empty() ? "no device or surfaceless platform" : failures) + ")");
+  }
+  ~EglContext() override {
+    eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+    eglDestroyContext(display_, context_);
+    eglTerminate(display_);
+  }
+
+  void* proc_address(const char* name) const override {
+    return reinterpret_cast<void*>(eglGetProcAddress(name));
+  }
+  std::string platform() const override { return platform_; }
+
+ private:
+  bool try_display(EGLDisplay display, const char* platform, std::string& failures) {
+    const auto fail = [&](const char* step) {
+      failures += fmt::format("{}{}: {} failed (0x{:x})", failures.empty() ? "" : "; ", platform, step,
+                              eglGetError());
+      return false;
+    };
+    if (display == EGL_NO_DISPLAY) return fail("eglGetPlatformDisplay");
+    if (!eglInitialize(display, nullptr, nullptr)) return fail("eglInitialize");
+    if (!eglBindAPI(EGL_OPENGL_API)) return fail("eglBindAPI(OpenGL)");
+    const EGLint config_attributes[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_NONE};
+    EGLConfig config = nullptr;
+    EGLint configs = 0;
+    eglChooseConfig(display, config_attributes, &config, 1, &configs);
+    const EGLint context_attributes[] = {EGL_CONTEXT_MAJOR_VERSION,
+                                         4,
+                                         EGL_CONTEXT_MINOR_VERSION,
+                                         5,
+                                         EGL_CONTEXT_OPENGL_PROFILE_MASK,
+                                         EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+                                         EGL_NONE};
+    // Without EGL_KHR_no_config_context a config is needed; surfaceless Mesa accepts none.
+    EGLContext context = eglCreateContext(display, configs > 0 ? config : EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT,
+                                          context_attributes);
+    if (context == EGL_NO_CONTEXT) {
+      eglTerminate(display);
+      return fail("eglCreateContext(4.5 core)");
+    }
+    if (!eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, context)) {
+      eglDestroyContext(display, context);
+      eglTerminate(display);
+      return fail("eglMakeCurrent(surfaceless)");
+    }
+    display_ = display;
+    context_ = context;
+    platform_ = platform;
+    return true;
+  }
+
+  EGLDisplay display_ = EGL_NO_DISPLAY;
+  EGLContext context_ = EGL_NO_CONTEXT;
+  std::string platform_;
+};
+
+}  // namespace
+
+std::unique_ptr<Context> make_context(GlBackend backend) {
+  if (backend == GlBackend::OSMesa) return std::make_unique<OsMesaContext>();
+  return std::make_unique<EglContext>();
+}
+
+}  // namespace roving::gl

@@ -1,0 +1,23 @@
+// Offscreen GL 4.5 core contexts: OSMesa, or EGL (device platform, then surfaceless).
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "roving/depth_renderer.h"
+
+namespace roving::gl {
+
+class Context {
+ public:
+  virtual ~Context() = default;
+  // Address of a GL entry point in this context's GL.
+  virtual void* proc_address(const char* name) const = 0;
+  virtual std::string platform() const = 0;  // e.g. "osmesa", "egl-device", "egl-surfaceless"
+};
+
+// Creates the context and makes it current on the calling thread; throws roving::Error with the
+// step that failed.
+std::unique_ptr<Context> make_context(GlBackend backend);
+
+}  // namespace roving::gl

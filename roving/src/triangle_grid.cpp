@@ -1,0 +1,54 @@
+// Uniform grid of triangle buckets (counting sort into one flat array).
+#include "triangle_grid.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace roving {
+
+TriangleGrid::TriangleGrid(const TriangleMesh& mesh, double triangles_per_cell, double margin) {
+  const BoundingBox& box = mesh.bounding_box();
+  const Vec3 size = box.size().cwiseMax(1e-12 * box.diagonal());
+  // Cells for about triangle_count / triangles_per_cell cells over the box, at most 256 a side.
+  const double cells = std::max(1.0, mesh.triangle_count() / triangles_per_cell);
+  cell_ = std::cbrt(size.prod() / cells);
+  for (int axis = 0; axis < 3; ++axis) {
+    dims_[axis] = std::clamp(static_cast<int>(std::ceil(size[axis] / cell_)), 1, 256);
+  }
+  cell_ = std::max({size.x() / dims_[0], size.y() / dims_[1], size.z() / dims_[2]});
+  // The grid overhangs the box by a cell's margin on each side, so that inflated boxes fit.
+  const double pad = margin * cell_;
+  origin_ = box.min - Vec3::Constant(pad);
+  cell_ = std::max(
+      {(size.x() + 2 * pad) / dims_[0], (size.y() + 2 * pad) / dims_[1], (size.z() + 2 * pad) / dims_[2]});
+
+  const auto cell_range = [&](const Triangle& t, int low[3], int high[3]) {
+    const auto& p = mesh.positions();
+    for (int axis = 0; axis < 3; ++axis) {
+      const double lo = std::min({p[t[0]][axis], p[t[1]][axis], p[t[2]][axis]}) - pad;
+      const double hi = std::max({p[t[0]][axis], p[t[1]][axis], p[t[2]][axis]}) + pad;
+      low[axis] = std::clamp(static_cast<int>(std::floor((lo - origin_[axis]) / cell_)), 0, dims_[axis] - 1);
+      high[axis] = std::clamp(static_cast<int>(std::floor((hi - origin_[axis]) / cell_)), 0, dims_[axis] - 1);
+    }
+  };
+  offsets_.assign(std::size_t(dims_[0]) * dims_[1] * dims_[2] + 1, 0);
+  int low[3], high[3];
+  for (const Triangle& t : mesh.triangles()) {  // count
+    cell_range(t, low, high);
+    for (int z = low[2]; z <= high[2]; ++z)
+      for (int y = low[1]; y <= high[1]; ++y)
+        for (int x = low[0]; x <= high[0]; ++x) ++offsets_[cell_index(x, y, z) + 1];
+  }
+  for (std::size_t c = 1; c < offsets_.size(); ++c) offsets_[c] += offsets_[c - 1];
+  entries_.resize(offsets_.back());
+  std::vector<std::uint32_t> fill(offsets_.begin(), offsets_.end() - 1);
+  for (std::size_t f = 0; f < mesh.triangle_count(); ++f) {  // place
+    cell_range(mesh.triangles()[f], low, high);
+    for (int z = low[2]; z <= high[2]; ++z)
+      for (int y = low[1]; y <= high[1]; ++y)
+        for (int x = low[0]; x <= high[0]; ++x)
+          entries_[fill[cell_index(x, y, z)]++] = static_cast<std::uint32_t>(f);
+  }
+}
+
+}  // namespace roving
