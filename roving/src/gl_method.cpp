@@ -64,16 +64,27 @@ double GlMethod::build(const TriangleMesh& test) {
   return watch.seconds();
 }
 
-GlReport GlMethod::start(const SampleSet& samples, const DistanceOptions& options) const {
+DistanceResult GlMethod::measure(const SampleSet& samples, const DistanceOptions& options) {
   if (!scene_.test) throw Error(name() + ": measure() called before build()");
   validate_options(*this, options);
+  const Stopwatch watch;
   GlReport report;
   report.renderer = scene_.renderer_name();
   report.resolved_by.assign(samples.size(), Resolution::Unresolved);
   report.views_h = options_.views_h;
   report.views_v = options_.views_v;
   report.resolution = options_.resolution;
-  return report;
+  DistanceResult result;
+  result.signed_distance.assign(samples.size(), 0.0);
+  result.hit.assign(samples.size(), 0);
+  resolve(samples, options.max_error, report, [&](std::uint32_t k, double d, Resolution how) {
+    result.hit[k] = 1;
+    result.signed_distance[k] = d;
+    report.resolved_by[k] = how;
+  });
+  result.query_seconds = watch.seconds();
+  result.gl = std::move(report);
+  return result;
 }
 
 }  // namespace roving

@@ -2,6 +2,7 @@
 // cooperative.
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -34,16 +35,20 @@ std::vector<std::optional<double>> rove(GlScene& scene, const SampleSet& samples
 std::vector<std::optional<double>> view_sample(GlScene& scene, const SampleSet& samples, double max_error,
                                                const GlMethodOptions& options, GlReport& report);
 
-// Shared checks and bookkeeping of the three GL methods.
+// What the three GL methods share: checks, timing, and filling in the result and report; each
+// method only says how it resolves samples.
 class GlMethod : public DistanceMethod {
  public:
   explicit GlMethod(GlMethodOptions options) : options_(options) {}
   std::vector<Semantics> supported_semantics() const override { return {Semantics::FirstHit}; }
   double build(const TriangleMesh& test) override;
+  DistanceResult measure(const SampleSet& samples, const DistanceOptions& options) final;
 
  protected:
-  // Common start of measure(): checks, and an empty report for `count` samples.
-  GlReport start(const SampleSet& samples, const DistanceOptions& options) const;
+  // Per-sample answers: record(k, d, how) marks sample k a hit with distance d.
+  using Record = std::function<void(std::uint32_t k, double d, Resolution how)>;
+  virtual void resolve(const SampleSet& samples, double max_error, GlReport& report,
+                       const Record& record) = 0;
 
   GlMethodOptions options_;
   GlScene scene_;

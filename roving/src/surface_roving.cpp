@@ -4,7 +4,6 @@
 
 #include "gl_passes.h"
 #include "roving/gl_methods.h"
-#include "roving/stopwatch.h"
 
 namespace roving {
 namespace {
@@ -44,24 +43,13 @@ class SurfaceRoving final : public GlMethod {
   using GlMethod::GlMethod;
   std::string name() const override { return "roving"; }
 
-  DistanceResult measure(const SampleSet& samples, const DistanceOptions& options) override {
-    GlReport report = start(samples, options);
-    const Stopwatch watch;
+  void resolve(const SampleSet& samples, double max_error, GlReport& report, const Record& record) override {
     std::vector<std::uint32_t> all(samples.size());
     for (std::uint32_t k = 0; k < all.size(); ++k) all[k] = k;
-    const auto d = rove(scene_, samples, all, options.max_error, report);
-    DistanceResult result;
-    result.signed_distance.assign(samples.size(), 0.0);
-    result.hit.assign(samples.size(), 0);
-    for (std::size_t k = 0; k < samples.size(); ++k) {
-      if (!d[k]) continue;
-      result.hit[k] = 1;
-      result.signed_distance[k] = *d[k];
-      report.resolved_by[k] = Resolution::Camera;
+    const auto d = rove(scene_, samples, all, max_error, report);
+    for (std::uint32_t k = 0; k < all.size(); ++k) {
+      if (d[k]) record(k, *d[k], Resolution::Camera);
     }
-    result.query_seconds = watch.seconds();
-    result.gl = std::move(report);
-    return result;
   }
 };
 

@@ -8,7 +8,6 @@
 
 #include "gl_passes.h"
 #include "roving/gl_methods.h"
-#include "roving/stopwatch.h"
 
 namespace roving {
 namespace {
@@ -100,22 +99,11 @@ class ViewpointSampling final : public GlMethod {
   using GlMethod::GlMethod;
   std::string name() const override { return "viewpoint"; }
 
-  DistanceResult measure(const SampleSet& samples, const DistanceOptions& options) override {
-    GlReport report = start(samples, options);
-    const Stopwatch watch;
-    const auto d = view_sample(scene_, samples, options.max_error, options_, report);
-    DistanceResult result;
-    result.signed_distance.assign(samples.size(), 0.0);
-    result.hit.assign(samples.size(), 0);
-    for (std::size_t k = 0; k < samples.size(); ++k) {
-      if (!d[k]) continue;
-      result.hit[k] = 1;
-      result.signed_distance[k] = *d[k];
-      report.resolved_by[k] = Resolution::View;
+  void resolve(const SampleSet& samples, double max_error, GlReport& report, const Record& record) override {
+    const auto d = view_sample(scene_, samples, max_error, options_, report);
+    for (std::uint32_t k = 0; k < samples.size(); ++k) {
+      if (d[k]) record(k, *d[k], Resolution::View);
     }
-    result.query_seconds = watch.seconds();
-    result.gl = std::move(report);
-    return result;
   }
 };
 
