@@ -1,37 +1,97 @@
-// `roving-datasets`: writes the derived test models (normalised and decimated copies of the real
-// models) into a folder, with a JSON manifest of what made each file.
-#include <fmt/format.h>
+// `roving-datasets`: writes, deterministically, the derived test models (normalised, decimated,
+// voxelised, sampled and analytic) into a folder, with a JSON manifest of what made each file,
+// its parameters, counts and sha256.
+#include <openssl/evp.h>
 
-#include <CLI/CLI.hpp>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "analytic.h"
 #include "decimate.h"
 #include "roving/error.h"
 #include "roving/mesh_io.h"
 #include "roving/normalise.h"
-#include "roving/stopwatch.h"
+#include "roving/point_cloud.h"
+#include "roving/voxel_model.h"
+#include "voxelize.h"
 
 namespace fs = std::filesystem;
+using namespace roving;
+using nlohmann::json;
 
 namespace {
 
-std::string default_data_folder() {
-  if (const char* env = std::getenv("ROVING_DATA"); env && *env) return env;
-  return "../shared/data";
+std::string sha256_of(const std::string& path) {
+  std::ifstream file(path, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+  unsigned char digest[EVP_MAX_MD_SIZE];
+  unsigned int length = 0;
+  if (!EVP_Digest(bytes.data(), bytes.size(), digest, &length, EVP_sha256(), nullptr)) {
+    throw Error(fmt::format("{}: sha256 failed", path));
+  }
+  std::string hex;
+  for (unsigned int i = 0; i < length; ++i) hex += fmt::format("{:02x}", digest[i]);
+  return hex;
+}
+
+class Writer {
+ public:
+  explicit Writer(fs::path folder) : folder_(std::move(folder)) { fs::create_directories(folder_); }
+
+  void mesh(const TriangleMesh& m, const std::string& name, json made_by) {
+    save_mesh(m, path(name), true);
+    add(name, std::move(made_by), {{"vertices", m.vertex_count()}, {"triangles", m.triangle_count()}});
+  }
+  void voxels(const VoxelGrid& g, const std::string& name, json made_by) {
+    write_binvox(g, path(name));
+    add(name, std::move(made_by), {{"dimension", g.dimension}, {"voxel_size", g.voxel_size}, {"occupied", g.occupied_count()}});
+  }
+  void points(const PointCloud& c, const std::string& name, json made_by) {
+    if (fs::path(name).extension() == ".xyz") {
+      std::ofstream file(path(name));
+      file.precision(9);
+      for (const Vec3& p : c.positions) file << p.x() << ' ' << p.y() << ' ' << p.z() << '\n';
+    } else {
+      write_point_cloud_ply(c, path(name));
+    }
+    add(name, std::move(made_by), {{"points", c.positions.size()}, {"normals", !c.normals.empty()}});
+  }
+  void finish() {
+    std::ofstream(folder_ / "manifest.json") << json{{"generator", "roving-datasets"}, {"files", manifest_}}.dump(2) << "\n";
+  }
+
+ private:
+  std::string path(const std::string& name) const { return (folder_ / name).string(); }
+  void add(const std::string& name, json made_by, json counts) {
+    json entry = {{"file", name}, {"made_by", std::move(made_by)}, {"counts", std::move(counts)}, {"sha256", sha256_of(path(name))}};
+    manifest_.push_back(entry);
+    std::fprintf(stderr, "wrote %s\n", path(name).c_str());
+  }
+  fs::path folder_;
+  json manifest_ = json::array();
+};
+
+// Points uniform by area on `mesh`, with its face normals (a scanned-cloud stand-in).
+PointCloud sampled_points(const TriangleMesh& mesh, std::size_t count) {
+  const SampleSet s = make_samples(mesh, {SampleSpec::Kind::Area, count});
+  return {s.positions, s.normals};
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"roving-datasets: normalised and decimated test models from the real ones"};
-  std::string data = default_data_folder();
+  CLI::App app{"roving-datasets: normalised, decimated, voxelised, sampled and analytic test models"};
+  std::string data = std::getenv("ROVING_DATA") && *std::getenv("ROVING_DATA") ? std::getenv("ROVING_DATA") : "../shared/data";
   std::string out = "build/datasets";
-  app.add_option("--data", data, "folder of the real models ($ROVING_DATA or ../shared/data)")
-      ->capture_default_str();
+  bool quick = false;
+  app.add_option("--data", data, "folder of the real models ($ROVING_DATA or ../shared/data)")->capture_default_str();
   app.add_option("--out", out, "folder to write into")->capture_default_str();
+  app.add_flag("--quick", quick, "the bunny's files only (for tests)");
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -42,33 +102,60 @@ int main(int argc, char** argv) {
   }
 
   try {
-    fs::create_directories(out);
-    nlohmann::json manifest = nlohmann::json::array();
-    const auto write = [&](const roving::TriangleMesh& mesh, const std::string& name,
-                           nlohmann::json made_by) {
-      const std::string path = (fs::path(out) / name).string();
-      roving::save_mesh(mesh, path, true);
-      manifest.push_back({{"file", name},
-                          {"made_by", std::move(made_by)},
-                          {"vertices", mesh.vertex_count()},
-                          {"triangles", mesh.triangle_count()}});
-      std::fprintf(stderr, "wrote %s (%zu triangles)\n", path.c_str(), mesh.triangle_count());
+    Writer write(out);
+    const auto normalise = [](const std::string& source) { return json{{"source", source}, {"operation", "normalise"}, {"longest_side", 128}}; };
+    const auto decimation = [](const std::string& source, std::size_t target) {
+      return json{{"source", source}, {"operation", "quadric decimation (OpenMesh DecimaterT + ModQuadricT)"}, {"target_triangles", target}};
     };
 
     const std::string bunny_path = (fs::path(data) / "stanford-bunny.obj").string();
-    const roving::TriangleMesh bunny = roving::normalised(roving::load_mesh(bunny_path).mesh, 128.0);
-    write(bunny, "bunny.ply", {{"source", bunny_path}, {"operation", "normalise"}, {"longest_side", 128}});
-    write(bunny, "bunny.obj", {{"source", bunny_path}, {"operation", "normalise"}, {"longest_side", 128}});
-    // The paper's low and middle resolutions (Table 2).
-    for (std::size_t target : {800u, 10459u}) {
-      const roving::Stopwatch watch;
-      write(roving::decimate_quadric(bunny, target), fmt::format("bunny-{}.ply", target),
-            {{"source", "bunny.ply"},
-             {"operation", "quadric decimation (OpenMesh DecimaterT + ModQuadricT)"},
-             {"target_triangles", target},
-             {"seconds", watch.seconds()}});
+    const TriangleMesh bunny = normalised(load_mesh(bunny_path).mesh);
+    write.mesh(bunny, "bunny.ply", normalise(bunny_path));
+    write.mesh(bunny, "bunny.obj", normalise(bunny_path));
+    for (std::size_t target : {800u, 10459u}) {  // the paper's low and middle meshes (Table 2)
+      write.mesh(decimate_quadric(bunny, target), fmt::format("bunny-{}.ply", target), decimation("bunny.ply", target));
     }
-    std::ofstream(fs::path(out) / "manifest.json") << manifest.dump(2) << "\n";
+    for (int dimension : {32, 128}) {  // the paper's sparse and dense voxels (Table 2)
+      write.voxels(voxelize_conservative(bunny, dimension), fmt::format("bunny-vox{}.binvox", dimension),
+                   {{"source", "bunny.ply"}, {"operation", "conservative voxelisation (exact triangle-box overlap)"},
+                    {"dimension", dimension}});
+    }
+    write.points(sampled_points(bunny, 20000), "bunny-points.ply",
+                 {{"source", "bunny.ply"}, {"operation", "area-uniform samples with face normals"}, {"count", 20000}, {"seed", 12345}});
+    write.points(PointCloud{sampled_points(bunny, 20000).positions, {}}, "bunny-points.xyz",
+                 {{"source", "bunny.ply"}, {"operation", "the same samples without normals"}, {"count", 20000}});
+
+    // Analytic cases: exact sphere of radius 50 against concentric tessellated spheres and a
+    // voxelised sphere; a torus against a thicker one; parallel planes 1 apart.
+    const Vec3 centre(64, 64, 64);
+    write.points(sphere_points(centre, 50, 20000), "sphere-r50-exact.ply",
+                 {{"operation", "exact sphere samples (Fibonacci lattice) with exact normals"}, {"radius", 50}, {"centre", {64, 64, 64}}});
+    for (double radius : {50.0, 51.0, 49.0}) {
+      write.mesh(icosphere(centre, radius, 5), fmt::format("sphere-r{}-ico5.ply", int(radius)),
+                 {{"operation", "icosphere, 5 subdivisions, vertices on the sphere"}, {"radius", radius}});
+    }
+    write.voxels(voxelize_conservative(icosphere(centre, 50, 5), 128), "sphere-r50-vox128.binvox",
+                 {{"source", "sphere-r50-ico5.ply"}, {"operation", "conservative voxelisation"}, {"dimension", 128}});
+    write.mesh(torus(40, 15, 256, 96), "torus-40-15.ply", {{"operation", "torus"}, {"major", 40}, {"minor", 15}});
+    write.mesh(torus(40, 16, 256, 96), "torus-40-16.ply", {{"operation", "torus"}, {"major", 40}, {"minor", 16}});
+    write.mesh(square(50, 0, 20), "plane-z0.ply", {{"operation", "square"}, {"half", 50}, {"height", 0}});
+    write.mesh(square(60, 1, 7), "plane-z1.ply", {{"operation", "square"}, {"half", 60}, {"height", 1}});
+
+    if (!quick) {
+      // The other real models, normalised and decimated to a quarter and a twentieth.
+      for (const char* name : {"rocker-arm.obj", "igea.ply", "fandisk.obj"}) {
+        const std::string source = (fs::path(data) / name).string();
+        const TriangleMesh model = normalised(load_mesh(source).mesh);
+        const std::string stem = fs::path(name).stem().string();
+        write.mesh(model, stem + ".ply", normalise(source));
+        for (std::size_t divisor : {4u, 20u}) {
+          // Even: on a closed mesh every collapse removes two triangles.
+          const std::size_t target = model.triangle_count() / divisor / 2 * 2;
+          write.mesh(decimate_quadric(model, target), fmt::format("{}-{}.ply", stem, target), decimation(stem + ".ply", target));
+        }
+      }
+    }
+    write.finish();
     return 0;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "roving-datasets: error: %s\n", e.what());

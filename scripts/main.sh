@@ -13,6 +13,13 @@ mkdir -p results
   echo "# roving measure: Stanford bunny (normalised, longest side 128) against its quadric decimations"
   echo
   echo "Produced by \`bash scripts/main.sh\` on $(nproc) cores, $(lscpu | sed -n 's/^Model name: *//p'), commit $(git rev-parse --short HEAD 2>/dev/null || echo unknown)."
+  for test in bunny-vox128 bunny-vox32; do
+    for method in embree cgal roving cooperative; do
+      echo; echo "## $test (conservative voxels), $method, first-hit"; echo; echo '```'
+      ./build/roving/roving measure build/datasets/bunny.ply "build/datasets/$test.binvox" --method "$method"
+      echo '```'
+    done
+  done
   for test in bunny-10459 bunny-800; do
     for method in embree cgal; do
       for semantics in first-hit nearest closest; do

@@ -6,7 +6,7 @@ packages=(
   libcgal-dev libembree-dev libopenmesh-dev libeigen3-dev libtbb-dev
   libosmesa6-dev libegl-dev libegl-mesa0 libgles-dev libgl-dev
   libbenchmark-dev libgtest-dev libgmock-dev
-  libcli11-dev nlohmann-json3-dev libfmt-dev
+  libcli11-dev nlohmann-json3-dev libfmt-dev libssl-dev
 )
 missing=()
 for p in "${packages[@]}"; do

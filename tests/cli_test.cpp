@@ -115,6 +115,31 @@ TEST(Cli, GlMethodsReportObservations) {
             300);
 }
 
+TEST(Cli, PointCloudsAreReferencesNotTests) {
+  const fs::path xyz = fs::temp_directory_path() / ("roving-cli-points-" + std::to_string(::getpid()) + ".xyz");
+  {
+    // 200 points of the bunny with their normals.
+    const auto& bunny = roving::testing::bunny();
+    std::ofstream file(xyz);
+    for (std::size_t f = 0; f < 200; ++f) {
+      const auto c = bunny.centroid(f * 300);
+      const auto& n = bunny.face_normals()[f * 300];
+      file << c.x() << ' ' << c.y() << ' ' << c.z() << ' ' << n.x() << ' ' << n.y() << ' ' << n.z() << '\n';
+    }
+  }
+  const CliRun run = run_cli("measure " + xyz.string() + " " + bunny() + " --json -");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const auto json = nlohmann::json::parse(run.out);
+  EXPECT_EQ(json["reference"]["type"], "points");
+  EXPECT_EQ(json["samples"]["count"], 200);
+  EXPECT_LT(json["statistics"]["usiad"].get<double>(), 1e-6);  // the points lie on the bunny
+  expect_error("measure " + bunny() + " " + xyz.string(), {xyz.string().c_str(), "cannot be the test model"});
+  expect_error("measure " + bunny() + " " + bunny() + " --test-type points", {"cannot be the test model"});
+  expect_error("measure " + bunny() + " " + bunny() + " --ref-type surfels", {"--ref-type", "'surfels'"});
+  expect_error("measure " + xyz.string() + " " + bunny() + " --samples area:10", {"--samples", "point-cloud"});
+  fs::remove(xyz);
+}
+
 TEST(Cli, BadFilesNameTheFile) {
   expect_error("measure /nonexistent/ref.obj " + bunny(), {"/nonexistent/ref.obj", "cannot open"});
   expect_error("measure " + bunny() + " /nonexistent/test.ply", {"/nonexistent/test.ply"});

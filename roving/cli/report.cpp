@@ -8,11 +8,13 @@
 namespace roving {
 namespace {
 
-nlohmann::json mesh_json(const LoadedMesh& loaded) {
+nlohmann::json model_json(const Model& model) {
+  const LoadedMesh& loaded = model.mesh;
   const TriangleMesh& m = loaded.mesh;
-  const BoundingBox& box = m.bounding_box();
-  return {
+  const BoundingBox box = model.bounding_box();
+  nlohmann::json json = {
       {"path", loaded.path},
+      {"type", to_string(model.type)},
       {"vertices", m.vertex_count()},
       {"triangles", m.triangle_count()},
       {"unreferenced_vertices", m.unreferenced_vertex_count()},
@@ -23,16 +25,35 @@ nlohmann::json mesh_json(const LoadedMesh& loaded) {
       {"bounding_box",
        {{"min", {box.min.x(), box.min.y(), box.min.z()}}, {"max", {box.max.x(), box.max.y(), box.max.z()}}}},
       {"diagonal", box.diagonal()}};
+  if (model.voxels) {
+    json["voxels"] = {{"dimension", model.voxels->dimension},
+                      {"voxel_size", model.voxels->voxel_size},
+                      {"occupied", model.voxels->occupied_count()}};
+  }
+  if (model.type == ModelType::Points) {
+    json["points"] = {{"count", model.points.positions.size()}, {"normals_estimated", model.normals_estimated}};
+  }
+  return json;
 }
 
 std::size_t count(const GlReport& gl, Resolution how) {
   return static_cast<std::size_t>(std::count(gl.resolved_by.begin(), gl.resolved_by.end(), how));
 }
 
-std::string mesh_line(const char* role, const LoadedMesh& loaded) {
+std::string model_line(const char* role, const Model& model) {
+  const LoadedMesh& loaded = model.mesh;
   const TriangleMesh& m = loaded.mesh;
+  if (model.type == ModelType::Points) {
+    return fmt::format("{:<10} {}: point cloud, {} points, normals {}\n", role, loaded.path,
+                       model.points.positions.size(), model.normals_estimated ? "estimated (PCA, k = 12)" : "from the file");
+  }
   std::string line = fmt::format("{:<10} {}: {} vertices, {} triangles", role, loaded.path, m.vertex_count(),
                                  m.triangle_count());
+  if (model.voxels) {
+    line = fmt::format("{:<10} {}: {}^3 voxels of side {:.6g}, {} occupied; exposed faces: {} vertices, {} triangles",
+                       role, loaded.path, model.voxels->dimension, model.voxels->voxel_size,
+                       model.voxels->occupied_count(), m.vertex_count(), m.triangle_count());
+  }
   if (m.unreferenced_vertex_count())
     line += fmt::format(", {} unreferenced vertices", m.unreferenced_vertex_count());
   if (m.degenerate_triangle_count())
@@ -47,10 +68,10 @@ std::string mesh_line(const char* role, const LoadedMesh& loaded) {
 
 std::string format_text(const MeasureReport& r) {
   const Statistics& s = r.statistics;
-  const double diagonal = r.reference->mesh.bounding_box().diagonal();
+  const double diagonal = r.reference->bounding_box().diagonal();
   std::string out;
-  out += mesh_line("reference", *r.reference);
-  out += mesh_line("test", *r.test);
+  out += model_line("reference", *r.reference);
+  out += model_line("test", *r.test);
   out += fmt::format("{:<10} bounding-box diagonal {:.6g} (reference)\n", "", diagonal);
   out += fmt::format("{:<10} {}: {}", "samples", r.samples->kind, r.samples->size());
   if (r.samples->skipped_degenerate_faces)
@@ -88,9 +109,10 @@ std::string format_text(const MeasureReport& r) {
     const GlReport& g = *r.gl;
     out += fmt::format("  GL: {}\n", g.renderer);
     out += fmt::format(
-        "  observations: {} ({} views of {}x{} at {} px + {} per-sample cameras); resolved by views {}, by "
+        "  observations: {} ({} views of {} at {} px + {} per-sample cameras); resolved by views {}, by "
         "cameras {}, unresolved {}\n",
-        g.observations(), g.views_rendered, g.views_h, g.views_v, g.resolution, g.sample_cameras,
+        g.observations(), g.views_rendered, g.axis_views ? "the 6 axes" : fmt::format("{}x{}", g.views_h, g.views_v),
+        g.resolution, g.sample_cameras,
         count(g, Resolution::View), count(g, Resolution::Camera), count(g, Resolution::Unresolved));
     out += fmt::format(
         "  precision (model units): view pixel {:.4g}, view depth step {:.3g}, camera half-width "
@@ -108,7 +130,7 @@ std::string format_text(const MeasureReport& r) {
 
 nlohmann::json to_json(const MeasureReport& r) {
   const Statistics& s = r.statistics;
-  const double diagonal = r.reference->mesh.bounding_box().diagonal();
+  const double diagonal = r.reference->bounding_box().diagonal();
   nlohmann::json stats = {{"siad", s.siad},
                           {"usiad", s.usiad},
                           {"std_signed", s.std_signed},
@@ -127,8 +149,8 @@ nlohmann::json to_json(const MeasureReport& r) {
   nlohmann::json relative;
   for (const auto& [key, value] : stats.items()) relative[key] = value.get<double>() / diagonal;
   nlohmann::json json = {
-      {"reference", mesh_json(*r.reference)},
-      {"test", mesh_json(*r.test)},
+      {"reference", model_json(*r.reference)},
+      {"test", model_json(*r.test)},
       {"samples",
        {{"kind", r.samples->kind},
         {"count", r.samples->size()},
@@ -165,7 +187,7 @@ nlohmann::json to_json(const MeasureReport& r) {
                   {"observations", g.observations()},
                   {"views_rendered", g.views_rendered},
                   {"sample_cameras", g.sample_cameras},
-                  {"views", fmt::format("{}x{}", g.views_h, g.views_v)},
+                  {"views", g.axis_views ? "6 axes" : fmt::format("{}x{}", g.views_h, g.views_v)},
                   {"resolution", g.resolution},
                   {"resolved_by_view", count(g, Resolution::View)},
                   {"resolved_by_camera", count(g, Resolution::Camera)},

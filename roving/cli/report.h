@@ -5,14 +5,14 @@
 #include <string>
 
 #include "roving/distance_method.h"
-#include "roving/mesh_io.h"
+#include "model.h"
 #include "roving/statistics.h"
 
 namespace roving {
 
 struct MeasureReport {
-  const LoadedMesh* reference = nullptr;
-  const LoadedMesh* test = nullptr;
+  const Model* reference = nullptr;
+  const Model* test = nullptr;
   const SampleSet* samples = nullptr;
   std::string method;
   Semantics semantics = Semantics::FirstHit;

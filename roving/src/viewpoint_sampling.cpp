@@ -38,7 +38,14 @@ std::optional<double> read_depth(const std::vector<float>& depth, int resolution
 
 std::vector<std::optional<double>> view_sample(GlScene& scene, const SampleSet& samples, double max_error,
                                                const GlMethodOptions& options, GlReport& report) {
-  const std::vector<Vec3> directions = view_directions(options.views_h, options.views_v);
+  // Voxel references have only axis normals: then the 6 axis views suffice (Section 4.3).
+  const bool axis_normals = std::all_of(samples.normals.begin(), samples.normals.end(), [](const Vec3& n) {
+    return n.cwiseAbs().maxCoeff() == 1.0 && n.cwiseAbs().sum() == 1.0;
+  });
+  const std::vector<Vec3> directions =
+      axis_normals ? std::vector<Vec3>{Vec3::UnitX(), -Vec3::UnitX(), Vec3::UnitY(), -Vec3::UnitY(), Vec3::UnitZ(), -Vec3::UnitZ()}
+                   : view_directions(options.views_h, options.views_v);
+  report.axis_views = axis_normals;
   // Each sample goes to the direction nearest its normal.
   std::vector<std::uint32_t> direction_of(samples.size());
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, samples.size(), 1024),

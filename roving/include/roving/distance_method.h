@@ -62,6 +62,7 @@ struct GlReport {
   std::size_t sample_cameras = 0;       // surface-roving cameras (one-pixel views)
   std::vector<Resolution> resolved_by;  // per sample; Unresolved = no hit
   int views_h = 0, views_v = 0, resolution = 0;
+  bool axis_views = false;      // every sample normal was an axis: the 6 axis views were used
   double view_pixel_size = 0;    // model units per view pixel
   double view_depth_step = 0;    // model units per ulp of float depth near 1 in a view
   double camera_half_width = 0;  // half-width of a roving camera's view volume (one pixel)

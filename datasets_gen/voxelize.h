@@ -1,0 +1,15 @@
+// Conservative surface voxelisation: every voxel whose closed cube meets a triangle.
+#pragma once
+
+#include "roving/triangle_mesh.h"
+#include "roving/voxel_model.h"
+
+namespace roving {
+
+// A dimension^3 grid over the cube on `mesh`'s bounding box (origin at its min corner, side its
+// longest side); a voxel is occupied when a triangle meets its cube (exact triangle-box test,
+// CGAL Epick), not when a sample point falls in it. Throws roving::Error for a dimension
+// outside 1..1024.
+VoxelGrid voxelize_conservative(const TriangleMesh& mesh, int dimension);
+
+}  // namespace roving

@@ -1,0 +1,47 @@
+// Models of every representation the paper names, as a reference (its samples) or a test (the
+// surface the methods draw and intersect).
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "roving/mesh_io.h"
+#include "roving/point_cloud.h"
+#include "roving/sample_set.h"
+#include "roving/voxel_model.h"
+
+namespace roving {
+
+enum class ModelType { Mesh, Points, Voxels };
+const char* to_string(ModelType type);
+// Parses "mesh", "points" or "voxels"; throws roving::Error naming `option` otherwise.
+ModelType parse_model_type(const std::string& text, const std::string& option);
+
+struct Model {
+  ModelType type = ModelType::Mesh;
+  // The surface: the mesh itself, or the voxels' exposed faces; empty for a point cloud.
+  LoadedMesh mesh;
+  std::optional<VoxelGrid> voxels;
+  PointCloud points;
+  bool normals_estimated = false;  // point cloud without normals in its file
+
+  const std::string& path() const { return mesh.path; }
+  BoundingBox bounding_box() const;
+};
+
+// Loads `path` as `type`, or by extension when none is given: .obj .off .stl meshes; .ply a
+// mesh, or a point cloud when its header declares no faces; .binvox voxels; .xyz points.
+// Point clouds without normals get PCA normals (k = 12), oriented consistently and outward.
+Model load_model(const std::string& path, std::optional<ModelType> type = std::nullopt);
+
+// Samples on a reference model: a mesh's faces / vertices / area:N; a voxel model's exposed-face
+// centres with axis normals (faces) or area:N on its exposed faces; a point cloud's own points
+// and normals (faces or vertices). Throws roving::Error naming `--samples` for a kind the
+// representation does not have.
+SampleSet reference_samples(const Model& reference, const SampleSpec& spec);
+
+// The surface a test model offers; throws roving::Error for a point cloud (the paper's limit:
+// a point cloud has holes and records no surface to draw).
+const TriangleMesh& test_surface(const Model& test);
+
+}  // namespace roving
