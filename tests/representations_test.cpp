@@ -1,10 +1,10 @@
 // Every representation the paper names: voxel models (binvox, exposed faces, conservative
 // voxelisation), point clouds (as references; refused as tests), analytic spheres with
 // closed-form bounds, and reproducible decimation.
+#include <gtest/gtest.h>
+
 #include <filesystem>
 #include <fstream>
-
-#include <gtest/gtest.h>
 
 #include "analytic.h"
 #include "decimate.h"
@@ -41,14 +41,16 @@ class TempFolder : public ::testing::Test {
 std::vector<std::string> surface_methods() {
   std::vector<std::string> names;
   for (const auto& name : method_names()) {
-    if (name.rfind("v2v", 0) != 0 && name != "v2p-naive") names.push_back(name);  // v2p-naive: same as v2p-aabb, slow
+    if (name.rfind("v2v", 0) != 0 && name != "v2p-naive")
+      names.push_back(name);  // v2p-naive: same as v2p-aabb, slow
   }
   return names;
 }
 
 double tolerance_of(const DistanceResult& r, double alpha_bound = 0.2) {
   if (!r.gl) return 1e-9;
-  return std::max(roving_tolerance(*r.gl), r.gl->views_rendered ? view_tolerance(*r.gl, alpha_bound, 1.0) : 0.0);
+  return std::max(roving_tolerance(*r.gl),
+                  r.gl->views_rendered ? view_tolerance(*r.gl, alpha_bound, 1.0) : 0.0);
 }
 
 TEST(Voxels, GridAlignedBoxIsAtZeroDistance) {
@@ -65,8 +67,18 @@ TEST(Voxels, GridAlignedBoxIsAtZeroDistance) {
   EXPECT_NEAR(faces.total_area(), 6 * 4.0, 1e-12);
   std::vector<Vec3> corners;
   for (int i = 0; i < 8; ++i) corners.emplace_back(i & 1 ? 3 : 1, i & 2 ? 3 : 1, i & 4 ? 3 : 1);
-  const TriangleMesh box(corners, {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6}, {0, 1, 4}, {1, 5, 4},
-                                   {2, 6, 3}, {3, 6, 7}, {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}});
+  const TriangleMesh box(corners, {{0, 2, 1},
+                                   {1, 2, 3},
+                                   {4, 5, 6},
+                                   {5, 7, 6},
+                                   {0, 1, 4},
+                                   {1, 5, 4},
+                                   {2, 6, 3},
+                                   {3, 6, 7},
+                                   {0, 4, 2},
+                                   {2, 4, 6},
+                                   {1, 3, 5},
+                                   {3, 7, 5}});
   // The box as reference against the voxels as test, and the voxels (exposed-face samples) as
   // reference against the box: 0 everywhere, for every surface method.
   const SampleSet box_samples = make_samples(box, {SampleSpec::Kind::Area, 400});
@@ -161,12 +173,14 @@ TEST_F(TempFolder, PointCloudReferenceWorksWithEveryMethodAndIsRefusedAsTest) {
     const TriangleMesh ico = icosphere(centre, radius, 5);
     double rho_min = radius;
     for (std::size_t f = 0; f < ico.triangle_count(); ++f) {
-      rho_min = std::min(rho_min, std::abs(ico.face_normals()[f].dot(ico.positions()[ico.triangles()[f][0]] - centre)));
+      rho_min = std::min(
+          rho_min, std::abs(ico.face_normals()[f].dot(ico.positions()[ico.triangles()[f][0]] - centre)));
     }
     const double low = rho_min - 50, high = radius - 50;
     for (const auto& name : surface_methods()) {
       auto method = make_method(name);
-      const DistanceResult r = measure_distances(*method, ico, samples, {method->supported_semantics().front(), 3.0});
+      const DistanceResult r =
+          measure_distances(*method, ico, samples, {method->supported_semantics().front(), 3.0});
       const double tolerance = tolerance_of(r, 0.2);
       for (std::size_t k = 0; k < samples.size(); ++k) {
         if (name == "viewpoint" && !r.hit[k]) continue;  // silhouette pixels: see above
@@ -219,6 +233,77 @@ TEST_F(TempFolder, BadPointFiles) {
   EXPECT_THROW(parse_model_type("surfels", "--test-type"), Error);
 }
 
+TEST(Bezier, TeapotLoadsOrientedWithoutNanNormals) {
+  const Model teapot = load_model(testing::data_file("teapot.bpt"));
+  ASSERT_EQ(teapot.type, ModelType::Bezier);
+  EXPECT_EQ(teapot.bezier->patches.size(), 32u);
+  EXPECT_LE(teapot.chordal_error_bound, 1e-4 * teapot.bounding_box().diagonal() * 1.0001);
+  // The degenerate corners (lid and bottom centres) sit on grid nodes: vertex samples hit them.
+  for (const SampleSpec spec :
+       {SampleSpec{}, SampleSpec{SampleSpec::Kind::Vertices}, SampleSpec{SampleSpec::Kind::Area, 5000}}) {
+    const SampleSet samples = reference_samples(teapot, spec);
+    EXPECT_EQ(samples.skipped_degenerate_faces, 0u) << spec.to_string();
+    double flux = 0;
+    const Vec3 centre = teapot.bounding_box().centre();
+    for (std::size_t k = 0; k < samples.size(); ++k) {
+      ASSERT_TRUE(samples.normals[k].allFinite()) << spec.to_string() << " sample " << k;
+      ASSERT_NEAR(samples.normals[k].norm(), 1.0, 1e-9);
+      flux += samples.weights[k] * samples.normals[k].dot(samples.positions[k] - centre);
+    }
+    EXPECT_GT(flux, 0) << "normals face inward";
+  }
+}
+
+TEST(Bezier, SamplesAgainstTheirOwnTessellationAreWithinTheChordalBound) {
+  // One curved bicubic patch: its exact samples lie within the tessellation's chordal bound of
+  // the tessellation, for every surface method (nearest semantics where a method has it).
+  BezierSurface surface;
+  BezierPatch patch;
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j) patch.control.emplace_back(i, j, 0.6 * std::sin(i + 0.5 * j));
+  surface.patches.push_back(patch);
+  const Tessellation t = tessellate(surface, 1e-3);
+  EXPECT_LE(t.chordal_error_bound, 1e-3);
+  const SampleSet samples = bezier_samples(surface, {SampleSpec::Kind::Area, 2000}, t.cells_per_side);
+  for (const auto& name : surface_methods()) {
+    auto method = make_method(name);
+    const DistanceResult r =
+        measure_distances(*method, t.mesh, samples, {method->supported_semantics().front(), 0.05});
+    for (std::size_t k = 0; k < samples.size(); ++k) {
+      if (name == "viewpoint" && !r.hit[k]) continue;  // silhouette pixels
+      ASSERT_TRUE(r.hit[k]) << name << " " << k;
+      // Along the normal, a chord at distance e from the surface is met within e / cos of the
+      // tilt between patch and facet (tiny at this resolution): 2x covers it.
+      EXPECT_LE(std::abs(r.signed_distance[k]), 2 * t.chordal_error_bound + tolerance_of(r))
+          << name << " " << k;
+    }
+  }
+}
+
+TEST_F(TempFolder, BadBezierFiles) {
+  const std::string point = "0 0 0\n";
+  std::string patch = "3 3\n";
+  for (int k = 0; k < 16; ++k) patch += point;
+  for (const auto& [name, content, fragment] : std::vector<std::tuple<std::string, std::string, std::string>>{
+           {"count.bpt", "two\n", "patch count"},
+           {"zero.bpt", "0\n", "patch count"},
+           {"degree.bpt", "1\n3 x\n", "degrees"},
+           {"big.bpt", "1\n40 40\n", "degrees"},
+           {"short.bpt", "1\n3 3\n0 0 0\n", "truncated"},
+           {"point.bpt", "1\n3 3\n0 0\n", "control point 0"},
+           {"nan.bpt", "1\n3 3\nnan 0 0\n", "finite"},
+           {"missing.bpt", "2\n" + patch, "truncated"},
+           {"extra.bpt", "1\n" + patch + "1 2 3\n", "end after 1 patches"}}) {
+    try {
+      read_bpt(write(name, content));
+      ADD_FAILURE() << name;
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << name << ": " << e.what();
+      EXPECT_NE(std::string(e.what()).find(name), std::string::npos) << e.what();
+    }
+  }
+}
+
 TEST_F(TempFolder, DecimationHitsTheCountsAndIsReproducible) {
   const TriangleMesh bunny = normalised(testing::bunny());
   for (std::size_t target : {800u, 10459u}) {
@@ -227,7 +312,8 @@ TEST_F(TempFolder, DecimationHitsTheCountsAndIsReproducible) {
     save_mesh(a, path("a.ply"));
     save_mesh(b, path("b.ply"));
     std::ifstream fa(path("a.ply"), std::ios::binary), fb(path("b.ply"), std::ios::binary);
-    const std::string sa((std::istreambuf_iterator<char>(fa)), {}), sb((std::istreambuf_iterator<char>(fb)), {});
+    const std::string sa((std::istreambuf_iterator<char>(fa)), {}),
+        sb((std::istreambuf_iterator<char>(fb)), {});
     EXPECT_EQ(sa, sb) << "decimation to " << target << " is not reproducible";
   }
 }

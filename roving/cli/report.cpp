@@ -30,8 +30,15 @@ nlohmann::json model_json(const Model& model) {
                       {"voxel_size", model.voxels->voxel_size},
                       {"occupied", model.voxels->occupied_count()}};
   }
+  if (model.bezier) {
+    json["bezier"] = {{"patches", model.bezier->patches.size()},
+                      {"cells_per_patch_side", model.bezier_cells},
+                      {"patches_flipped", model.patches_flipped},
+                      {"chordal_error_bound", model.chordal_error_bound}};
+  }
   if (model.type == ModelType::Points) {
-    json["points"] = {{"count", model.points.positions.size()}, {"normals_estimated", model.normals_estimated}};
+    json["points"] = {{"count", model.points.positions.size()},
+                      {"normals_estimated", model.normals_estimated}};
   }
   return json;
 }
@@ -45,14 +52,23 @@ std::string model_line(const char* role, const Model& model) {
   const TriangleMesh& m = loaded.mesh;
   if (model.type == ModelType::Points) {
     return fmt::format("{:<10} {}: point cloud, {} points, normals {}\n", role, loaded.path,
-                       model.points.positions.size(), model.normals_estimated ? "estimated (PCA, k = 12)" : "from the file");
+                       model.points.positions.size(),
+                       model.normals_estimated ? "estimated (PCA, k = 12)" : "from the file");
   }
   std::string line = fmt::format("{:<10} {}: {} vertices, {} triangles", role, loaded.path, m.vertex_count(),
                                  m.triangle_count());
+  if (model.bezier) {
+    line = fmt::format(
+        "{:<10} {}: {} Bezier patches ({} flipped to face out), tessellated {}x{} per patch ({} "
+        "triangles), chordal error <= {:.3g}",
+        role, loaded.path, model.bezier->patches.size(), model.patches_flipped, model.bezier_cells,
+        model.bezier_cells, m.triangle_count(), model.chordal_error_bound);
+  }
   if (model.voxels) {
-    line = fmt::format("{:<10} {}: {}^3 voxels of side {:.6g}, {} occupied; exposed faces: {} vertices, {} triangles",
-                       role, loaded.path, model.voxels->dimension, model.voxels->voxel_size,
-                       model.voxels->occupied_count(), m.vertex_count(), m.triangle_count());
+    line = fmt::format(
+        "{:<10} {}: {}^3 voxels of side {:.6g}, {} occupied; exposed faces: {} vertices, {} triangles", role,
+        loaded.path, model.voxels->dimension, model.voxels->voxel_size, model.voxels->occupied_count(),
+        m.vertex_count(), m.triangle_count());
   }
   if (m.unreferenced_vertex_count())
     line += fmt::format(", {} unreferenced vertices", m.unreferenced_vertex_count());
@@ -111,9 +127,10 @@ std::string format_text(const MeasureReport& r) {
     out += fmt::format(
         "  observations: {} ({} views of {} at {} px + {} per-sample cameras); resolved by views {}, by "
         "cameras {}, unresolved {}\n",
-        g.observations(), g.views_rendered, g.axis_views ? "the 6 axes" : fmt::format("{}x{}", g.views_h, g.views_v),
-        g.resolution, g.sample_cameras,
-        count(g, Resolution::View), count(g, Resolution::Camera), count(g, Resolution::Unresolved));
+        g.observations(), g.views_rendered,
+        g.axis_views ? "the 6 axes" : fmt::format("{}x{}", g.views_h, g.views_v), g.resolution,
+        g.sample_cameras, count(g, Resolution::View), count(g, Resolution::Camera),
+        count(g, Resolution::Unresolved));
     out += fmt::format(
         "  precision (model units): view pixel {:.4g}, view depth step {:.3g}, camera half-width "
         "{:.3g}, camera depth step {:.3g}\n",

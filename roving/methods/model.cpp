@@ -1,10 +1,10 @@
 // Loading models of every representation and taking samples from them.
 #include "model.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cctype>
-
-#include <fmt/format.h>
 
 #include "reference_cgal/point_normals.h"
 #include "roving/error.h"
@@ -24,6 +24,7 @@ ModelType type_by_extension(const std::string& path) {
   const std::string ext = lower_extension(path);
   if (ext == "binvox") return ModelType::Voxels;
   if (ext == "xyz") return ModelType::Points;
+  if (ext == "bpt") return ModelType::Bezier;
   if (ext == "ply" && is_ply_point_cloud(path)) return ModelType::Points;
   return ModelType::Mesh;  // load_mesh names the file if the extension is unknown
 }
@@ -35,15 +36,16 @@ const char* to_string(ModelType type) {
     case ModelType::Mesh: return "mesh";
     case ModelType::Points: return "points";
     case ModelType::Voxels: return "voxels";
+    case ModelType::Bezier: return "bezier";
   }
   return "?";
 }
 
 ModelType parse_model_type(const std::string& text, const std::string& option) {
-  for (ModelType t : {ModelType::Mesh, ModelType::Points, ModelType::Voxels}) {
+  for (ModelType t : {ModelType::Mesh, ModelType::Points, ModelType::Voxels, ModelType::Bezier}) {
     if (text == to_string(t)) return t;
   }
-  throw Error(fmt::format("{}: expected mesh, points or voxels, found '{}'", option, text));
+  throw Error(fmt::format("{}: expected mesh, points, voxels or bezier, found '{}'", option, text));
 }
 
 BoundingBox Model::bounding_box() const {
@@ -63,6 +65,20 @@ Model load_model(const std::string& path, std::optional<ModelType> type) {
       model.mesh.path = path;
       model.mesh.mesh = exposed_faces(*model.voxels);
       break;
+    case ModelType::Bezier: {
+      model.bezier = read_bpt(path);
+      model.patches_flipped = orient_consistently(*model.bezier);
+      BoundingBox net;
+      for (const BezierPatch& p : model.bezier->patches) {
+        for (const Vec3& c : p.control) net.extend(c);
+      }
+      Tessellation t = tessellate(*model.bezier, 1e-4 * net.diagonal());
+      model.mesh.path = path;
+      model.mesh.mesh = std::move(t.mesh);
+      model.bezier_cells = t.cells_per_side;
+      model.chordal_error_bound = t.chordal_error_bound;
+      break;
+    }
     case ModelType::Points:
       model.mesh.path = path;
       model.points = read_point_cloud(path);
@@ -81,12 +97,16 @@ SampleSet reference_samples(const Model& reference, const SampleSpec& spec) {
     case ModelType::Voxels:
       if (spec.kind == SampleSpec::Kind::Faces) return exposed_face_samples(*reference.voxels);
       if (spec.kind == SampleSpec::Kind::Area) return make_samples(reference.mesh.mesh, spec);
-      throw Error("--samples: a voxel reference is sampled on its exposed faces: expected faces or area:N, found vertices");
+      throw Error(
+          "--samples: a voxel reference is sampled on its exposed faces: expected faces or area:N, found "
+          "vertices");
+    case ModelType::Bezier: return bezier_samples(*reference.bezier, spec, reference.bezier_cells);
     case ModelType::Points: {
       if (spec.kind == SampleSpec::Kind::Area) {
-        throw Error(fmt::format("--samples: a point-cloud reference is sampled at its points: expected faces or "
-                                "vertices, found '{}'",
-                                spec.to_string()));
+        throw Error(
+            fmt::format("--samples: a point-cloud reference is sampled at its points: expected faces or "
+                        "vertices, found '{}'",
+                        spec.to_string()));
       }
       SampleSet samples;
       samples.kind = "points";
@@ -101,9 +121,10 @@ SampleSet reference_samples(const Model& reference, const SampleSpec& spec) {
 
 const TriangleMesh& test_surface(const Model& test) {
   if (test.type == ModelType::Points) {
-    throw Error(fmt::format("{}: a point cloud cannot be the test model: it has holes and records no surface to draw "
-                            "or intersect (the paper's limit); use it as the reference, or reconstruct a mesh first",
-                            test.path()));
+    throw Error(
+        fmt::format("{}: a point cloud cannot be the test model: it has holes and records no surface to draw "
+                    "or intersect (the paper's limit); use it as the reference, or reconstruct a mesh first",
+                    test.path()));
   }
   return test.mesh.mesh;
 }
