@@ -1,14 +1,13 @@
 // `roving-datasets`: writes, deterministically, the derived test models (normalised, decimated,
 // voxelised, sampled and analytic) into a folder, with a JSON manifest of what made each file,
 // its parameters, counts and sha256.
+#include <fmt/format.h>
 #include <openssl/evp.h>
 
+#include <CLI/CLI.hpp>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-
-#include <CLI/CLI.hpp>
-#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "analytic.h"
@@ -49,7 +48,8 @@ class Writer {
   }
   void voxels(const VoxelGrid& g, const std::string& name, json made_by) {
     write_binvox(g, path(name));
-    add(name, std::move(made_by), {{"dimension", g.dimension}, {"voxel_size", g.voxel_size}, {"occupied", g.occupied_count()}});
+    add(name, std::move(made_by),
+        {{"dimension", g.dimension}, {"voxel_size", g.voxel_size}, {"occupied", g.occupied_count()}});
   }
   void points(const PointCloud& c, const std::string& name, json made_by) {
     if (fs::path(name).extension() == ".xyz") {
@@ -61,14 +61,19 @@ class Writer {
     }
     add(name, std::move(made_by), {{"points", c.positions.size()}, {"normals", !c.normals.empty()}});
   }
+  void copied(const std::string& name, json made_by) { add(name, std::move(made_by), json::object()); }
   void finish() {
-    std::ofstream(folder_ / "manifest.json") << json{{"generator", "roving-datasets"}, {"files", manifest_}}.dump(2) << "\n";
+    std::ofstream(folder_ / "manifest.json")
+        << json{{"generator", "roving-datasets"}, {"files", manifest_}}.dump(2) << "\n";
   }
 
  private:
   std::string path(const std::string& name) const { return (folder_ / name).string(); }
   void add(const std::string& name, json made_by, json counts) {
-    json entry = {{"file", name}, {"made_by", std::move(made_by)}, {"counts", std::move(counts)}, {"sha256", sha256_of(path(name))}};
+    json entry = {{"file", name},
+                  {"made_by", std::move(made_by)},
+                  {"counts", std::move(counts)},
+                  {"sha256", sha256_of(path(name))}};
     manifest_.push_back(entry);
     std::fprintf(stderr, "wrote %s\n", path(name).c_str());
   }
@@ -86,10 +91,12 @@ PointCloud sampled_points(const TriangleMesh& mesh, std::size_t count) {
 
 int main(int argc, char** argv) {
   CLI::App app{"roving-datasets: normalised, decimated, voxelised, sampled and analytic test models"};
-  std::string data = std::getenv("ROVING_DATA") && *std::getenv("ROVING_DATA") ? std::getenv("ROVING_DATA") : "../shared/data";
+  std::string data = std::getenv("ROVING_DATA") && *std::getenv("ROVING_DATA") ? std::getenv("ROVING_DATA")
+                                                                               : "../shared/data";
   std::string out = "build/datasets";
   bool quick = false;
-  app.add_option("--data", data, "folder of the real models ($ROVING_DATA or ../shared/data)")->capture_default_str();
+  app.add_option("--data", data, "folder of the real models ($ROVING_DATA or ../shared/data)")
+      ->capture_default_str();
   app.add_option("--out", out, "folder to write into")->capture_default_str();
   app.add_flag("--quick", quick, "the bunny's files only (for tests)");
   try {
@@ -103,9 +110,13 @@ int main(int argc, char** argv) {
 
   try {
     Writer write(out);
-    const auto normalise = [](const std::string& source) { return json{{"source", source}, {"operation", "normalise"}, {"longest_side", 128}}; };
+    const auto normalise = [](const std::string& source) {
+      return json{{"source", source}, {"operation", "normalise"}, {"longest_side", 128}};
+    };
     const auto decimation = [](const std::string& source, std::size_t target) {
-      return json{{"source", source}, {"operation", "quadric decimation (OpenMesh DecimaterT + ModQuadricT)"}, {"target_triangles", target}};
+      return json{{"source", source},
+                  {"operation", "quadric decimation (OpenMesh DecimaterT + ModQuadricT)"},
+                  {"target_triangles", target}};
     };
 
     const std::string bunny_path = (fs::path(data) / "stanford-bunny.obj").string();
@@ -113,33 +124,53 @@ int main(int argc, char** argv) {
     write.mesh(bunny, "bunny.ply", normalise(bunny_path));
     write.mesh(bunny, "bunny.obj", normalise(bunny_path));
     for (std::size_t target : {800u, 10459u}) {  // the paper's low and middle meshes (Table 2)
-      write.mesh(decimate_quadric(bunny, target), fmt::format("bunny-{}.ply", target), decimation("bunny.ply", target));
+      write.mesh(decimate_quadric(bunny, target), fmt::format("bunny-{}.ply", target),
+                 decimation("bunny.ply", target));
     }
     for (int dimension : {32, 128}) {  // the paper's sparse and dense voxels (Table 2)
       write.voxels(voxelize_conservative(bunny, dimension), fmt::format("bunny-vox{}.binvox", dimension),
-                   {{"source", "bunny.ply"}, {"operation", "conservative voxelisation (exact triangle-box overlap)"},
+                   {{"source", "bunny.ply"},
+                    {"operation", "conservative voxelisation (exact triangle-box overlap)"},
+                    {"dimension", dimension}});
+      write.voxels(voxelize_thin(bunny, dimension), fmt::format("bunny-vox{}-thin.binvox", dimension),
+                   {{"source", "bunny.ply"},
+                    {"operation", "thin 26-separating voxelisation (Huang et al. 1998)"},
                     {"dimension", dimension}});
     }
     write.points(sampled_points(bunny, 20000), "bunny-points.ply",
-                 {{"source", "bunny.ply"}, {"operation", "area-uniform samples with face normals"}, {"count", 20000}, {"seed", 12345}});
-    write.points(PointCloud{sampled_points(bunny, 20000).positions, {}}, "bunny-points.xyz",
-                 {{"source", "bunny.ply"}, {"operation", "the same samples without normals"}, {"count", 20000}});
+                 {{"source", "bunny.ply"},
+                  {"operation", "area-uniform samples with face normals"},
+                  {"count", 20000},
+                  {"seed", 12345}});
+    write.points(
+        PointCloud{sampled_points(bunny, 20000).positions, {}}, "bunny-points.xyz",
+        {{"source", "bunny.ply"}, {"operation", "the same samples without normals"}, {"count", 20000}});
 
     // Analytic cases: exact sphere of radius 50 against concentric tessellated spheres and a
     // voxelised sphere; a torus against a thicker one; parallel planes 1 apart.
     const Vec3 centre(64, 64, 64);
     write.points(sphere_points(centre, 50, 20000), "sphere-r50-exact.ply",
-                 {{"operation", "exact sphere samples (Fibonacci lattice) with exact normals"}, {"radius", 50}, {"centre", {64, 64, 64}}});
+                 {{"operation", "exact sphere samples (Fibonacci lattice) with exact normals"},
+                  {"radius", 50},
+                  {"centre", {64, 64, 64}}});
     for (double radius : {50.0, 51.0, 49.0}) {
       write.mesh(icosphere(centre, radius, 5), fmt::format("sphere-r{}-ico5.ply", int(radius)),
                  {{"operation", "icosphere, 5 subdivisions, vertices on the sphere"}, {"radius", radius}});
     }
-    write.voxels(voxelize_conservative(icosphere(centre, 50, 5), 128), "sphere-r50-vox128.binvox",
-                 {{"source", "sphere-r50-ico5.ply"}, {"operation", "conservative voxelisation"}, {"dimension", 128}});
-    write.mesh(torus(40, 15, 256, 96), "torus-40-15.ply", {{"operation", "torus"}, {"major", 40}, {"minor", 15}});
-    write.mesh(torus(40, 16, 256, 96), "torus-40-16.ply", {{"operation", "torus"}, {"major", 40}, {"minor", 16}});
+    write.voxels(
+        voxelize_conservative(icosphere(centre, 50, 5), 128), "sphere-r50-vox128.binvox",
+        {{"source", "sphere-r50-ico5.ply"}, {"operation", "conservative voxelisation"}, {"dimension", 128}});
+    write.mesh(torus(40, 15, 256, 96), "torus-40-15.ply",
+               {{"operation", "torus"}, {"major", 40}, {"minor", 15}});
+    write.mesh(torus(40, 16, 256, 96), "torus-40-16.ply",
+               {{"operation", "torus"}, {"major", 40}, {"minor", 16}});
     write.mesh(square(50, 0, 20), "plane-z0.ply", {{"operation", "square"}, {"half", 50}, {"height", 0}});
     write.mesh(square(60, 1, 7), "plane-z1.ply", {{"operation", "square"}, {"half", 60}, {"height", 1}});
+    const std::string teapot = (fs::path(data) / "teapot.bpt").string();
+    fs::copy_file(teapot, fs::path(out) / "teapot.bpt", fs::copy_options::overwrite_existing);
+    write.copied(
+        "teapot.bpt",
+        {{"source", teapot}, {"operation", "copy: 32 bicubic Bezier patches, read as a parametric surface"}});
 
     if (!quick) {
       // The other real models, normalised and decimated to a quarter and a twentieth.
@@ -151,7 +182,8 @@ int main(int argc, char** argv) {
         for (std::size_t divisor : {4u, 20u}) {
           // Even: on a closed mesh every collapse removes two triangles.
           const std::size_t target = model.triangle_count() / divisor / 2 * 2;
-          write.mesh(decimate_quadric(model, target), fmt::format("{}-{}.ply", stem, target), decimation(stem + ".ply", target));
+          write.mesh(decimate_quadric(model, target), fmt::format("{}-{}.ply", stem, target),
+                     decimation(stem + ".ply", target));
         }
       }
     }

@@ -116,7 +116,8 @@ TEST(Cli, GlMethodsReportObservations) {
 }
 
 TEST(Cli, PointCloudsAreReferencesNotTests) {
-  const fs::path xyz = fs::temp_directory_path() / ("roving-cli-points-" + std::to_string(::getpid()) + ".xyz");
+  const fs::path xyz =
+      fs::temp_directory_path() / ("roving-cli-points-" + std::to_string(::getpid()) + ".xyz");
   {
     // 200 points of the bunny with their normals.
     const auto& bunny = roving::testing::bunny();
@@ -136,7 +137,8 @@ TEST(Cli, PointCloudsAreReferencesNotTests) {
   expect_error("measure " + bunny() + " " + xyz.string(), {xyz.string().c_str(), "cannot be the test model"});
   expect_error("measure " + bunny() + " " + bunny() + " --test-type points", {"cannot be the test model"});
   expect_error("measure " + bunny() + " " + bunny() + " --ref-type surfels", {"--ref-type", "'surfels'"});
-  expect_error("measure " + xyz.string() + " " + bunny() + " --samples area:10", {"--samples", "point-cloud"});
+  expect_error("measure " + xyz.string() + " " + bunny() + " --samples area:10",
+               {"--samples", "point-cloud"});
   fs::remove(xyz);
 }
 

@@ -128,6 +128,22 @@ TEST(Voxels, BunnyHitsLieOutsideWithinASqrt3Voxel) {
   EXPECT_LT(beyond, samples.size() / 200) << beyond;
 }
 
+TEST(Voxels, ThinVoxelsAreASubsetOfTheConservativeOnes) {
+  const TriangleMesh bunny = normalised(testing::bunny());
+  const VoxelGrid thick = voxelize_conservative(bunny, 64), thin = voxelize_thin(bunny, 64);
+  for (std::size_t i = 0; i < thin.occupied.size(); ++i) ASSERT_LE(thin.occupied[i], thick.occupied[i]) << i;
+  EXPECT_LT(thin.occupied_count(), thick.occupied_count());
+  // Every occupied cube meets the surface, and the thin set still covers it: every sample is
+  // within sqrt(3) voxel of the thin shell's faces.
+  const SampleSet samples = make_samples(bunny, {});
+  auto embree = make_method("embree");
+  const DistanceResult closest =
+      measure_distances(*embree, exposed_faces(thin), samples, {Semantics::Closest, 10.0});
+  for (std::size_t k = 0; k < samples.size(); ++k) {
+    ASSERT_LE(std::abs(closest.signed_distance[k]), std::sqrt(3.0) * thin.voxel_size + 1e-9) << k;
+  }
+}
+
 TEST_F(TempFolder, BinvoxRoundTripAndBadFiles) {
   VoxelGrid grid = voxelize_conservative(testing::box(1.0), 16);
   write_binvox(grid, path("box.binvox"));
