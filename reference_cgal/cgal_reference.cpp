@@ -3,6 +3,7 @@
 #include "reference_cgal/cgal_reference.h"
 
 #include <CGAL/AABB_traits.h>
+#include <CGAL/version.h>
 #include <CGAL/AABB_tree.h>
 #include <CGAL/AABB_triangle_primitive.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -175,6 +176,8 @@ class CgalAabbMethod final : public DistanceMethod {
 };
 
 }  // namespace
+
+std::string cgal_version() { return CGAL_VERSION_STR; }
 
 std::unique_ptr<DistanceMethod> make_cgal_reference() {
   return std::make_unique<CgalAabbMethod>(

@@ -256,6 +256,8 @@ class EmbreeReference final : public DistanceMethod {
 
 }  // namespace
 
+std::string embree_version() { return RTC_VERSION_STRING; }
+
 std::unique_ptr<DistanceMethod> make_embree_reference() {
   return std::make_unique<EmbreeReference>();
 }

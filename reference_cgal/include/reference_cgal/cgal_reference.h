@@ -3,6 +3,7 @@
 #pragma once
 
 #include <memory>
+#include <string>
 
 #include "roving/distance_method.h"
 
@@ -27,5 +28,8 @@ std::unique_ptr<DistanceMethod> make_vertex_to_vertex(Search search);
 // Distance from each sample to the nearest point of M_C's triangles, signed by (c - x) . n.
 // Semantics: closest. Always a hit.
 std::unique_ptr<DistanceMethod> make_vertex_to_plane(Search search);
+
+// CGAL's version, for reports.
+std::string cgal_version();
 
 }  // namespace roving

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <memory>
+#include <string>
 
 #include "roving/distance_method.h"
 
@@ -15,5 +16,8 @@ namespace roving {
 // Hit distances are recomputed in double against the hit triangle's plane.
 // Multi-threaded with TBB.
 std::unique_ptr<DistanceMethod> make_embree_reference();
+
+// Embree's version, for reports.
+std::string embree_version();
 
 }  // namespace roving

@@ -1,0 +1,460 @@
+// `roving-bench`: regenerates the paper's Tables 1-3, Figure 6 and the H x V view-spacing study
+// into results/ (Markdown, CSV, SVG), side by side with the paper's figures; `--check`
+// recomputes every accuracy figure (never timings) and fails if it moved from the committed
+// results or if the GL methods and the references disagree beyond the accuracy gates.
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <thread>
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include "decimate.h"
+#include "method_registry.h"
+#include "reference_cgal/cgal_reference.h"
+#include "reference_embree/embree_reference.h"
+#include "report_table.h"
+#include "roving/agreement.h"
+#include "roving/error.h"
+#include "roving/mesh_io.h"
+#include "roving/normalise.h"
+#include "roving/statistics.h"
+#include "roving/stopwatch.h"
+#include "roving/voxel_model.h"
+#include "svg_chart.h"
+#include "voxelize.h"
+
+namespace fs = std::filesystem;
+using namespace roving;
+
+namespace {
+
+// ---- The paper's figures (Tables 1-3) ----
+struct PaperObservations {
+  const char* model;
+  double roving, at_36x18, at_24x12, at_12x6;
+};
+const PaperObservations kPaperTable1[] = {{"Bunny", 69451, 3422, 3286, 5396},
+                                          {"Teeth", 116602, 3705, 3412, 4619},
+                                          {"Rocker Arm", 60264, 7962, 7193, 6307},
+                                          {"Venus", 134342, 978, 868, 2265}};
+struct PaperDissimilarity {
+  double siad, usiad, std, cooperative_s, v2v_s, v2p_s;
+};
+const PaperDissimilarity kPaperLow{-0.2088, 0.6800, 0.8575, 14.3, 72.8, 104.8};
+const PaperDissimilarity kPaperMiddle{0.0147, 0.0541, 0.2517, 46.1, 1152.6, 1736.2};
+const PaperDissimilarity kPaperSparse{1.6307, 1.6606, 0.9971, 15.5, NAN, NAN};
+const PaperDissimilarity kPaperDense{0.4431, 0.4450, 0.2237, 52.5, NAN, NAN};
+
+struct Options {
+  std::string data, out = "results", backend = "osmesa";
+  bool quick = false, check = false;
+};
+
+// Progress on stderr: the full run takes minutes.
+class Progress {
+ public:
+  void step(const std::string& what) { std::fprintf(stderr, "[roving-bench %6.1f s] %s\n", clock_.seconds(), what.c_str()); }
+
+ private:
+  Stopwatch clock_;
+};
+
+struct Run {
+  DistanceResult result;
+  Statistics stats;
+  double seconds() const { return result.build_seconds + result.query_seconds; }
+};
+
+class Bench {
+ public:
+  explicit Bench(Options options) : options_(std::move(options)) { backend_ = parse_gl_backend(options_.backend); }
+
+  Run run(const std::string& method, const TriangleMesh& test, const SampleSet& samples, double h,
+          Semantics semantics = Semantics::FirstHit, GlMethodOptions gl = {}) {
+    gl.backend = backend_;
+    auto m = make_method(method, gl);
+    Run r{measure_distances(*m, test, samples, {semantics, h}), {}};
+    r.stats = compute_statistics(r.result.signed_distance, r.result.hit, samples.weights, h);
+    if (r.result.gl) renderer_ = r.result.gl->renderer;
+    return r;
+  }
+
+  // Quick mode: 8,000 area-uniform samples instead of every face.
+  SampleSet samples_on(const TriangleMesh& mesh) const {
+    return options_.quick ? make_samples(mesh, {SampleSpec::Kind::Area, 8000}) : make_samples(mesh, {});
+  }
+  TriangleMesh load(const std::string& name) const {
+    return normalised(load_mesh((fs::path(options_.data) / name).string()).mesh);
+  }
+
+  const Options& options() const { return options_; }
+  const std::string& renderer() const { return renderer_; }
+  Progress progress;
+  std::map<std::string, double> figures;  // accuracy figures, what --check compares
+  std::vector<std::string> failures;
+  std::vector<ReportTable> tables;
+  std::map<std::string, std::string> svgs;
+
+ private:
+  Options options_;
+  GlBackend backend_;
+  std::string renderer_;
+};
+
+// Table 1: observations of exact roving and of the cooperative method at three spacings.
+void table1(Bench& bench) {
+  ReportTable t{"Table 1: observations (views rendered + per-sample cameras)",
+                {"model", "samples", "roving", "coop 36x18", "coop 24x12", "coop 12x6", "paper model", "paper roving",
+                 "paper 36x18", "paper 24x12", "paper 12x6"},
+                {}};
+  struct Model {
+    const char* file;
+    const char* label;
+    const PaperObservations* paper;
+  };
+  std::vector<Model> models = {{"stanford-bunny.obj", "Bunny", &kPaperTable1[0]},
+                               {"fandisk.obj", "Fandisk", &kPaperTable1[1]},
+                               {"rocker-arm.obj", "Rocker Arm (decimated copy)", &kPaperTable1[2]},
+                               {"igea.ply", "Igea", &kPaperTable1[3]}};
+  if (bench.options().quick) models.resize(2);
+  for (const Model& m : models) {
+    bench.progress.step(fmt::format("table 1: {}", m.label));
+    const TriangleMesh reference = bench.load(m.file);
+    // The test model: the reference decimated to a quarter (quadric error).
+    const TriangleMesh test = decimate_quadric(reference, reference.triangle_count() / 4 / 2 * 2);
+    const SampleSet samples = bench.samples_on(reference);
+    const double h = 0.05 * reference.bounding_box().diagonal();
+    std::vector<std::string> row = {m.label, std::to_string(samples.size()), std::to_string(samples.size())};
+    for (const auto& [views_h, views_v] : {std::pair{36, 18}, std::pair{24, 12}, std::pair{12, 6}}) {
+      GlMethodOptions gl;
+      gl.views_h = views_h, gl.views_v = views_v;
+      const GlReport g = *bench.run("cooperative", test, samples, h, Semantics::FirstHit, gl).result.gl;
+      row.push_back(fmt::format("{} ({} + {})", g.observations(), g.views_rendered, g.sample_cameras));
+      bench.figures[fmt::format("table1/{}/{}x{}/observations", m.file, views_h, views_v)] = double(g.observations());
+    }
+    row.push_back(m.paper->model);
+    for (double paper : {m.paper->roving, m.paper->at_36x18, m.paper->at_24x12, m.paper->at_12x6}) row.push_back(figure(paper, 0));
+    t.rows.push_back(row);
+  }
+  // The voxel reference: axis normals, so the 6 axis views.
+  bench.progress.step("table 1: voxel reference");
+  const TriangleMesh bunny = bench.load("stanford-bunny.obj");
+  const VoxelGrid voxels = voxelize_thin(bunny, bench.options().quick ? 32 : 128);
+  const SampleSet samples = exposed_face_samples(voxels);
+  const GlReport g = *bench.run("cooperative", bunny, samples, 0.05 * bunny.bounding_box().diagonal()).result.gl;
+  t.rows.push_back({fmt::format("Bunny {}^3 thin voxels as reference", voxels.dimension), std::to_string(samples.size()),
+                    std::to_string(samples.size()), "",
+                    fmt::format("{} (6 axis views + {})", g.observations(), g.sample_cameras), "", "", "", "", "", ""});
+  bench.figures["table1/voxel-reference/observations"] = double(g.observations());
+  bench.tables.push_back(t);
+}
+
+struct TestPair {
+  std::string label;
+  TriangleMesh test;
+  const PaperDissimilarity* paper;
+  bool voxel;
+};
+
+// Figure 6: histograms of the bunny-vs-low-mesh errors by Embree, exact roving, cooperative.
+std::string figure6(const std::map<std::string, Run>& runs, const SampleSet& samples) {
+  std::vector<ChartSeries> series;
+  const double range = 4.0;
+  const std::size_t bins = 80;
+  for (const auto& [method, colour, name] : {std::tuple{"embree", "#888888", "Embree (reference)"},
+                                             std::tuple{"roving", "#d62728", "exact roving (GL)"},
+                                             std::tuple{"cooperative", "#1f77b4", "cooperative 24x12 (GL)"}}) {
+    const DistanceResult& r = runs.at(method).result;
+    const Statistics s = compute_statistics(r.signed_distance, r.hit, samples.weights, range, bins);
+    ChartSeries c{name, colour, {}, {}};
+    for (std::size_t b = 0; b < bins; ++b) {
+      c.x.push_back(-range + (b + 0.5) * 2 * range / bins);
+      c.y.push_back(double(s.histogram.counts[b]));
+    }
+    series.push_back(c);
+  }
+  return line_chart_svg("Figure 6: error histograms, bunny vs its 800-triangle mesh", "signed distance d (paper units)",
+                        "samples per bin", series);
+}
+
+// Tables 2 and 3, and Figure 6: the bunny against its low and middle meshes and its sparse and
+// dense voxel models, by every method.
+void tables23(Bench& bench) {
+  const TriangleMesh bunny = bench.load("stanford-bunny.obj");
+  const SampleSet samples = bench.samples_on(bunny);
+  const double h = 0.05 * bunny.bounding_box().diagonal();
+  bench.progress.step("tables 2-3: making the test models");
+  std::vector<TestPair> pairs = {{"low mesh (800 triangles)", decimate_quadric(bunny, 800), &kPaperLow, false},
+                                 {"middle mesh (10,459 triangles)", decimate_quadric(bunny, 10459), &kPaperMiddle, false},
+                                 {"sparse voxels (32^3, thin)", exposed_faces(voxelize_thin(bunny, 32)), &kPaperSparse, true},
+                                 {"sparse voxels (32^3, conservative)", exposed_faces(voxelize_conservative(bunny, 32)), nullptr, true}};
+  if (!bench.options().quick) {
+    pairs.push_back({"dense voxels (128^3, thin)", exposed_faces(voxelize_thin(bunny, 128)), &kPaperDense, true});
+    pairs.push_back({"dense voxels (128^3, conservative)", exposed_faces(voxelize_conservative(bunny, 128)), nullptr, true});
+  }
+  ReportTable t2{"Table 2: SiAD / USiAD / STD, paper units (longest side 128), h = 5% of the diagonal",
+                 {"test model", "method", "SiAD", "USiAD", "STD", "no-hits"}, {}};
+  ReportTable t3{"Table 3: seconds (build + query), and the speed-up over naive vertex-to-plane in this run",
+                 {"test model", "method", "build s", "query s", "total s", "naive v2p / this", "paper s"}, {}};
+  const std::vector<std::pair<std::string, std::string>> methods = {
+      {"cooperative", "cooperative GL 24x12"}, {"roving", "exact GL roving"}, {"embree", "Embree (first hit)"},
+      {"cgal", "CGAL (first hit)"}, {"embree-closest", "closest point (Embree)"},
+      {"v2v-kdtree", "vertex-to-vertex (kd-tree)"}, {"v2p-aabb", "vertex-to-plane (AABB)"},
+      {"v2v-naive", "vertex-to-vertex (naive)"}, {"v2p-naive", "vertex-to-plane (naive)"}};
+  for (const TestPair& pair : pairs) {
+    std::map<std::string, Run> runs;
+    for (const auto& [method, label] : methods) {
+      // The paper timed the naive baselines on meshes only (N/A for voxels).
+      if (pair.voxel && method.find("naive") != std::string::npos) continue;
+      bench.progress.step(fmt::format("tables 2-3: {}, {}", pair.label, label));
+      const bool closest = method == "embree-closest" || method.rfind("v2", 0) == 0;
+      runs[method] = bench.run(method == "embree-closest" ? "embree" : method, pair.test, samples, h,
+                               closest ? Semantics::Closest : Semantics::FirstHit);
+    }
+    const double naive_v2p = runs.count("v2p-naive") ? runs["v2p-naive"].seconds() : NAN;
+    for (const auto& [method, label] : methods) {
+      if (!runs.count(method)) {
+        t3.rows.push_back({pair.label, label, "N/A", "N/A", "N/A", "N/A", "N/A"});
+        continue;
+      }
+      const Run& r = runs[method];
+      if (method.find("naive") == std::string::npos) {  // the naive ones give the same figures
+        t2.rows.push_back({pair.label, label, figure(r.stats.siad), figure(r.stats.usiad), figure(r.stats.std_signed),
+                           std::to_string(r.stats.no_hit_count)});
+        for (const auto& [name, value] : {std::pair{"siad", r.stats.siad}, {"usiad", r.stats.usiad}, {"std", r.stats.std_signed}}) {
+          bench.figures[fmt::format("table2/{}/{}/{}", pair.label, method, name)] = value;
+        }
+      }
+      double paper = NAN;
+      if (pair.paper && method == "cooperative") paper = pair.paper->cooperative_s;
+      if (pair.paper && method == "v2v-naive") paper = pair.paper->v2v_s;
+      if (pair.paper && method == "v2p-naive") paper = pair.paper->v2p_s;
+      t3.rows.push_back({pair.label, label, figure(r.result.build_seconds, 3), figure(r.result.query_seconds, 3),
+                         figure(r.seconds(), 3), std::isnan(naive_v2p) ? "N/A" : fmt::format("{:.1f}x", naive_v2p / r.seconds()),
+                         figure(paper, 1)});
+    }
+    if (pair.paper) {
+      t2.rows.push_back({pair.label, "**paper (cooperative)**", figure(pair.paper->siad), figure(pair.paper->usiad),
+                         figure(pair.paper->std), ""});
+    }
+    if (pair.label.rfind("low mesh", 0) == 0) bench.svgs["figure6.svg"] = figure6(runs, samples);
+  }
+  bench.tables.push_back(t2);
+  bench.tables.push_back(t3);
+}
+
+// The H x V trade-off: observations, time and USiAD error against Embree per spacing and
+// resolution, on the bunny against its middle mesh.
+void hv_study(Bench& bench) {
+  const TriangleMesh bunny = bench.load("stanford-bunny.obj");
+  const TriangleMesh test = decimate_quadric(bunny, 10459);
+  const SampleSet samples = bench.samples_on(bunny);
+  const double h = 0.05 * bunny.bounding_box().diagonal();
+  bench.progress.step("H x V study: Embree reference");
+  const Run embree = bench.run("embree", test, samples, h);
+  ReportTable t{"H x V study: bunny vs middle mesh, cooperative method",
+                {"views", "resolution", "views rendered", "cameras", "observations", "query s", "USiAD",
+                 "abs USiAD error vs Embree", "relative"},
+                {}};
+  std::vector<std::pair<int, int>> spacings = {{6, 3}, {12, 6}, {24, 12}, {36, 18}, {48, 24}, {72, 36}};
+  std::vector<int> resolutions = {512, 2048, 4096};
+  if (bench.options().quick) spacings = {{12, 6}, {24, 12}}, resolutions = {512};
+  ChartSeries error{"|USiAD error|", "#d62728", {}, {}}, seconds{"query seconds", "#1f77b4", {}, {}};
+  const auto measure = [&](int vh, int vv, int resolution) {
+    bench.progress.step(fmt::format("H x V study: {}x{} at {} px", vh, vv, resolution));
+    GlMethodOptions gl;
+    gl.views_h = vh, gl.views_v = vv, gl.resolution = resolution;
+    const Run r = bench.run("cooperative", test, samples, h, Semantics::FirstHit, gl);
+    const double err = std::abs(r.stats.usiad - embree.stats.usiad);
+    const GlReport& g = *r.result.gl;
+    t.rows.push_back({fmt::format("{}x{}", vh, vv), std::to_string(resolution), std::to_string(g.views_rendered),
+                      std::to_string(g.sample_cameras), std::to_string(g.observations()), figure(r.result.query_seconds, 3),
+                      figure(r.stats.usiad, 5), figure(err, 5), fmt::format("{:.3f}%", 100 * err / embree.stats.usiad)});
+    bench.figures[fmt::format("hv/{}x{}/{}/usiad", vh, vv, resolution)] = r.stats.usiad;
+    return std::pair{err, r.result.query_seconds};
+  };
+  for (const auto& [vh, vv] : spacings) {
+    const auto [err, s] = measure(vh, vv, 1024);
+    error.x.push_back(double(vh) * vv);
+    error.y.push_back(err);
+    seconds.x.push_back(double(vh) * vv);
+    seconds.y.push_back(s);
+  }
+  for (int resolution : resolutions) measure(24, 12, resolution);
+  bench.tables.push_back(t);
+  bench.svgs["hv-error.svg"] = line_chart_svg("H x V: USiAD error against Embree (1024 px views)", "view directions (H x V)",
+                                              "|USiAD - USiAD_Embree|, paper units", {error}, true);
+  bench.svgs["hv-time.svg"] = line_chart_svg("H x V: cooperative query time (1024 px views)", "view directions (H x V)",
+                                             "seconds", {seconds});
+}
+
+// The accuracy gates on a test model 1.5% of the diagonal away (the middle mesh, smoothly
+// perturbed): exact roving against Embree, the cooperative method against roving.
+void gates(Bench& bench) {
+  bench.progress.step("accuracy gates");
+  const TriangleMesh bunny = bench.load("stanford-bunny.obj");
+  const double diagonal = bunny.bounding_box().diagonal(), h = 0.05 * diagonal;
+  const TriangleMesh middle = decimate_quadric(bunny, 10459);
+  std::vector<Vec3> moved = middle.positions();
+  const double k = 2 * M_PI / (0.5 * diagonal);
+  for (std::size_t v = 0; v < moved.size(); ++v) {
+    const Vec3& p = moved[v];
+    moved[v] += 0.015 * diagonal * std::sin(k * p.x()) * std::cos(k * p.y() + 0.5) * std::sin(k * p.z() + 1.0) *
+                middle.vertex_normals()[v];
+  }
+  const TriangleMesh test(std::move(moved), middle.triangles());
+  const SampleSet samples = bench.samples_on(bunny);
+  const Run embree = bench.run("embree", test, samples, h), roving = bench.run("roving", test, samples, h);
+  const Run cooperative = bench.run("cooperative", test, samples, h);
+  const Agreement exact = agreement(embree.result, roving.result, roving_tolerance(*roving.result.gl));
+  const ViewAgreement views = view_agreement(embree.result, cooperative.result, samples, *cooperative.result.gl);
+  ReportTable t{"Accuracy gates: bunny vs its middle mesh perturbed by 1.5% of the diagonal", {"gate", "result"}, {}};
+  const auto gate = [&](bool ok, const std::string& what) {
+    if (!ok) bench.failures.push_back("gate failed: " + what);
+    t.rows.push_back({what, ok ? "pass" : "FAIL"});
+  };
+  const double usiad_error = std::abs(roving.stats.usiad - embree.stats.usiad) / embree.stats.usiad;
+  const double du = std::abs(cooperative.stats.usiad - roving.stats.usiad) / roving.stats.usiad;
+  const double ds = std::abs(cooperative.stats.siad - roving.stats.siad) / roving.stats.usiad;
+  gate(exact.same_flag_fraction() >= 0.999, fmt::format("roving and Embree: same hit flag on {:.4f}% (>= 99.9%)", 100 * exact.same_flag_fraction()));
+  gate(exact.close_fraction() >= 0.995, fmt::format("roving within {:.3g} of Embree on {:.4f}% of common hits (>= 99.5%)",
+                                                    roving_tolerance(*roving.result.gl), 100 * exact.close_fraction()));
+  gate(usiad_error <= 0.002, fmt::format("roving USiAD within {:.4f}% of Embree's (<= 0.2%)", 100 * usiad_error));
+  gate(du <= 0.01, fmt::format("cooperative 24x12 USiAD within {:.3f}% of roving's (<= 1%)", 100 * du));
+  gate(ds <= 0.01, fmt::format("cooperative 24x12 SiAD within {:.3f}% of roving's USiAD (<= 1%)", 100 * ds));
+  gate(views.within_fraction() >= 0.99, fmt::format("view-resolved samples within the view tolerance of Embree: {:.3f}% (>= 99%)",
+                                                    100 * views.within_fraction()));
+  bench.tables.push_back(t);
+}
+
+std::string command_output(const char* command) {
+  std::string out;
+  if (FILE* pipe = popen(command, "r")) {
+    char buffer[256];
+    while (fgets(buffer, sizeof buffer, pipe)) out += buffer;
+    pclose(pipe);
+  }
+  while (!out.empty() && (out.back() == '\n' || out.back() == '\r')) out.pop_back();
+  return out.empty() ? "unknown" : out;
+}
+
+std::string machine_section(const Bench& bench) {
+  return fmt::format("## Machine\n\n- CPU: {} ({} hardware threads)\n- GL: {}\n- CGAL {}, Embree {}\n- commit {}\n- mode: {}\n",
+                     command_output("sed -n 's/^model name[^:]*: //p' /proc/cpuinfo | head -n 1"),
+                     std::thread::hardware_concurrency(), bench.renderer(), cgal_version(), embree_version(),
+                     command_output("git rev-parse --short HEAD 2>/dev/null"),
+                     bench.options().quick ? "quick (8,000 area samples, two models, fewer spacings, no 128^3 voxels)"
+                                           : "full (every face sample)");
+}
+
+// How far a recomputed figure may move. The CPU references compute each sample alone in double
+// and sum in order: 1e-6 relative. GL figures rest on llvmpipe's float rasterisation, whose
+// rounding may differ with the CPU's vector width: 1e-3 relative. An observation count moves
+// when a sample sits on a view's acceptance threshold: 0.5% + 2.
+bool close_enough(const std::string& key, double committed, double now) {
+  if (key.find("observations") != std::string::npos) return std::abs(committed - now) <= 0.005 * committed + 2;
+  const bool cpu = key.find("/embree") != std::string::npos || key.find("/cgal/") != std::string::npos ||
+                   key.find("/v2") != std::string::npos;
+  return std::abs(committed - now) <= (cpu ? 1e-6 : 1e-3) * std::max(std::abs(committed), std::abs(now)) + 1e-9;
+}
+
+int check(Bench& bench, const fs::path& accuracy) {
+  std::ifstream committed(accuracy);
+  if (!committed) throw Error(fmt::format("{}: no committed accuracy figures to check against", accuracy.string()));
+  std::string line;
+  std::getline(committed, line);
+  std::size_t compared = 0;
+  while (std::getline(committed, line)) {
+    const auto comma = line.rfind(',');
+    const std::string key = line.substr(0, comma);
+    const double value = std::stod(line.substr(comma + 1));
+    const auto it = bench.figures.find(key);
+    ++compared;
+    if (it == bench.figures.end()) {
+      bench.failures.push_back(key + ": not computed any more");
+    } else if (!close_enough(key, value, it->second)) {
+      bench.failures.push_back(fmt::format("{}: committed {}, now {}", key, value, it->second));
+    }
+  }
+  for (const std::string& f : bench.failures) std::fprintf(stderr, "roving-bench --check: %s\n", f.c_str());
+  std::printf("roving-bench --check: %zu figures compared with %s, %zu failures\n", compared, accuracy.c_str(),
+              bench.failures.size());
+  return bench.failures.empty() ? 0 : 1;
+}
+
+void write_results(Bench& bench, const fs::path& out) {
+  fs::create_directories(out);
+  std::string markdown = fmt::format(
+      "# surface roving: the paper's tables, regenerated\n\nWritten by `roving-bench{}`; do not edit by hand. The bunny "
+      "is normalised to longest side 128 (the paper's units), h = 5% of its diagonal, first-hit semantics unless a row "
+      "says otherwise. The paper's Teeth and Venus are not available: Fandisk and Igea stand in. Our voxel models are "
+      "voxelised here (thin, as the paper's, and conservative). The paper ran on a 1.7 GHz Pentium IV with a GeForce3; "
+      "our GL is {}, a software rasteriser on 2 cores, so GL timings are not the paper's hardware story.\n\n",
+      bench.options().quick ? " --quick" : "", bench.renderer());
+  for (const ReportTable& t : bench.tables) {
+    markdown += "## " + t.title + "\n\n" + t.markdown() + "\n";
+    std::string name = t.title.substr(0, t.title.find(':'));
+    for (char& c : name) c = std::isalnum(static_cast<unsigned char>(c)) ? std::tolower(c) : '-';
+    t.write_csv((out / (name + ".csv")).string());
+  }
+  markdown +=
+      "## Where and why our figures differ from the paper's\n\n"
+      "- **Table 1.** Observation counts depend on the test model, the acceptance threshold and the view resolution, "
+      "none of which the paper states; ours use the reference decimated to a quarter, h = 5% of the diagonal and "
+      "1024 px views read bilinearly. Fandisk (12,946 faces) and Igea (268,686) stand in for Teeth (116,602) and "
+      "Venus (134,342), and our Rocker Arm is a decimated copy (20,088 faces against 60,264). The pattern holds: a "
+      "sphere-like head needs almost no cameras (Igea, like Venus), the Rocker Arm's inner walls keep thousands, and "
+      "finer spacings trade cameras for views.\n"
+      "- **Table 2.** The meshes are OpenMesh quadric decimations, not the paper's Garland QSlim runs, and the paper's "
+      "h (MAX_ERROR) and no-hit rule are not stated (ours: 5% of the diagonal, a no-hit counts as +h); the low mesh's "
+      "USiAD is the most sensitive to both. With thin voxels, as the paper's, the dense grid lands near its figures; "
+      "conservative voxels are thicker, so further out. Exact GL roving equals Embree and CGAL to the last digit shown "
+      "(gates below); the cooperative method stays within about 1% of it.\n"
+      "- **Table 3.** The paper's GPU was hardware; ours is Mesa's software rasteriser on two cores, so every GL "
+      "figure here is CPU time, and a modern CPU runs the naive baselines (which the paper took 1,736 s for) in "
+      "seconds. The paper's point, speed from graphics hardware, is for the EGL backend on a real GPU to show.\n\n";
+  markdown += "## Figures\n\n";
+  for (const auto& [name, svg] : bench.svgs) {
+    std::ofstream(out / name) << svg;
+    markdown += fmt::format("![{0}]({0})\n\n", name);
+  }
+  std::ofstream(out / "README.md") << markdown + machine_section(bench);
+  std::ofstream csv(out / "accuracy.csv");
+  csv << "figure,value\n";
+  csv.precision(12);
+  for (const auto& [key, value] : bench.figures) csv << key << ',' << value << '\n';
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"roving-bench: regenerate the paper's tables and figures into results/"};
+  Options options;
+  options.data = std::getenv("ROVING_DATA") && *std::getenv("ROVING_DATA") ? std::getenv("ROVING_DATA") : "../shared/data";
+  app.add_option("--data", options.data, "folder of the real models")->capture_default_str();
+  app.add_option("--out", options.out, "results folder (quick mode uses its quick/ subfolder)")->capture_default_str();
+  app.add_option("--backend", options.backend, "GL backend: osmesa or egl")->capture_default_str();
+  app.add_flag("--quick", options.quick, "8,000 samples, two models, fewer spacings (about a minute)");
+  app.add_flag("--check", options.check, "recompute the accuracy figures and compare them with the committed ones");
+  CLI11_PARSE(app, argc, argv);
+  try {
+    const fs::path out = options.quick ? fs::path(options.out) / "quick" : fs::path(options.out);
+    Bench bench(options);
+    table1(bench);
+    tables23(bench);
+    hv_study(bench);
+    gates(bench);
+    if (options.check) return check(bench, out / "accuracy.csv");
+    write_results(bench, out);
+    bench.progress.step(fmt::format("written to {}", out.string()));
+    for (const std::string& f : bench.failures) std::fprintf(stderr, "roving-bench: %s\n", f.c_str());
+    return bench.failures.empty() ? 0 : 1;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "roving-bench: error: %s\n", e.what());
+    return 2;
+  }
+}
