@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include "analytic.h"
 #include "decimate.h"
 #include "method_registry.h"
 #include "roving/agreement.h"
@@ -20,17 +21,6 @@
 using namespace roving;
 
 namespace {
-
-TriangleMesh perturbed(const TriangleMesh& mesh, double amplitude, double wavelength) {
-  std::vector<Vec3> moved = mesh.positions();
-  const double k = 2 * M_PI / wavelength;
-  for (std::size_t v = 0; v < moved.size(); ++v) {
-    const Vec3& p = moved[v];
-    moved[v] += amplitude * std::sin(k * p.x()) * std::cos(k * p.y() + 0.5) * std::sin(k * p.z() + 1.0) *
-                mesh.vertex_normals()[v];
-  }
-  return TriangleMesh(std::move(moved), mesh.triangles());
-}
 
 struct Run {
   DistanceResult result;
@@ -71,7 +61,7 @@ int main(int argc, char** argv) {
     const TriangleMesh middle = decimate_quadric(bunny, 10459);
     const std::vector<Pair> pairs = {
         {"10,459-triangle decimation, smoothly perturbed by 1.5% of the diagonal (gated)",
-         perturbed(middle, 0.015 * diagonal, 0.5 * diagonal), true},
+         smoothly_perturbed(middle, 0.015 * diagonal, 0.5 * diagonal), true},
         {"10,459-triangle decimation (the paper's middle mesh)", middle, false},
         {"800-triangle decimation (the paper's low mesh)", decimate_quadric(bunny, 800), false}};
     GlMethodOptions gl;

@@ -12,6 +12,7 @@
 #include <map>
 #include <thread>
 
+#include "analytic.h"
 #include "decimate.h"
 #include "method_registry.h"
 #include "reference_cgal/cgal_reference.h"

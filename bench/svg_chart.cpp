@@ -11,7 +11,7 @@ namespace roving {
 
 std::string line_chart_svg(const std::string& title, const std::string& x_label, const std::string& y_label,
                            const std::vector<ChartSeries>& series, bool log_y) {
-  const double width = 720, height = 420, left = 80, right = 170, top = 40, bottom = 60;
+  const double width = 820, height = 440, left = 100, right = 240, top = 44, bottom = 60;
   const auto ty = [&](double y) { return log_y ? std::log10(y) : y; };
   double x0 = std::numeric_limits<double>::infinity(), x1 = -x0, y0 = x0, y1 = -x0;
   for (const auto& s : series)
@@ -52,7 +52,7 @@ std::string line_chart_svg(const std::string& title, const std::string& x_label,
   svg += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">{}</text>\n", (left + width - right) / 2,
                      height - 15, x_label);
   svg += fmt::format(
-      "<text x=\"18\" y=\"{0}\" transform=\"rotate(-90 18 {0})\" text-anchor=\"middle\">{1}{2}</text>\n",
+      "<text x=\"16\" y=\"{0}\" transform=\"rotate(-90 16 {0})\" text-anchor=\"middle\">{1}{2}</text>\n",
       (top + height - bottom) / 2, y_label, log_y ? " (log scale)" : "");
   for (std::size_t s = 0; s < series.size(); ++s) {
     std::string points;
@@ -60,14 +60,19 @@ std::string line_chart_svg(const std::string& title, const std::string& x_label,
       if (log_y && !(series[s].y[i] > 0)) continue;
       points += fmt::format("{:.1f},{:.1f} ", px(series[s].x[i]), py(series[s].y[i]));
     }
-    svg += fmt::format("<polyline fill=\"none\" stroke=\"{}\" stroke-width=\"1.8\" points=\"{}\"/>\n",
-                       series[s].colour, points);
+    // Overlapping series stay visible: the first wide and solid, the next dashed, then dotted.
+    static const char* const kDash[] = {"none", "8 4", "2 3", "12 3 2 3"};
+    static const double kWidth[] = {4.5, 2.2, 2.2, 2.2};
+    svg += fmt::format(
+        "<polyline fill=\"none\" stroke=\"{}\" stroke-width=\"{}\" stroke-dasharray=\"{}\" points=\"{}\"/>\n",
+        series[s].colour, kWidth[s % 4], kDash[s % 4], points);
     const double ly = top + 10 + 20.0 * s;
     svg += fmt::format(
-        "<line x1=\"{0}\" y1=\"{1}\" x2=\"{2}\" y2=\"{1}\" stroke=\"{3}\" stroke-width=\"3\"/>"
+        "<line x1=\"{0}\" y1=\"{1}\" x2=\"{2}\" y2=\"{1}\" stroke=\"{3}\" stroke-width=\"3\" "
+        "stroke-dasharray=\"{7}\"/>"
         "<text x=\"{4}\" y=\"{5}\">{6}</text>\n",
         width - right + 10, ly, width - right + 30, series[s].colour, width - right + 35, ly + 4,
-        series[s].name);
+        series[s].name, kDash[s % 4]);
   }
   return svg + "</svg>\n";
 }

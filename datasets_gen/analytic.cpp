@@ -71,6 +71,17 @@ TriangleMesh square(double half, double height, int n) {
   return TriangleMesh(std::move(p), std::move(f), "square");
 }
 
+TriangleMesh smoothly_perturbed(const TriangleMesh& mesh, double amplitude, double wavelength) {
+  std::vector<Vec3> moved = mesh.positions();
+  const double k = 2 * M_PI / wavelength;
+  for (std::size_t v = 0; v < moved.size(); ++v) {
+    const Vec3& p = moved[v];
+    const double wave = std::sin(k * p.x()) * std::cos(k * p.y() + 0.5) * std::sin(k * p.z() + 1.0);
+    moved[v] += amplitude * wave * mesh.vertex_normals()[v];
+  }
+  return TriangleMesh(std::move(moved), mesh.triangles(), "perturbed mesh");
+}
+
 PointCloud sphere_points(const Vec3& centre, double radius, std::size_t count) {
   PointCloud cloud;
   const double golden = M_PI * (3 - std::sqrt(5.0));

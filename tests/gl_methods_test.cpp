@@ -4,6 +4,7 @@
 
 #include <cstdlib>
 
+#include "analytic.h"
 #include "decimate.h"
 #include "method_registry.h"
 #include "roving/agreement.h"
@@ -147,7 +148,7 @@ class BunnyGates : public ::testing::Test {
     const TriangleMesh bunny = normalised(testing::bunny());
     diagonal_ = bunny.bounding_box().diagonal();
     test_ = new TriangleMesh(
-        testing::perturbed(decimate_quadric(bunny, 10459), 0.015 * diagonal_, 0.5 * diagonal_));
+        smoothly_perturbed(decimate_quadric(bunny, 10459), 0.015 * diagonal_, 0.5 * diagonal_));
     samples_ = new SampleSet(make_samples(bunny, {}));
     auto embree = make_method("embree");
     embree_ = new DistanceResult(measure_distances(*embree, *test_, *samples_, {Semantics::FirstHit, h()}));

@@ -2,6 +2,7 @@
 // perturbed copy of itself, for each semantics; the naive and accelerated baselines agree exactly.
 #include <gtest/gtest.h>
 
+#include "analytic.h"
 #include "method_registry.h"
 #include "test_support.h"
 
@@ -31,7 +32,7 @@ class BunnyAgainstPerturbedCopy : public ::testing::TestWithParam<Semantics> {
     const TriangleMesh& bunny = testing::bunny();
     diagonal_ = bunny.bounding_box().diagonal();
     // 1% of the diagonal in amplitude, waves a fifth of the diagonal long.
-    test_ = new TriangleMesh(testing::perturbed(bunny, 0.01 * diagonal_, 0.2 * diagonal_));
+    test_ = new TriangleMesh(smoothly_perturbed(bunny, 0.01 * diagonal_, 0.2 * diagonal_));
     samples_ = new SampleSet(make_samples(bunny, {}));
   }
   static void TearDownTestSuite() {
@@ -70,7 +71,7 @@ INSTANTIATE_TEST_SUITE_P(EachSemantics, BunnyAgainstPerturbedCopy,
 TEST(Baselines, NaiveAndAcceleratedAgreeOnTheBunny) {
   const TriangleMesh& bunny = testing::bunny();
   const double diagonal = bunny.bounding_box().diagonal();
-  const TriangleMesh test = testing::perturbed(bunny, 0.01 * diagonal, 0.2 * diagonal);
+  const TriangleMesh test = smoothly_perturbed(bunny, 0.01 * diagonal, 0.2 * diagonal);
   // A subset keeps the brute force short (2,000 x 69,451 triangles).
   const SampleSet samples = make_samples(bunny, {SampleSpec::Kind::Area, 2000});
   const DistanceOptions options{Semantics::Closest, 0.05 * diagonal};
@@ -90,7 +91,7 @@ TEST(Baselines, NaiveAndAcceleratedAgreeOnTheBunny) {
 TEST(Baselines, VertexToPlaneMatchesTheClosestPointReferences) {
   const TriangleMesh& bunny = testing::bunny();
   const double diagonal = bunny.bounding_box().diagonal();
-  const TriangleMesh test = testing::perturbed(bunny, 0.01 * diagonal, 0.2 * diagonal);
+  const TriangleMesh test = smoothly_perturbed(bunny, 0.01 * diagonal, 0.2 * diagonal);
   const SampleSet samples = make_samples(bunny, {SampleSpec::Kind::Area, 2000});
   const DistanceOptions options{Semantics::Closest, 0.05 * diagonal};
   auto v2p = make_method("v2p-naive");

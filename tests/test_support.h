@@ -45,17 +45,4 @@ inline TriangleMesh box(double s) {
   return TriangleMesh(std::move(p), t);
 }
 
-// `mesh` with every vertex moved along its normal by amplitude * a smooth wave of wavelength
-// `wavelength`: a test model that stays close to the reference everywhere.
-inline TriangleMesh perturbed(const TriangleMesh& mesh, double amplitude, double wavelength) {
-  std::vector<Vec3> moved = mesh.positions();
-  const double k = 2 * M_PI / wavelength;
-  for (std::size_t v = 0; v < moved.size(); ++v) {
-    const Vec3& p = moved[v];
-    const double wave = std::sin(k * p.x()) * std::cos(k * p.y() + 0.5) * std::sin(k * p.z() + 1.0);
-    moved[v] += amplitude * wave * mesh.vertex_normals()[v];
-  }
-  return TriangleMesh(std::move(moved), mesh.triangles());
-}
-
 }  // namespace roving::testing

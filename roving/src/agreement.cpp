@@ -34,8 +34,7 @@ double view_tolerance(const GlReport& gl, double alpha, double d) {
 ViewAgreement view_agreement(const DistanceResult& reference, const DistanceResult& result,
                              const SampleSet& samples, const GlReport& gl) {
   const std::vector<Vec3> directions =
-      gl.axis_views ? std::vector<Vec3>{Vec3::UnitX(), -Vec3::UnitX(), Vec3::UnitY(), -Vec3::UnitY(), Vec3::UnitZ(), -Vec3::UnitZ()}
-                    : view_directions(gl.views_h, gl.views_v);
+      gl.axis_views ? axis_directions() : view_directions(gl.views_h, gl.views_v);
   ViewAgreement v;
   for (std::size_t k = 0; k < samples.size(); ++k) {
     if (gl.resolved_by[k] != Resolution::View) continue;

@@ -38,6 +38,10 @@ std::vector<Vec3> view_directions(int h, int v) {
   return directions;
 }
 
+std::vector<Vec3> axis_directions() {
+  return {Vec3::UnitX(), -Vec3::UnitX(), Vec3::UnitY(), -Vec3::UnitY(), Vec3::UnitZ(), -Vec3::UnitZ()};
+}
+
 void GlScene::build(GlBackend backend, const TriangleMesh& test_model) {
   if (!renderer) renderer = make_depth_renderer(backend);
   renderer->upload_model(test_model);

@@ -43,8 +43,7 @@ std::vector<std::optional<double>> view_sample(GlScene& scene, const SampleSet& 
     return n.cwiseAbs().maxCoeff() == 1.0 && n.cwiseAbs().sum() == 1.0;
   });
   const std::vector<Vec3> directions =
-      axis_normals ? std::vector<Vec3>{Vec3::UnitX(), -Vec3::UnitX(), Vec3::UnitY(), -Vec3::UnitY(), Vec3::UnitZ(), -Vec3::UnitZ()}
-                   : view_directions(options.views_h, options.views_v);
+      axis_normals ? axis_directions() : view_directions(options.views_h, options.views_v);
   report.axis_views = axis_normals;
   // Each sample goes to the direction nearest its normal.
   std::vector<std::uint32_t> direction_of(samples.size());

@@ -29,6 +29,9 @@ void parse_views(const std::string& text, int& h, int& v);
 // longitude 360 (i + 0.5) / H, latitude -90 + 180 (j + 0.5) / V degrees; index j * H + i.
 std::vector<Vec3> view_directions(int h, int v);
 
+// The 6 axis directions +x, -x, +y, -y, +z, -z: the views of a voxel reference (Section 4.3).
+std::vector<Vec3> axis_directions();
+
 // Exact surface roving: one orthographic camera per sample, its view volume the box of
 // half-height h about the sample along its normal and one pixel across, whose centre is the
 // central ray. Cameras are one-pixel tiles of one framebuffer, many per draw; each tile draws only
