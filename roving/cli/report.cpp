@@ -2,6 +2,7 @@
 #include "report.h"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 
@@ -131,10 +132,17 @@ std::string format_text(const MeasureReport& r) {
         g.axis_views ? "the 6 axes" : fmt::format("{}x{}", g.views_h, g.views_v), g.resolution,
         g.sample_cameras, count(g, Resolution::View), count(g, Resolution::Camera),
         count(g, Resolution::Unresolved));
-    out += fmt::format(
-        "  precision (model units): view pixel {:.4g}, view depth step {:.3g}, camera half-width "
-        "{:.3g}, camera depth step {:.3g}\n",
-        g.view_pixel_size, g.view_depth_step, g.camera_half_width, g.camera_depth_step);
+    // Only what was rendered: views, cameras, or both.
+    std::vector<std::string> precision;
+    if (g.views_rendered) {
+      precision.push_back(
+          fmt::format("view pixel {:.4g}, view depth step {:.3g}", g.view_pixel_size, g.view_depth_step));
+    }
+    if (g.sample_cameras) {
+      precision.push_back(fmt::format("camera half-width {:.3g}, camera depth step {:.3g}",
+                                      g.camera_half_width, g.camera_depth_step));
+    }
+    if (!precision.empty()) out += fmt::format("  precision (model units): {}\n", fmt::join(precision, "; "));
   }
   out += fmt::format(
       "  time: load {:.3f} s (reference {:.3f}, test {:.3f}), build {:.3f} s, "

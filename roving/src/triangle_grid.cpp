@@ -9,18 +9,16 @@ namespace roving {
 TriangleGrid::TriangleGrid(const TriangleMesh& mesh, double triangles_per_cell, double margin) {
   const BoundingBox& box = mesh.bounding_box();
   const Vec3 size = box.size().cwiseMax(1e-12 * box.diagonal());
-  // Cells for about triangle_count / triangles_per_cell cells over the box, at most 256 a side.
-  const double cells = std::max(1.0, mesh.triangle_count() / triangles_per_cell);
-  cell_ = std::cbrt(size.prod() / cells);
-  for (int axis = 0; axis < 3; ++axis) {
-    dims_[axis] = std::clamp(static_cast<int>(std::ceil(size[axis] / cell_)), 1, 256);
-  }
-  cell_ = std::max({size.x() / dims_[0], size.y() / dims_[1], size.z() / dims_[2]});
-  // The grid overhangs the box by a cell's margin on each side, so that inflated boxes fit.
-  const double pad = margin * cell_;
+  // About triangle_count / triangles_per_cell cubic cells over the box, at most 256 a side; the
+  // grid overhangs the box by `margin` of a cell on each side, so that inflated boxes fit.
+  const double estimate = std::cbrt(size.prod() / std::max(1.0, mesh.triangle_count() / triangles_per_cell));
+  const double pad = margin * estimate;
   origin_ = box.min - Vec3::Constant(pad);
-  cell_ = std::max(
-      {(size.x() + 2 * pad) / dims_[0], (size.y() + 2 * pad) / dims_[1], (size.z() + 2 * pad) / dims_[2]});
+  cell_ = 0;
+  for (int axis = 0; axis < 3; ++axis) {
+    dims_[axis] = std::clamp(static_cast<int>(std::ceil(size[axis] / estimate)), 1, 256);
+    cell_ = std::max(cell_, (size[axis] + 2 * pad) / dims_[axis]);
+  }
 
   const auto cell_range = [&](const Triangle& t, int low[3], int high[3]) {
     const auto& p = mesh.positions();
