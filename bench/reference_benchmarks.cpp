@@ -10,11 +10,11 @@
 #include <filesystem>
 
 #include "decimate.h"
-#include "method_registry.h"
-#include "roving/agreement.h"
-#include "roving/depth_renderer.h"
-#include "roving/mesh_io.h"
-#include "roving/normalise.h"
+#include "roving/core/normalise.h"
+#include "roving/formats/mesh_io.h"
+#include "roving/gl/depth_renderer.h"
+#include "roving/gl_methods/agreement.h"
+#include "roving/registry/method_registry.h"
 
 namespace {
 

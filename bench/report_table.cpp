@@ -6,7 +6,7 @@
 #include <cmath>
 #include <fstream>
 
-#include "roving/error.h"
+#include "roving/core/error.h"
 
 namespace roving {
 

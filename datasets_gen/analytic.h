@@ -1,8 +1,8 @@
 // Analytic test shapes whose distances are known in closed form.
 #pragma once
 
-#include "roving/point_cloud.h"
-#include "roving/triangle_mesh.h"
+#include "roving/core/triangle_mesh.h"
+#include "roving/formats/point_cloud_io.h"
 
 namespace roving {
 

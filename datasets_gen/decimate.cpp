@@ -8,7 +8,7 @@
 #include <OpenMesh/Tools/Decimater/ModQuadricT.hh>
 #include <limits>
 
-#include "roving/error.h"
+#include "roving/core/error.h"
 
 namespace roving {
 namespace {

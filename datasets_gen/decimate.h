@@ -3,7 +3,7 @@
 
 #include <cstddef>
 
-#include "roving/triangle_mesh.h"
+#include "roving/core/triangle_mesh.h"
 
 namespace roving {
 

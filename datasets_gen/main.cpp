@@ -12,11 +12,12 @@
 
 #include "analytic.h"
 #include "decimate.h"
-#include "roving/error.h"
-#include "roving/mesh_io.h"
-#include "roving/normalise.h"
-#include "roving/point_cloud.h"
-#include "roving/voxel_model.h"
+#include "roving/core/error.h"
+#include "roving/core/normalise.h"
+#include "roving/core/sample_set.h"
+#include "roving/formats/binvox.h"
+#include "roving/formats/mesh_io.h"
+#include "roving/formats/point_cloud_io.h"
 #include "voxelize.h"
 
 namespace fs = std::filesystem;

@@ -8,7 +8,7 @@
 
 #include <cmath>
 
-#include "roving/error.h"
+#include "roving/core/error.h"
 
 namespace roving {
 

@@ -1,8 +1,8 @@
 // Conservative surface voxelisation: every voxel whose closed cube meets a triangle.
 #pragma once
 
-#include "roving/triangle_mesh.h"
-#include "roving/voxel_model.h"
+#include "roving/core/triangle_mesh.h"
+#include "roving/core/voxel_grid.h"
 
 namespace roving {
 

@@ -3,19 +3,19 @@
 #include "reference_cgal/cgal_reference.h"
 
 #include <CGAL/AABB_traits.h>
-#include <CGAL/version.h>
 #include <CGAL/AABB_tree.h>
 #include <CGAL/AABB_triangle_primitive.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/version.h>
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <optional>
 
-#include "roving/error.h"
-#include "roving/geometry.h"
-#include "roving/stopwatch.h"
+#include "roving/core/error.h"
+#include "roving/core/geometry.h"
+#include "roving/core/stopwatch.h"
 
 namespace roving {
 namespace {
@@ -177,7 +177,9 @@ class CgalAabbMethod final : public DistanceMethod {
 
 }  // namespace
 
-std::string cgal_version() { return CGAL_VERSION_STR; }
+std::string cgal_version() {
+  return CGAL_VERSION_STR;
+}
 
 std::unique_ptr<DistanceMethod> make_cgal_reference() {
   return std::make_unique<CgalAabbMethod>(

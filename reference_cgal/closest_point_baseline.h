@@ -4,10 +4,10 @@
 
 #include <string>
 
-#include "roving/distance_method.h"
-#include "roving/error.h"
-#include "roving/geometry.h"
-#include "roving/stopwatch.h"
+#include "roving/core/distance_method.h"
+#include "roving/core/error.h"
+#include "roving/core/geometry.h"
+#include "roving/core/stopwatch.h"
 
 namespace roving {
 

@@ -10,9 +10,9 @@
 #include <limits>
 #include <optional>
 
-#include "roving/error.h"
-#include "roving/geometry.h"
-#include "roving/stopwatch.h"
+#include "roving/core/error.h"
+#include "roving/core/geometry.h"
+#include "roving/core/stopwatch.h"
 
 namespace roving {
 namespace {

@@ -5,8 +5,8 @@
 #include <filesystem>
 #include <fstream>
 
-#include "roving/error.h"
-#include "roving/mesh_io.h"
+#include "roving/core/error.h"
+#include "roving/formats/mesh_io.h"
 #include "test_support.h"
 
 namespace roving {

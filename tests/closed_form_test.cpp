@@ -2,8 +2,8 @@
 // scaled about its centre, a view volume with no surface in it, lines through vertices and edges.
 #include <gtest/gtest.h>
 
-#include "method_registry.h"
-#include "roving/statistics.h"
+#include "roving/core/statistics.h"
+#include "roving/registry/method_registry.h"
 #include "test_support.h"
 
 namespace roving {

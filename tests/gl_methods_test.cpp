@@ -6,11 +6,11 @@
 
 #include "analytic.h"
 #include "decimate.h"
-#include "method_registry.h"
-#include "roving/agreement.h"
-#include "roving/error.h"
-#include "roving/normalise.h"
-#include "roving/statistics.h"
+#include "roving/core/error.h"
+#include "roving/core/normalise.h"
+#include "roving/core/statistics.h"
+#include "roving/gl_methods/agreement.h"
+#include "roving/registry/method_registry.h"
 #include "test_support.h"
 
 namespace roving {

@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "analytic.h"
-#include "method_registry.h"
+#include "roving/registry/method_registry.h"
 #include "test_support.h"
 
 namespace roving {

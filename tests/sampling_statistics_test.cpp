@@ -2,9 +2,9 @@
 // hand-computed cases.
 #include <gtest/gtest.h>
 
-#include "roving/error.h"
-#include "roving/sample_set.h"
-#include "roving/statistics.h"
+#include "roving/core/error.h"
+#include "roving/core/sample_set.h"
+#include "roving/core/statistics.h"
 #include "test_support.h"
 
 namespace roving {

@@ -8,8 +8,8 @@
 #include <filesystem>
 #include <string>
 
-#include "roving/mesh_io.h"
-#include "roving/triangle_mesh.h"
+#include "roving/core/triangle_mesh.h"
+#include "roving/formats/mesh_io.h"
 
 namespace roving::testing {
 

@@ -6,14 +6,14 @@
 #include <fstream>
 #include <iostream>
 
-#include "method_registry.h"
 #include "report.h"
-#include "roving/error.h"
-#include "model.h"
-#include "roving/mesh_io.h"
-#include "roving/sample_output.h"
-#include "roving/sample_set.h"
-#include "roving/stopwatch.h"
+#include "roving/core/error.h"
+#include "roving/core/sample_set.h"
+#include "roving/core/stopwatch.h"
+#include "roving/formats/mesh_io.h"
+#include "roving/formats/sample_output.h"
+#include "roving/registry/method_registry.h"
+#include "roving/representations/model.h"
 
 namespace {
 
@@ -65,8 +65,9 @@ int run_measure(const MeasureArguments& args) {
   const auto reference_type = type(args.reference_type, "--ref-type");
   const auto test_type = type(args.test_type, "--test-type");
   if (test_type == ModelType::Points) {
-    throw Error("--test-type: a point cloud cannot be the test model: it has holes and records no surface to draw or "
-                "intersect (the paper's limit); expected mesh or voxels, found 'points'");
+    throw Error(
+        "--test-type: a point cloud cannot be the test model: it has holes and records no surface to draw or "
+        "intersect (the paper's limit); expected mesh or voxels, found 'points'");
   }
   const Model reference = load_model(args.reference_path, reference_type);
   report.load_reference_seconds = watch.seconds();
@@ -112,8 +113,11 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   MeasureArguments args;
   CLI::App* measure = app.add_subcommand("measure", "measure distances from REF's samples to TEST");
-  measure->add_option("REF", args.reference_path, "reference model M_R: mesh (.obj .ply .off .stl), point cloud (.ply "
-                      "without faces, .xyz) or voxels (.binvox)")->required();
+  measure
+      ->add_option("REF", args.reference_path,
+                   "reference model M_R: mesh (.obj .ply .off .stl), point cloud (.ply "
+                   "without faces, .xyz) or voxels (.binvox)")
+      ->required();
   measure->add_option("TEST", args.test_path, "test model M_C: mesh or voxels")->required();
   measure
       ->add_option("--method", args.method,

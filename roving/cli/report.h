@@ -4,9 +4,9 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "roving/distance_method.h"
-#include "model.h"
-#include "roving/statistics.h"
+#include "roving/core/distance_method.h"
+#include "roving/core/statistics.h"
+#include "roving/representations/model.h"
 
 namespace roving {
 

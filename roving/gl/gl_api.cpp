@@ -3,7 +3,7 @@
 
 #include <fmt/format.h>
 
-#include "roving/error.h"
+#include "roving/core/error.h"
 
 namespace roving::gl {
 

@@ -9,7 +9,7 @@
 #include <cstring>
 #include <vector>
 
-#include "roving/error.h"
+#include "roving/core/error.h"
 
 namespace roving::gl {
 namespace {

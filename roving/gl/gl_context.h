@@ -4,7 +4,7 @@
 #include <memory>
 #include <string>
 
-#include "roving/depth_renderer.h"
+#include "roving/gl/depth_renderer.h"
 
 namespace roving::gl {
 

@@ -7,8 +7,8 @@
 
 #include "gl_api.h"
 #include "gl_context.h"
-#include "roving/depth_renderer.h"
-#include "roving/error.h"
+#include "roving/core/error.h"
+#include "roving/gl/depth_renderer.h"
 
 namespace roving {
 namespace {

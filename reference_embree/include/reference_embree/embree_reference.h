@@ -4,7 +4,7 @@
 #include <memory>
 #include <string>
 
-#include "roving/distance_method.h"
+#include "roving/core/distance_method.h"
 
 namespace roving {
 

@@ -1,0 +1,87 @@
+// Shared checks and the build-then-measure helper of the distance-method interface.
+#include "roving/core/distance_method.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "roving/core/error.h"
+
+namespace roving {
+
+const char* to_string(Semantics semantics) {
+  switch (semantics) {
+    case Semantics::FirstHit: return "first-hit";
+    case Semantics::Nearest: return "nearest";
+    case Semantics::Closest: return "closest";
+  }
+  return "?";
+}
+
+Semantics parse_semantics(const std::string& text) {
+  for (Semantics s : {Semantics::FirstHit, Semantics::Nearest, Semantics::Closest}) {
+    if (text == to_string(s)) return s;
+  }
+  throw Error(fmt::format("--semantics: expected first-hit, nearest or closest, found '{}'", text));
+}
+
+std::string MaxErrorSpec::to_string() const {
+  return percent_of_diagonal ? fmt::format("{}% of diagonal", value) : fmt::format("{}", value);
+}
+
+MaxErrorSpec parse_max_error(const std::string& text) {
+  MaxErrorSpec spec;
+  std::string number = text;
+  spec.percent_of_diagonal = !number.empty() && number.back() == '%';
+  if (spec.percent_of_diagonal) number.pop_back();
+  std::size_t used = 0;
+  bool parsed = false;
+  try {
+    spec.value = std::stod(number, &used);
+    parsed = used == number.size() && !number.empty();
+  } catch (const std::exception&) {
+  }
+  if (!parsed || !std::isfinite(spec.value) || !(spec.value > 0) ||
+      (spec.percent_of_diagonal && spec.value > 100)) {
+    throw Error(
+        fmt::format("--max-error: expected a length > 0 or a percentage of the diagonal in "
+                    "(0%, 100%], found '{}'",
+                    text));
+  }
+  return spec;
+}
+
+std::size_t DistanceResult::hit_count() const {
+  return static_cast<std::size_t>(std::count(hit.begin(), hit.end(), std::uint8_t{1}));
+}
+
+bool DistanceMethod::supports(Semantics semantics) const {
+  const auto all = supported_semantics();
+  return std::find(all.begin(), all.end(), semantics) != all.end();
+}
+
+void validate_options(const DistanceMethod& method, const DistanceOptions& options) {
+  if (!(options.max_error > 0) || !std::isfinite(options.max_error)) {
+    throw Error(fmt::format("--max-error: expected a finite value > 0, found {}", options.max_error));
+  }
+  if (!method.supports(options.semantics)) {
+    std::string supported;
+    for (Semantics s : method.supported_semantics()) {
+      supported += (supported.empty() ? "" : ", ") + std::string(to_string(s));
+    }
+    throw Error(fmt::format("--semantics: method '{}' computes {}; found '{}'", method.name(), supported,
+                            to_string(options.semantics)));
+  }
+}
+
+DistanceResult measure_distances(DistanceMethod& method, const TriangleMesh& test, const SampleSet& samples,
+                                 const DistanceOptions& options) {
+  validate_options(method, options);
+  const double build_seconds = method.build(test);
+  DistanceResult result = method.measure(samples, options);
+  result.build_seconds = build_seconds;
+  return result;
+}
+
+}  // namespace roving

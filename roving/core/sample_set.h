@@ -1,0 +1,47 @@
+// Sample points on the reference model M_R (DESIGN.md "Samples"): positions, unit normals, weights.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "roving/core/triangle_mesh.h"
+
+namespace roving {
+
+// Which points of M_R are measured: `faces` (triangle centroids with face normals, the paper's
+// default), `vertices` (referenced vertices with area-weighted normals) or `area:N` (N points
+// uniform by area with the face normal, from a fixed seed).
+struct SampleSpec {
+  enum class Kind { Faces, Vertices, Area };
+  Kind kind = Kind::Faces;
+  std::size_t count = 0;       // Area only
+  std::uint64_t seed = 12345;  // Area only
+
+  std::string to_string() const;
+};
+
+// Parses "faces", "vertices" or "area:N" (N a positive integer); throws roving::Error naming the
+// option `--samples` and what was found otherwise.
+SampleSpec parse_sample_spec(const std::string& text);
+
+struct SampleSet {
+  std::vector<Vec3> positions;
+  std::vector<Vec3> normals;    // unit length
+  std::vector<double> weights;  // area each sample stands for (eq. 1); sums to M_R's area
+  std::string kind;
+  // Elements of M_R that gave no sample: zero-area faces, unreferenced vertices, or vertices
+  // whose incident normals cancel.
+  std::size_t skipped_degenerate_faces = 0;
+  std::size_t skipped_unreferenced_vertices = 0;
+  std::size_t skipped_zero_normal_vertices = 0;
+
+  std::size_t size() const { return positions.size(); }
+  // The first `n` samples (or all, if fewer), for fast subsets in tests.
+  SampleSet head(std::size_t n) const;
+};
+
+// Builds samples on `reference`; throws roving::Error if none can be made.
+SampleSet make_samples(const TriangleMesh& reference, const SampleSpec& spec);
+
+}  // namespace roving

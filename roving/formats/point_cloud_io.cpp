@@ -1,0 +1,127 @@
+// Point-cloud files (PLY through OpenMesh's reader, XYZ by hand).
+#include "roving/formats/point_cloud_io.h"
+
+#include <fmt/format.h>
+
+#include <OpenMesh/Core/IO/MeshIO.hh>
+#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "mesh_header_check.h"
+#include "roving/core/error.h"
+
+namespace roving {
+namespace {
+
+void validate(PointCloud& cloud, const std::string& path) {
+  if (cloud.positions.empty()) throw Error(fmt::format("{}: no points; expected a point cloud", path));
+  for (std::size_t i = 0; i < cloud.positions.size(); ++i) {
+    if (!cloud.positions[i].allFinite())
+      throw Error(fmt::format("{}: point {} has a non-finite coordinate", path, i));
+  }
+  for (std::size_t i = 0; i < cloud.normals.size(); ++i) {
+    const double length = cloud.normals[i].norm();
+    if (!std::isfinite(length) || length < 1e-12) {
+      throw Error(
+          fmt::format("{}: point {} has a normal of length {}; expected a direction", path, i, length));
+    }
+    cloud.normals[i] /= length;
+  }
+}
+
+PointCloud read_xyz(const std::string& path) {
+  std::ifstream file(path);
+  if (!file) throw Error(fmt::format("{}: cannot open for reading", path));
+  PointCloud cloud;
+  std::string line;
+  int columns = 0;
+  for (std::size_t line_number = 1; std::getline(file, line); ++line_number) {
+    std::istringstream words(line);
+    std::vector<double> values;
+    for (std::string token; words >> token;) {
+      if (token[0] == '#') break;
+      double value = 0;
+      const auto [end, error] = std::from_chars(token.data(), token.data() + token.size(), value);
+      if (error != std::errc() || end != token.data() + token.size()) {
+        throw Error(fmt::format("{}:{}: expected numbers, found '{}'", path, line_number, token));
+      }
+      values.push_back(value);
+    }
+    if (values.empty()) continue;
+    if (columns == 0) columns = static_cast<int>(values.size());
+    if ((values.size() != 3 && values.size() != 6) || static_cast<int>(values.size()) != columns) {
+      throw Error(fmt::format("{}:{}: expected {} numbers (x y z [nx ny nz]) like the first point, found {}",
+                              path, line_number, columns == 0 ? 3 : columns, values.size()));
+    }
+    cloud.positions.emplace_back(values[0], values[1], values[2]);
+    if (columns == 6) cloud.normals.emplace_back(values[3], values[4], values[5]);
+  }
+  return cloud;
+}
+
+PointCloud read_ply_points(const std::string& path) {
+  check_mesh_header(path, "ply");
+  OpenMesh::TriMesh_ArrayKernelT<> mesh;
+  mesh.request_vertex_normals();
+  OpenMesh::IO::Options options = OpenMesh::IO::Options::VertexNormal;
+  if (!OpenMesh::IO::read_mesh(mesh, path, options))
+    throw Error(fmt::format("{}: not a readable .ply point cloud", path));
+  PointCloud cloud;
+  for (const auto v : mesh.vertices()) {
+    const auto& p = mesh.point(v);
+    cloud.positions.emplace_back(p[0], p[1], p[2]);
+    if (options.check(OpenMesh::IO::Options::VertexNormal)) {
+      const auto& n = mesh.normal(v);
+      cloud.normals.emplace_back(n[0], n[1], n[2]);
+    }
+  }
+  return cloud;
+}
+
+}  // namespace
+
+bool is_ply_point_cloud(const std::string& path) {
+  std::ifstream file(path, std::ios::binary);
+  std::string line;
+  if (!std::getline(file, line) || line.rfind("ply", 0) != 0) return false;
+  while (std::getline(file, line)) {
+    if (line.rfind("end_header", 0) == 0) return true;
+    std::istringstream words(line);
+    std::string keyword, name;
+    long count = 0;
+    words >> keyword >> name >> count;
+    if (keyword == "element" && name == "face" && count > 0) return false;
+  }
+  return false;
+}
+
+PointCloud read_point_cloud(const std::string& path) {
+  const std::string ext = path.size() >= 4 ? path.substr(path.size() - 4) : "";
+  PointCloud cloud = ext == ".ply" || ext == ".PLY" ? read_ply_points(path) : read_xyz(path);
+  validate(cloud, path);
+  return cloud;
+}
+
+void write_point_cloud_ply(const PointCloud& cloud, const std::string& path) {
+  std::ofstream file(path);
+  if (!file) throw Error(fmt::format("{}: cannot open for writing", path));
+  const bool normals = cloud.normals.size() == cloud.positions.size();
+  file << "ply\nformat ascii 1.0\nelement vertex " << cloud.positions.size()
+       << "\nproperty float x\nproperty float y\nproperty float z\n";
+  if (normals) file << "property float nx\nproperty float ny\nproperty float nz\n";
+  file << "end_header\n";
+  file.precision(9);
+  for (std::size_t i = 0; i < cloud.positions.size(); ++i) {
+    const Vec3& p = cloud.positions[i];
+    file << p.x() << ' ' << p.y() << ' ' << p.z();
+    if (normals)
+      file << ' ' << cloud.normals[i].x() << ' ' << cloud.normals[i].y() << ' ' << cloud.normals[i].z();
+    file << '\n';
+  }
+  if (!file) throw Error(fmt::format("{}: write failed", path));
+}
+
+}  // namespace roving

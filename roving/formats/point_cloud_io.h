@@ -1,0 +1,19 @@
+// Point clouds with normals: PLY (vertices, optional nx ny nz, no faces) and XYZ ("x y z" or
+// "x y z nx ny nz" per line).
+#pragma once
+
+#include <string>
+
+#include "roving/core/point_cloud.h"
+
+namespace roving {
+
+// Throws roving::Error naming the file (and line, for XYZ) on a malformed record, NaN/inf,
+// normals of zero length, or no points.
+PointCloud read_point_cloud(const std::string& path);
+void write_point_cloud_ply(const PointCloud& cloud, const std::string& path);
+
+// True when `path` is a PLY whose header declares no faces (a point cloud, not a mesh).
+bool is_ply_point_cloud(const std::string& path);
+
+}  // namespace roving

@@ -1,0 +1,74 @@
+// GL-free interface of the Z-buffer renderer (paper Section 3): orthographic depth images of a
+// test model, whole views for viewpoint sampling and one-pixel tiles for surface roving.
+// The GL, OSMesa and EGL code behind it lives under roving/gl/.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "roving/core/triangle_mesh.h"
+
+namespace roving {
+
+enum class GlBackend { OSMesa, Egl };
+const char* to_string(GlBackend backend);
+// Parses "osmesa" or "egl"; throws roving::Error naming `--backend` otherwise.
+GlBackend parse_gl_backend(const std::string& text);
+
+// An orthographic camera: it looks along `forward` at the box centred on `centre` with half
+// extents `half_width` (along `right`), `half_height` (along `up`) and `half_depth` (along
+// `forward`). Depth 0 is the box's near face (centre - half_depth * forward), 1 its far face;
+// orthographic depth is linear, so a depth z means a distance z * 2 * half_depth from the near face.
+struct OrthoCamera {
+  Vec3 centre, right, up, forward;
+  double half_width = 1, half_height = 1, half_depth = 1;
+
+  // An orthonormal camera looking along `forward` (any perpendicular `right`, `up`).
+  static OrthoCamera looking_along(const Vec3& forward, const Vec3& centre, double half_width,
+                                   double half_height, double half_depth);
+  // The point's coordinates in the camera's normalised frame: x, y in [-1, 1] across the box,
+  // z in [0, 1] from the near face.
+  Vec3 to_normalised(const Vec3& p) const;
+};
+
+// One vertex of a roving batch, already in its sample camera's normalised frame (x, y in [-1, 1]
+// across the view volume, z in [0, 1] along its depth), and the tile (sample) it belongs to.
+struct TileVertex {
+  float x, y, z;
+  std::uint32_t tile;
+};
+
+struct RendererInfo {
+  std::string backend, vendor, renderer, version;
+};
+
+class DepthRenderer {
+ public:
+  virtual ~DepthRenderer() = default;
+
+  virtual RendererInfo info() const = 0;
+  // Largest framebuffer side the context allows (GL_MAX_RENDERBUFFER_SIZE / viewport limit).
+  virtual int max_framebuffer_size() const = 0;
+
+  // Uploads M_C once for whole-model views.
+  virtual void upload_model(const TriangleMesh& mesh) = 0;
+  // Draws the uploaded model through `camera` into a resolution x resolution 32-bit float depth
+  // buffer and returns it row by row from the bottom (x along `right`); 1 where nothing was drawn.
+  virtual void render_view(const OrthoCamera& camera, int resolution, std::vector<float>& depth) = 0;
+
+  // Draws `vertices` (triangles, three consecutive vertices each) into a grid of one-pixel tiles,
+  // tile k at column k % columns, row k / columns, each clipped to its own view volume, and
+  // returns one depth per tile (1: nothing drawn). The pixel centre of tile k is its camera's
+  // central ray, so the depth read back is that ray's first crossing of what was drawn.
+  virtual void render_tiles(const std::vector<TileVertex>& vertices, std::size_t tile_count,
+                            std::vector<float>& depth) = 0;
+};
+
+// Creates an offscreen context and its renderer. OSMesa gives Mesa's llvmpipe; EGL tries the
+// device platform (a real GPU where a driver exists), then Mesa's surfaceless platform.
+// Throws roving::Error saying what failed when no context with float depth can be made.
+std::unique_ptr<DepthRenderer> make_depth_renderer(GlBackend backend);
+
+}  // namespace roving

@@ -1,0 +1,94 @@
+// What the three GL methods share: the scene (renderer, uploaded model, culling grid), option
+// checks, and the --views parser.
+#include <fmt/format.h>
+
+#include <charconv>
+
+#include "gl_passes.h"
+#include "roving/core/error.h"
+#include "roving/core/stopwatch.h"
+#include "roving/gl_methods/gl_methods.h"
+
+namespace roving {
+
+void parse_views(const std::string& text, int& h, int& v) {
+  const auto x = text.find('x');
+  const auto parse = [&](std::string_view part, int& value) {
+    const auto [end, error] = std::from_chars(part.data(), part.data() + part.size(), value);
+    return !part.empty() && error == std::errc() && end == part.data() + part.size() && value >= 1 &&
+           value <= 720;
+  };
+  if (x == std::string::npos || !parse(std::string_view(text).substr(0, x), h) ||
+      !parse(std::string_view(text).substr(x + 1), v)) {
+    throw Error(fmt::format("--views: expected HxV with H and V in 1..720 (e.g. 24x12), found '{}'", text));
+  }
+}
+
+std::vector<Vec3> view_directions(int h, int v) {
+  std::vector<Vec3> directions;
+  directions.reserve(static_cast<std::size_t>(h) * v);
+  for (int j = 0; j < v; ++j) {
+    const double latitude = (-90.0 + 180.0 * (j + 0.5) / v) * M_PI / 180;
+    for (int i = 0; i < h; ++i) {
+      const double longitude = 360.0 * (i + 0.5) / h * M_PI / 180;
+      directions.emplace_back(std::cos(latitude) * std::cos(longitude),
+                              std::cos(latitude) * std::sin(longitude), std::sin(latitude));
+    }
+  }
+  return directions;
+}
+
+std::vector<Vec3> axis_directions() {
+  return {Vec3::UnitX(), -Vec3::UnitX(), Vec3::UnitY(), -Vec3::UnitY(), Vec3::UnitZ(), -Vec3::UnitZ()};
+}
+
+void GlScene::build(GlBackend backend, const TriangleMesh& test_model) {
+  if (!renderer) renderer = make_depth_renderer(backend);
+  renderer->upload_model(test_model);
+  grid = std::make_unique<TriangleGrid>(test_model);
+  test = &test_model;
+}
+
+std::string GlScene::renderer_name() const {
+  const RendererInfo info = renderer->info();
+  return fmt::format("{}: {} ({})", info.backend, info.renderer, info.version);
+}
+
+double GlMethod::build(const TriangleMesh& test) {
+  if (options_.resolution < 1) {
+    throw Error(
+        fmt::format("--resolution: expected a positive number of pixels, found {}", options_.resolution));
+  }
+  const Stopwatch watch;
+  scene_.build(options_.backend, test);
+  if (options_.resolution > scene_.renderer->max_framebuffer_size()) {
+    throw Error(fmt::format("--resolution: expected at most {} (this GL's largest framebuffer), found {}",
+                            scene_.renderer->max_framebuffer_size(), options_.resolution));
+  }
+  return watch.seconds();
+}
+
+DistanceResult GlMethod::measure(const SampleSet& samples, const DistanceOptions& options) {
+  if (!scene_.test) throw Error(name() + ": measure() called before build()");
+  validate_options(*this, options);
+  const Stopwatch watch;
+  GlReport report;
+  report.renderer = scene_.renderer_name();
+  report.resolved_by.assign(samples.size(), Resolution::Unresolved);
+  report.views_h = options_.views_h;
+  report.views_v = options_.views_v;
+  report.resolution = options_.resolution;
+  DistanceResult result;
+  result.signed_distance.assign(samples.size(), 0.0);
+  result.hit.assign(samples.size(), 0);
+  resolve(samples, options.max_error, report, [&](std::uint32_t k, double d, Resolution how) {
+    result.hit[k] = 1;
+    result.signed_distance[k] = d;
+    report.resolved_by[k] = how;
+  });
+  result.query_seconds = watch.seconds();
+  result.gl = std::move(report);
+  return result;
+}
+
+}  // namespace roving

@@ -1,0 +1,52 @@
+// The paper's methods on OpenGL (Sections 4.1-4.3): exact surface roving, viewpoint sampling and
+// the cooperative method, each a DistanceMethod with first-hit (paper) semantics.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "roving/core/distance_method.h"
+#include "roving/gl/depth_renderer.h"
+
+namespace roving {
+
+struct GlMethodOptions {
+  GlBackend backend = GlBackend::OSMesa;
+  int views_h = 24, views_v = 12;  // viewpoint sampling: H longitudes x V latitudes (15 degrees)
+  int resolution = 1024;           // side of a viewpoint-sampling view, pixels
+  // How a view is read at a sample (measured in results/view-reading.md): bilinear between the
+  // four nearest pixel centres when they lie on one smooth patch, else the nearest pixel; and
+  // whether the along-view difference is turned into the along-normal one by cos(n, view).
+  bool bilinear = true;
+  bool cosine_correction = true;
+};
+
+// Parses "HxV" (each 1..720); throws roving::Error naming `--views` otherwise.
+void parse_views(const std::string& text, int& h, int& v);
+
+// The H x V view directions, unit vectors at the centres of a longitude-latitude grid:
+// longitude 360 (i + 0.5) / H, latitude -90 + 180 (j + 0.5) / V degrees; index j * H + i.
+std::vector<Vec3> view_directions(int h, int v);
+
+// The 6 axis directions +x, -x, +y, -y, +z, -z: the views of a voxel reference (Section 4.3).
+std::vector<Vec3> axis_directions();
+
+// Exact surface roving: one orthographic camera per sample, its view volume the box of
+// half-height h about the sample along its normal and one pixel across, whose centre is the
+// central ray. Cameras are one-pixel tiles of one framebuffer, many per draw; each tile draws only
+// the triangles a uniform grid finds along its segment. The depth read back is the first
+// crossing of the central ray (rasterisation's pixel-centre rule is watertight).
+std::unique_ptr<DistanceMethod> make_surface_roving(const GlMethodOptions& options);
+
+// Viewpoint sampling alone: samples go to the nearest of H x V directions; per direction with
+// samples, M_C is drawn whole into a resolution^2 view looking against that direction, and a
+// sample is accepted when the depth at its pixel is within h of its own (the paper's occlusion
+// test). d is the along-view difference times cos(normal, direction). Others are unresolved
+// (no hit, counted as h).
+std::unique_ptr<DistanceMethod> make_viewpoint_sampling(const GlMethodOptions& options);
+
+// Viewpoint sampling, then surface roving for the samples no view accepted.
+std::unique_ptr<DistanceMethod> make_cooperative(const GlMethodOptions& options);
+
+}  // namespace roving

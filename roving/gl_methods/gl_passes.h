@@ -1,0 +1,57 @@
+// Internal: the two passes the GL methods are made of, shared by roving, viewpoint and
+// cooperative.
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "roving/core/distance_method.h"
+#include "roving/gl/depth_renderer.h"
+#include "roving/gl_methods/gl_methods.h"
+#include "triangle_grid.h"
+
+namespace roving {
+
+// A renderer with M_C uploaded and the grid for per-camera culling, made by build().
+struct GlScene {
+  std::unique_ptr<DepthRenderer> renderer;
+  std::unique_ptr<TriangleGrid> grid;
+  const TriangleMesh* test = nullptr;
+
+  void build(GlBackend backend, const TriangleMesh& test_model);
+  std::string renderer_name() const;
+};
+
+// Surface roving for samples[indices[i]]: out[i] is d (first hit) or nullopt. Fills the
+// report's camera fields.
+std::vector<std::optional<double>> rove(GlScene& scene, const SampleSet& samples,
+                                        const std::vector<std::uint32_t>& indices, double max_error,
+                                        GlReport& report);
+
+// Viewpoint sampling of every sample: out[k] is d where a view accepted sample k. Fills the
+// report's view fields.
+std::vector<std::optional<double>> view_sample(GlScene& scene, const SampleSet& samples, double max_error,
+                                               const GlMethodOptions& options, GlReport& report);
+
+// What the three GL methods share: checks, timing, and filling in the result and report; each
+// method only says how it resolves samples.
+class GlMethod : public DistanceMethod {
+ public:
+  explicit GlMethod(GlMethodOptions options) : options_(options) {}
+  std::vector<Semantics> supported_semantics() const override { return {Semantics::FirstHit}; }
+  double build(const TriangleMesh& test) override;
+  DistanceResult measure(const SampleSet& samples, const DistanceOptions& options) final;
+
+ protected:
+  // Per-sample answers: record(k, d, how) marks sample k a hit with distance d.
+  using Record = std::function<void(std::uint32_t k, double d, Resolution how)>;
+  virtual void resolve(const SampleSet& samples, double max_error, GlReport& report,
+                       const Record& record) = 0;
+
+  GlMethodOptions options_;
+  GlScene scene_;
+};
+
+}  // namespace roving

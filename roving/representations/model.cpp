@@ -1,0 +1,137 @@
+// Loading models of every representation and taking samples from them.
+#include "roving/representations/model.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cctype>
+
+#include "roving/core/error.h"
+#include "roving/formats/binvox.h"
+#include "roving/formats/bpt.h"
+#include "roving/formats/point_cloud_io.h"
+#include "roving/representations/bezier_surface.h"
+#include "roving/representations/point_normals.h"
+#include "roving/representations/voxel_surface.h"
+
+namespace roving {
+namespace {
+
+std::string lower_extension(const std::string& path) {
+  const auto dot = path.find_last_of('.');
+  if (dot == std::string::npos || path.find('/', dot) != std::string::npos) return "";
+  std::string ext = path.substr(dot + 1);
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  return ext;
+}
+
+ModelType type_by_extension(const std::string& path) {
+  const std::string ext = lower_extension(path);
+  if (ext == "binvox") return ModelType::Voxels;
+  if (ext == "xyz") return ModelType::Points;
+  if (ext == "bpt") return ModelType::Bezier;
+  if (ext == "ply" && is_ply_point_cloud(path)) return ModelType::Points;
+  return ModelType::Mesh;  // load_mesh names the file if the extension is unknown
+}
+
+}  // namespace
+
+const char* to_string(ModelType type) {
+  switch (type) {
+    case ModelType::Mesh: return "mesh";
+    case ModelType::Points: return "points";
+    case ModelType::Voxels: return "voxels";
+    case ModelType::Bezier: return "bezier";
+  }
+  return "?";
+}
+
+ModelType parse_model_type(const std::string& text, const std::string& option) {
+  for (ModelType t : {ModelType::Mesh, ModelType::Points, ModelType::Voxels, ModelType::Bezier}) {
+    if (text == to_string(t)) return t;
+  }
+  throw Error(fmt::format("{}: expected mesh, points, voxels or bezier, found '{}'", option, text));
+}
+
+BoundingBox Model::bounding_box() const {
+  if (type != ModelType::Points) return mesh.mesh.bounding_box();
+  BoundingBox box;
+  for (const Vec3& p : points.positions) box.extend(p);
+  return box;
+}
+
+Model load_model(const std::string& path, std::optional<ModelType> type) {
+  Model model;
+  model.type = type ? *type : type_by_extension(path);
+  switch (model.type) {
+    case ModelType::Mesh: model.mesh = load_mesh(path); break;
+    case ModelType::Voxels:
+      model.voxels = read_binvox(path);
+      model.mesh.path = path;
+      model.mesh.mesh = exposed_faces(*model.voxels);
+      break;
+    case ModelType::Bezier: {
+      model.bezier = read_bpt(path);
+      model.patches_flipped = orient_consistently(*model.bezier);
+      BoundingBox net;
+      for (const BezierPatch& p : model.bezier->patches) {
+        for (const Vec3& c : p.control) net.extend(c);
+      }
+      Tessellation t = tessellate(*model.bezier, 1e-4 * net.diagonal());
+      model.mesh.path = path;
+      model.mesh.mesh = std::move(t.mesh);
+      model.bezier_cells = t.cells_per_side;
+      model.chordal_error_bound = t.chordal_error_bound;
+      break;
+    }
+    case ModelType::Points:
+      model.mesh.path = path;
+      model.points = read_point_cloud(path);
+      if (model.points.normals.empty()) {
+        model.points.normals = estimate_normals(model.points.positions);
+        model.normals_estimated = true;
+      }
+      break;
+  }
+  return model;
+}
+
+SampleSet reference_samples(const Model& reference, const SampleSpec& spec) {
+  switch (reference.type) {
+    case ModelType::Mesh: return make_samples(reference.mesh.mesh, spec);
+    case ModelType::Voxels:
+      if (spec.kind == SampleSpec::Kind::Faces) return exposed_face_samples(*reference.voxels);
+      if (spec.kind == SampleSpec::Kind::Area) return make_samples(reference.mesh.mesh, spec);
+      throw Error(
+          "--samples: a voxel reference is sampled on its exposed faces: expected faces or area:N, found "
+          "vertices");
+    case ModelType::Bezier: return bezier_samples(*reference.bezier, spec, reference.bezier_cells);
+    case ModelType::Points: {
+      if (spec.kind == SampleSpec::Kind::Area) {
+        throw Error(
+            fmt::format("--samples: a point-cloud reference is sampled at its points: expected faces or "
+                        "vertices, found '{}'",
+                        spec.to_string()));
+      }
+      SampleSet samples;
+      samples.kind = "points";
+      samples.positions = reference.points.positions;
+      samples.normals = reference.points.normals;
+      samples.weights.assign(samples.positions.size(), 1.0);  // no area: plain means
+      return samples;
+    }
+  }
+  throw Error("unknown model type");
+}
+
+const TriangleMesh& test_surface(const Model& test) {
+  if (test.type == ModelType::Points) {
+    throw Error(
+        fmt::format("{}: a point cloud cannot be the test model: it has holes and records no surface to draw "
+                    "or intersect (the paper's limit); use it as the reference, or reconstruct a mesh first",
+                    test.path()));
+  }
+  return test.mesh.mesh;
+}
+
+}  // namespace roving

@@ -1,0 +1,57 @@
+// Models of every representation the paper names, as a reference (its samples) or a test (the
+// surface the methods draw and intersect).
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "roving/core/bezier_patches.h"
+#include "roving/core/point_cloud.h"
+#include "roving/core/sample_set.h"
+#include "roving/core/voxel_grid.h"
+#include "roving/formats/mesh_io.h"
+
+namespace roving {
+
+enum class ModelType { Mesh, Points, Voxels, Bezier };
+const char* to_string(ModelType type);
+// Parses "mesh", "points", "voxels" or "bezier"; throws roving::Error naming `option` otherwise.
+ModelType parse_model_type(const std::string& text, const std::string& option);
+
+struct Model {
+  ModelType type = ModelType::Mesh;
+  // The surface: the mesh itself, the voxels' exposed faces, or the patches' tessellation;
+  // empty for a point cloud.
+  LoadedMesh mesh;
+  std::optional<VoxelGrid> voxels;
+  std::optional<BezierSurface> bezier;
+  std::size_t patches_flipped = 0;  // to orient them consistently and outward
+  int bezier_cells = 0;             // tessellation cells per patch side
+  double chordal_error_bound = 0;   // of that tessellation, model units
+  PointCloud points;
+  bool normals_estimated = false;  // point cloud without normals in its file
+
+  const std::string& path() const { return mesh.path; }
+  BoundingBox bounding_box() const;
+};
+
+// Loads `path` as `type`, or by extension when none is given: .obj .off .stl meshes; .ply a
+// mesh, or a point cloud when its header declares no faces; .binvox voxels; .xyz points; .bpt
+// Bezier patches, tessellated so that the chordal error stays below 1e-4 of the control net's
+// box diagonal (far below any distance worth measuring; the bound is reported), after the
+// patches are oriented consistently and outward.
+// Point clouds without normals get PCA normals (k = 12), oriented consistently and outward.
+Model load_model(const std::string& path, std::optional<ModelType> type = std::nullopt);
+
+// Samples on a reference model: a mesh's faces / vertices / area:N; a voxel model's exposed-face
+// centres with axis normals (faces) or area:N on its exposed faces; a point cloud's own points
+// and normals (faces or vertices); Bezier patches by exact evaluation (faces: cell centres of the
+// tessellation grid, vertices: its nodes, area:N uniform by area). Throws roving::Error naming `--samples`
+// for a kind the representation does not have.
+SampleSet reference_samples(const Model& reference, const SampleSpec& spec);
+
+// The surface a test model offers; throws roving::Error for a point cloud (the paper's limit:
+// a point cloud has holes and records no surface to draw).
+const TriangleMesh& test_surface(const Model& test);
+
+}  // namespace roving

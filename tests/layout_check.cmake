@@ -1,0 +1,80 @@
+# Checks that the library's parts depend on each other one way only, and that GL, CGAL and
+# Embree headers stay where the README's layout table says they are.
+# Run as: cmake -DSOURCE_DIR=<repo> -P tests/layout_check.cmake (CTest does).
+#   cli -> registry -> {gl_methods, reference_cgal, reference_embree} -> representations -> formats -> core
+#   gl_methods -> gl -> core
+cmake_minimum_required(VERSION 3.22)
+
+# The parts of roving/ each part may include (itself included).
+set(allowed_core core)
+set(allowed_formats core formats)
+set(allowed_representations core formats representations)
+set(allowed_gl core gl)
+set(allowed_gl_methods core formats representations gl gl_methods)
+set(allowed_registry core formats representations gl gl_methods registry)
+set(allowed_cli core formats representations gl gl_methods registry cli)
+set(allowed_reference_cgal core formats representations)
+set(allowed_reference_embree core formats representations)
+
+set(violations "")
+macro(violation file line why)
+  string(APPEND violations "  ${file}: ${line}  (${why})\n")
+endmacro()
+
+file(GLOB_RECURSE sources RELATIVE "${SOURCE_DIR}"
+  "${SOURCE_DIR}/roving/*.h" "${SOURCE_DIR}/roving/*.cpp"
+  "${SOURCE_DIR}/reference_cgal/*.h" "${SOURCE_DIR}/reference_cgal/*.cpp"
+  "${SOURCE_DIR}/reference_embree/*.h" "${SOURCE_DIR}/reference_embree/*.cpp"
+  "${SOURCE_DIR}/datasets_gen/*.h" "${SOURCE_DIR}/datasets_gen/*.cpp"
+  "${SOURCE_DIR}/bench/*.h" "${SOURCE_DIR}/bench/*.cpp"
+  "${SOURCE_DIR}/tests/*.h" "${SOURCE_DIR}/tests/*.cpp")
+list(LENGTH sources count)
+if(count LESS 20)
+  message(FATAL_ERROR "layout check: found only ${count} sources under ${SOURCE_DIR}; wrong SOURCE_DIR?")
+endif()
+
+foreach(file IN LISTS sources)
+  # The part a file belongs to: roving/<part>/..., or a top-level folder.
+  if(file MATCHES "^roving/([a-z_]+)/")
+    set(part "${CMAKE_MATCH_1}")
+  elseif(file MATCHES "^(reference_cgal|reference_embree)/")
+    set(part "${CMAKE_MATCH_1}")
+  else()
+    set(part "")  # datasets_gen, bench, tests: programs on top, may include any part
+  endif()
+  file(STRINGS "${SOURCE_DIR}/${file}" includes REGEX "^#include")
+  foreach(line IN LISTS includes)
+    if(part AND line MATCHES "\"roving/([a-z_]+)/")
+      if(NOT DEFINED allowed_${part})
+        violation("${file}" "${line}" "roving/${part}/ is not a known part")
+      else()
+        list(FIND allowed_${part} "${CMAKE_MATCH_1}" found)
+        if(found EQUAL -1)
+          violation("${file}" "${line}" "${part} may not depend on ${CMAKE_MATCH_1}")
+        endif()
+      endif()
+    endif()
+    if(part AND line MATCHES "\"(reference_cgal|reference_embree)/")
+      set(reference "${CMAKE_MATCH_1}")
+      if(NOT part MATCHES "^(registry|cli|${reference})$")
+        violation("${file}" "${line}" "only the registry and the CLI use the references")
+      endif()
+    endif()
+    if(line MATCHES "<(GL|EGL|GLES[0-9]*)/" AND NOT file MATCHES "^roving/gl/")
+      violation("${file}" "${line}" "GL, OSMesa and EGL headers stay in roving/gl/")
+    endif()
+    if(line MATCHES "<embree[0-9]*/" AND NOT file MATCHES "^reference_embree/.*\\.cpp$")
+      violation("${file}" "${line}" "Embree headers stay in reference_embree's sources")
+    endif()
+    # CGAL: the reference, the dataset generator's voxeliser, and point-cloud normal estimation
+    # (PCA and MST orientation, which the loader needs below the references).
+    if(line MATCHES "<CGAL/" AND NOT file MATCHES "^(reference_cgal/.*|datasets_gen/voxelize|roving/representations/point_normals)\\.cpp$")
+      violation("${file}" "${line}" "CGAL headers stay in reference_cgal's sources")
+    endif()
+  endforeach()
+endforeach()
+
+if(violations)
+  message(FATAL_ERROR "layout check failed:\n${violations}")
+endif()
+message(STATUS "layout check: ${count} files, every include goes one way")
