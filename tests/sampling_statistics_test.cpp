@@ -2,6 +2,10 @@
 // hand-computed cases.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+#include <random>
+
 #include "roving/core/error.h"
 #include "roving/core/sample_set.h"
 #include "roving/core/statistics.h"
@@ -76,6 +80,35 @@ TEST(Statistics, HandComputedCase) {
   EXPECT_DOUBLE_EQ(s.p99, 4);
   // Bins of width 1 over [-4, 4]: -2 in bin 2, 1 in bin 5, 3 in bin 7.
   EXPECT_EQ(s.histogram.counts, (std::vector<std::size_t>{0, 0, 1, 0, 0, 1, 0, 1}));
+}
+
+TEST(Statistics, EqualDistancesHaveZeroSpread) {
+  // E[d^2] - E[d]^2 gave 1.3e-9 here; the spread of equal values is exactly 0.
+  const std::vector<double> d(12, 0.1);
+  const Statistics s = compute_statistics(d, std::vector<std::uint8_t>(12, 1), {}, 1.0);
+  EXPECT_EQ(s.std_signed, 0.0);
+  EXPECT_EQ(s.std_unsigned, 0.0);
+  // A large offset with a small spread keeps its digits: {1e6 - 1, 1e6 + 1} has STD 1.
+  const Statistics far = compute_statistics({1e6 - 1, 1e6 + 1}, {1, 1}, {}, 2e6);
+  EXPECT_DOUBLE_EQ(far.std_signed, 1.0);
+}
+
+TEST(Statistics, PercentilesAreNearestRankOfTheSortedMagnitudes) {
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> uniform(-1, 1);
+  std::vector<double> d(10007);
+  for (double& x : d) x = uniform(random);
+  const Statistics s = compute_statistics(d, std::vector<std::uint8_t>(d.size(), 1), {}, 1.0);
+  std::vector<double> sorted(d.size());
+  std::transform(d.begin(), d.end(), sorted.begin(), [](double x) { return std::abs(x); });
+  std::sort(sorted.begin(), sorted.end());
+  const auto rank = [&](double p) {
+    return sorted[static_cast<std::size_t>(std::ceil(p / 100 * d.size())) - 1];
+  };
+  EXPECT_EQ(s.p50, rank(50));
+  EXPECT_EQ(s.p90, rank(90));
+  EXPECT_EQ(s.p95, rank(95));
+  EXPECT_EQ(s.p99, rank(99));
 }
 
 TEST(Statistics, RejectsEmptyAndMismatchedInput) {
