@@ -2,8 +2,10 @@
 // roving::Error that names the file and says what was expected and what was found.
 #include <gtest/gtest.h>
 
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 
 #include "roving/core/error.h"
 #include "roving/formats/mesh_io.h"
@@ -131,6 +133,144 @@ TEST_F(BadFiles, OffTruncatedOrBadIndex) {
   expect_error(write("counts.off", "OFF\nthree 1 0\n"), {"whole-number", "'three 1'"});
   expect_error(write("magic.off", "PFF\n3 1 0\n"), {"OFF header", "'PFF'"});
   expect_error(write("index.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 5\n"), {"vertex 5"});
+}
+
+// The cases the fuzzers and the crafted battery found (issue: untrusted files). Each is refused
+// with a message, at once, without allocating what the file only claims.
+const char* kPlyVertexHeader =
+    "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n";
+
+TEST_F(BadFiles, PlyPropertyBeforeAnyElement) {
+  expect_error(write("orphan.ply", "ply\nformat ascii 1.0\nproperty float x\nend_header\n"),
+               {"header line 3", "'element' line before its properties"});
+}
+
+TEST_F(BadFiles, PlyFormatWithoutVersion) {
+  expect_error(
+      write("noversion.ply", "ply\nformat ascii\nelement vertex 1\nproperty float x\nend_header\n0\n"),
+      {"header line 2", "1.0"});
+}
+
+TEST_F(BadFiles, PlyAbsurdCountsInTinyFiles) {
+  // 2^62 vertices (a product of it with the item size wrapped to 0 in the old check).
+  expect_error(write("wrap.ply",
+                     "ply\nformat binary_little_endian 1.0\nelement vertex 4611686018427387904\n"
+                     "property float x\nproperty float y\nproperty float z\nend_header\n0000"),
+               {"truncated or corrupt", "4611686018427387904"});
+  // A face list that claims 2^31 corners.
+  std::string body = std::string(kPlyVertexHeader) + "element face 1\nproperty list int int vertex_indices\n";
+  std::string binary =
+      "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+      "property float z\nelement face 1\nproperty list int int vertex_indices\nend_header\n";
+  binary += std::string(36, '\0');
+  const std::int32_t huge = std::numeric_limits<std::int32_t>::max();
+  binary.append(reinterpret_cast<const char*>(&huge), 4);
+  binary += std::string(12, '\0');
+  expect_error(write("list.ply", binary), {"face 0", "2147483647 values"});
+}
+
+TEST_F(BadFiles, PlyTruncatedOrStrayTokensAreErrors) {
+  const std::string header =
+      std::string(kPlyVertexHeader) + "element face 2\nproperty list uchar int vertex_indices\nend_header\n";
+  const std::string vertices = "0 0 0\n1 0 0\n0 1 0\n";
+  ASSERT_EQ(load_mesh(write("ok.ply", header + vertices + "3 0 1 2\n3 0 2 1\n")).mesh.triangle_count(), 2u);
+  expect_error(write("cut.ply", header + vertices + "3 0 1 2\n"), {"truncated", "2 face items"});
+  // Long enough for the declared counts, yet the last face is missing.
+  expect_error(write("cut-long.ply", header + "0.0000 0.0000 0.0000\n1 0 0\n0 1 0\n3 0 1 2\n"),
+               {"truncated", "face 1 of 2"});
+  expect_error(write("stray.ply", header + "0 0 0 7\n1 0 0\n0 1 0\n3 0 1 2\n3 0 2 1\n"),
+               {":10:", "vertex 0", "end of the line", "'7'"});
+  expect_error(write("extra.ply", header + vertices + "3 0 1 2\n3 0 2 1\n3 0 1 2\n"), {"end of the file"});
+}
+
+TEST_F(BadFiles, PlyNonFiniteCoordinatesNameTheVertex) {
+  expect_error(write("nan.ply", std::string(kPlyVertexHeader) +
+                                    "element face 1\nproperty list uchar int vertex_indices\nend_header\n"
+                                    "0 0 0\nnan 0 0\n0 1 0\n3 0 1 2\n"),
+               {"vertex 1", "non-finite"});
+}
+
+TEST_F(BadFiles, PlyWithOtherElementsAndBigEndianLoads) {
+  // Colours, a face flag and an edge element are skipped; the geometry is what is read.
+  const std::string ascii =
+      "ply\nformat ascii 1.0\ncomment made by hand\nelement vertex 3\nproperty double x\nproperty double y\n"
+      "property double z\nproperty uchar red\nelement face 1\nproperty uchar flags\n"
+      "property list uchar uint vertex_indices\nelement edge 1\nproperty int a\nproperty int b\nend_header\n"
+      "0 0 0 255\n1 0 0 0\n0 1 0 9\n7 3 0 1 2\n0 1\n";
+  EXPECT_NEAR(load_mesh(write("extras.ply", ascii)).mesh.total_area(), 0.5, 1e-12);
+  std::string big =
+      "ply\nformat binary_big_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+      "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n";
+  const auto put_float = [&](float f) {
+    std::uint32_t bits;
+    std::memcpy(&bits, &f, 4);
+    for (int shift = 24; shift >= 0; shift -= 8) big += static_cast<char>((bits >> shift) & 0xFF);
+  };
+  for (float v : {0.f, 0.f, 0.f, 2.f, 0.f, 0.f, 0.f, 2.f, 0.f}) put_float(v);
+  big += '\3';
+  for (int index : {0, 1, 2}) big += std::string{0, 0, 0, static_cast<char>(index)};
+  EXPECT_NEAR(load_mesh(write("big.ply", big)).mesh.total_area(), 2.0, 1e-12);
+}
+
+TEST_F(BadFiles, OffAbsurdCountsAndNegativeCorners) {
+  expect_error(write("tiny.off", "OFF\n9999999 9\n"), {"truncated or wrong counts", "9999999"});
+  expect_error(write("negative.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n-2147483648 0 1 2\n"),
+               {"face 0", "corner count"});
+  expect_error(write("index40.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 1099511627776\n"),
+               {"vertex 1099511627776"});
+  expect_error(write("stray.off", "OFF\n3 1 0\n0 0 0 5\n1 0 0\n0 1 0\n3 0 1 2\n"), {"vertex 0", "found 1"});
+}
+
+TEST_F(BadFiles, OffCommentsAreAccepted) {
+  const LoadedMesh loaded =
+      load_mesh(write("comments.off",
+                      "# made by hand\nOFF\n# counts\n3 1 0\n0 0 0\n1 0 0 # a comment\n0 1 0\n"
+                      "\n3 0 1 2\n"));
+  EXPECT_EQ(loaded.mesh.triangle_count(), 1u);
+}
+
+TEST_F(BadFiles, OffBinaryIsBoundedAndStrict) {
+  const auto word = [](std::int32_t v) {
+    std::string s(4, '\0');
+    for (int i = 0; i < 4; ++i)
+      s[i] = static_cast<char>((static_cast<std::uint32_t>(v) >> (24 - 8 * i)) & 0xFF);
+    return s;
+  };
+  const auto real = [&](float f) {
+    std::int32_t bits;
+    std::memcpy(&bits, &f, 4);
+    return word(bits);
+  };
+  std::string body = word(3) + word(1) + word(0);
+  for (float v : {0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 0.f, 1.f, 0.f}) body += real(v);
+  body += word(3) + word(0) + word(1) + word(2) + word(0);
+  EXPECT_EQ(load_mesh(write("binary.off", "OFF BINARY\n" + body)).mesh.triangle_count(), 1u);
+  expect_error(write("header-only.off", "OFF BINARY\n"), {"truncated", "vertex count"});
+  std::string inflated = body;
+  inflated.replace(4, 4, word(2));  // 2 faces declared, 1 present
+  expect_error(write("inflated.off", "OFF BINARY\n" + inflated), {"truncated"});
+  std::string huge = word(3) + word(1000000000) + word(0);
+  expect_error(write("huge.off", "OFF BINARY\n" + huge), {"truncated or wrong counts", "1000000000"});
+}
+
+TEST_F(BadFiles, StlTruncatedAsciiAndNonFinite) {
+  const std::string facet =
+      "facet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\n";
+  EXPECT_EQ(load_mesh(write("ok.stl", "solid t\n" + facet + facet + "endsolid t\n")).mesh.triangle_count(),
+            2u);
+  expect_error(write("cut.stl", "solid t\n" + facet + "facet normal 0 0 1\nouter loop\nvertex 0 0 0\n"),
+               {"truncated"});
+  expect_error(write("noend.stl", "solid t\n" + facet), {"truncated", "'facet' or 'endsolid'"});
+  expect_error(write("word.stl", "solid t\nfacet normal 0 0 1\nouter lop\n"), {":3:", "'loop'", "'lop'"});
+  std::string nan_facet = facet;
+  nan_facet.replace(nan_facet.find("vertex 1 0 0"), 12, "vertex nan 0 0");
+  expect_error(write("nan.stl", "solid t\n" + nan_facet + "endsolid\n"), {"non-finite"});
+}
+
+TEST_F(BadFiles, DirectoryIsNamedAsSuch) {
+  const fs::path directory = folder_ / "folder.ply";
+  fs::create_directories(directory);
+  expect_error(directory.string(), {"is a directory"});
 }
 
 TEST_F(BadFiles, SaveAndLoadRoundTripKeepsTheGeometry) {

@@ -5,40 +5,15 @@
 
 #include <fmt/format.h>
 
-#include <charconv>
-#include <fstream>
 #include <string_view>
 
+#include "file_bytes.h"
 #include "roving/core/error.h"
 
 namespace roving {
-namespace {
-
-bool is_space(char c) {
-  return c == ' ' || c == '\t' || c == '\r';
-}
-
-std::string_view next_token(std::string_view& rest) {
-  std::size_t begin = 0;
-  while (begin < rest.size() && is_space(rest[begin])) ++begin;
-  std::size_t end = begin;
-  while (end < rest.size() && !is_space(rest[end])) ++end;
-  const std::string_view token = rest.substr(begin, end - begin);
-  rest.remove_prefix(end);
-  return token;
-}
-
-std::string quoted(std::string_view token) {
-  return token.empty() ? "end of line" : fmt::format("'{}'", token);
-}
-
-}  // namespace
-
 LoadedMesh read_obj(const std::string& path) {
-  std::ifstream file(path, std::ios::binary);
-  if (!file) throw Error(fmt::format("{}: cannot open for reading", path));
-  const std::string text((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
-  if (file.bad()) throw Error(fmt::format("{}: read failed", path));
+  const FileBytes file(path, "a .obj mesh");
+  const std::string_view text = file.bytes();
 
   std::vector<Vec3> positions;
   std::vector<Triangle> triangles;
@@ -61,8 +36,7 @@ LoadedMesh read_obj(const std::string& path) {
       double xyz[3];
       for (double& coordinate : xyz) {
         const std::string_view token = next_token(rest);
-        const auto [ptr, error] = std::from_chars(token.data(), token.data() + token.size(), coordinate);
-        if (token.empty() || error != std::errc() || ptr != token.data() + token.size()) {
+        if (!parse_number(token, coordinate)) {
           throw fail(fmt::format("expected 3 numbers after 'v', found {}", quoted(token)));
         }
       }
@@ -72,14 +46,12 @@ LoadedMesh read_obj(const std::string& path) {
       for (std::string_view token = next_token(rest); !token.empty(); token = next_token(rest)) {
         // The vertex index is what precedes the first '/', if any.
         const std::string_view index_text = token.substr(0, token.find('/'));
-        long index = 0;
-        const auto [ptr, error] =
-            std::from_chars(index_text.data(), index_text.data() + index_text.size(), index);
-        if (index_text.empty() || error != std::errc() || ptr != index_text.data() + index_text.size()) {
+        long long index = 0;
+        if (!parse_number(index_text, index)) {
           throw fail(fmt::format("expected a vertex index in 'f', found '{}'", token));
         }
-        const long count = static_cast<long>(positions.size());
-        const long resolved = index > 0 ? index - 1 : count + index;  // 1-based; negative: relative
+        const long long count = static_cast<long long>(positions.size());
+        const long long resolved = index > 0 ? index - 1 : count + index;  // 1-based; negative: relative
         if (index == 0 || resolved < 0 || resolved >= count) {
           throw fail(
               fmt::format("face refers to vertex {}; expected 1..{} or -1..-{} (vertices "

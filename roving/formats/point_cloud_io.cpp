@@ -1,16 +1,14 @@
-// Point-cloud files (PLY through OpenMesh's reader, XYZ by hand).
+// Point-cloud files: PLY through the strict PLY reader, XYZ by hand.
 #include "roving/formats/point_cloud_io.h"
 
 #include <fmt/format.h>
 
-#include <OpenMesh/Core/IO/MeshIO.hh>
-#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 #include <charconv>
 #include <cmath>
 #include <fstream>
 #include <sstream>
 
-#include "mesh_header_check.h"
+#include "ply_reader.h"
 #include "roving/core/error.h"
 
 namespace roving {
@@ -63,39 +61,17 @@ PointCloud read_xyz(const std::string& path) {
 }
 
 PointCloud read_ply_points(const std::string& path) {
-  check_mesh_header(path, "ply");
-  OpenMesh::TriMesh_ArrayKernelT<> mesh;
-  mesh.request_vertex_normals();
-  OpenMesh::IO::Options options = OpenMesh::IO::Options::VertexNormal;
-  if (!OpenMesh::IO::read_mesh(mesh, path, options))
-    throw Error(fmt::format("{}: not a readable .ply point cloud", path));
-  PointCloud cloud;
-  for (const auto v : mesh.vertices()) {
-    const auto& p = mesh.point(v);
-    cloud.positions.emplace_back(p[0], p[1], p[2]);
-    if (options.check(OpenMesh::IO::Options::VertexNormal)) {
-      const auto& n = mesh.normal(v);
-      cloud.normals.emplace_back(n[0], n[1], n[2]);
-    }
+  PlyContents ply = read_ply(path);
+  if (ply.declares_faces) {
+    throw Error(fmt::format("{}: declares faces; expected a point cloud (read it as a mesh)", path));
   }
-  return cloud;
+  return PointCloud{ply.mesh.mesh.positions(), std::move(ply.normals)};
 }
 
 }  // namespace
 
 bool is_ply_point_cloud(const std::string& path) {
-  std::ifstream file(path, std::ios::binary);
-  std::string line;
-  if (!std::getline(file, line) || line.rfind("ply", 0) != 0) return false;
-  while (std::getline(file, line)) {
-    if (line.rfind("end_header", 0) == 0) return true;
-    std::istringstream words(line);
-    std::string keyword, name;
-    long count = 0;
-    words >> keyword >> name >> count;
-    if (keyword == "element" && name == "face" && count > 0) return false;
-  }
-  return false;
+  return ply_declares_no_faces(path);
 }
 
 PointCloud read_point_cloud(const std::string& path) {

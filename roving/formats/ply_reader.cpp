@@ -1,0 +1,508 @@
+// Strict, bounded PLY reader. OpenMesh's reader crashed on a property declared before any
+// element, looped forever on a format line without a version, allocated gigabytes for a
+// 287-byte file whose count overflowed a size check, accepted truncated and stray-token files,
+// and built half-edge topology nothing used (half of a load). This one reads the header into a
+// schema, checks every declared count against the bytes left, then reads exactly that.
+#include "ply_reader.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cstring>
+#include <optional>
+#include <type_traits>
+
+#include "file_bytes.h"
+#include "polygon_sink.h"
+#include "roving/core/error.h"
+
+namespace roving {
+namespace {
+
+enum class Encoding { Ascii, BinaryLittle, BinaryBig };
+
+enum class Scalar { Int8, UInt8, Int16, UInt16, Int32, UInt32, Float32, Float64 };
+
+std::optional<Scalar> scalar_named(std::string_view name) {
+  static const std::pair<const char*, Scalar> names[] = {
+      {"char", Scalar::Int8},      {"int8", Scalar::Int8},       {"uchar", Scalar::UInt8},
+      {"uint8", Scalar::UInt8},    {"short", Scalar::Int16},     {"int16", Scalar::Int16},
+      {"ushort", Scalar::UInt16},  {"uint16", Scalar::UInt16},   {"int", Scalar::Int32},
+      {"int32", Scalar::Int32},    {"uint", Scalar::UInt32},     {"uint32", Scalar::UInt32},
+      {"float", Scalar::Float32},  {"float32", Scalar::Float32}, {"double", Scalar::Float64},
+      {"float64", Scalar::Float64}};
+  for (const auto& [text, scalar] : names) {
+    if (name == text) return scalar;
+  }
+  return std::nullopt;
+}
+
+std::size_t size_of(Scalar s) {
+  switch (s) {
+    case Scalar::Int8:
+    case Scalar::UInt8: return 1;
+    case Scalar::Int16:
+    case Scalar::UInt16: return 2;
+    case Scalar::Int32:
+    case Scalar::UInt32:
+    case Scalar::Float32: return 4;
+    case Scalar::Float64: return 8;
+  }
+  return 0;
+}
+
+bool is_integral(Scalar s) {
+  return s != Scalar::Float32 && s != Scalar::Float64;
+}
+
+// What the reader does with a property's values.
+enum class Role { Skip, X, Y, Z, NX, NY, NZ, Corners };
+
+struct Property {
+  std::string name;
+  Scalar type = Scalar::Float32;
+  bool is_list = false;
+  Scalar count_type = Scalar::UInt8;
+  Role role = Role::Skip;
+};
+
+struct Element {
+  std::string name;
+  unsigned long long count = 0;
+  std::vector<Property> properties;
+  std::size_t header_line = 0;
+};
+
+struct Header {
+  Encoding encoding = Encoding::Ascii;
+  std::vector<Element> elements;
+  std::size_t body_offset = 0;  // first byte after "end_header\n"
+  std::size_t lines = 0;        // header lines, for ASCII body line numbers
+};
+
+// A header longer than this is not a model's header.
+constexpr std::size_t kMaxHeaderBytes = 1 << 20;
+
+Header parse_header(const std::string& path, std::string_view bytes) {
+  LineCursor cursor(bytes.substr(0, std::min(bytes.size(), kMaxHeaderBytes)));
+  std::string_view line;
+  if (!cursor.next_line(line) || line != "ply") {
+    throw Error(fmt::format("{}: expected the PLY magic line 'ply', found {}", path, quoted(line)));
+  }
+  Header header;
+  bool have_format = false, ended = false;
+  while (cursor.next_line(line)) {
+    const auto fail = [&](const std::string& expected) {
+      return Error(fmt::format("{}: header line {}: expected {}, found {}", path, cursor.line_number(),
+                               expected, quoted(line)));
+    };
+    std::string_view rest = line;
+    const std::string_view keyword = next_token(rest);
+    if (keyword == "format") {
+      const std::string_view format = next_token(rest), version = next_token(rest);
+      if (format == "ascii")
+        header.encoding = Encoding::Ascii;
+      else if (format == "binary_little_endian")
+        header.encoding = Encoding::BinaryLittle;
+      else if (format == "binary_big_endian")
+        header.encoding = Encoding::BinaryBig;
+      else
+        throw fail("'format ascii|binary_little_endian|binary_big_endian 1.0'");
+      if (version != "1.0" || !next_token(rest).empty()) throw fail("'format <encoding> 1.0'");
+      if (have_format) throw fail("one format line");
+      have_format = true;
+    } else if (keyword == "element") {
+      Element element;
+      element.name = std::string(next_token(rest));
+      long long count = -1;
+      if (element.name.empty() || !parse_number(next_token(rest), count) || count < 0 ||
+          !next_token(rest).empty()) {
+        throw fail("'element NAME COUNT' with a whole-number COUNT");
+      }
+      element.count = static_cast<unsigned long long>(count);
+      element.header_line = cursor.line_number();
+      header.elements.push_back(std::move(element));
+    } else if (keyword == "property") {
+      if (header.elements.empty()) throw fail("an 'element' line before its properties");
+      Property property;
+      std::string_view type = next_token(rest);
+      if (type == "list") {
+        const auto count_type = scalar_named(next_token(rest));
+        const auto item_type = scalar_named(next_token(rest));
+        if (!count_type || !item_type || !is_integral(*count_type)) {
+          throw fail("'property list COUNT_TYPE ITEM_TYPE NAME' with an integer COUNT_TYPE");
+        }
+        property.is_list = true;
+        property.count_type = *count_type;
+        property.type = *item_type;
+      } else {
+        const auto scalar = scalar_named(type);
+        if (!scalar)
+          throw fail("a known PLY property type (char, uchar, short, ushort, int, uint, float, double)");
+        property.type = *scalar;
+      }
+      property.name = std::string(next_token(rest));
+      if (property.name.empty() || !next_token(rest).empty()) throw fail("'property TYPE NAME'");
+      header.elements.back().properties.push_back(std::move(property));
+    } else if (keyword == "end_header") {
+      ended = true;
+      break;
+    } else if (keyword != "comment" && keyword != "obj_info" && !keyword.empty()) {
+      throw fail("a PLY header keyword (format, element, property, comment, obj_info, end_header)");
+    }
+  }
+  if (!ended) {
+    throw Error(fmt::format("{}: expected 'end_header' within the first {} bytes, found none", path,
+                            std::min(bytes.size(), kMaxHeaderBytes)));
+  }
+  if (!have_format) throw Error(fmt::format("{}: the PLY header has no 'format' line", path));
+  header.body_offset = cursor.offset();
+  header.lines = cursor.line_number();
+  return header;
+}
+
+// Gives the vertex and face properties their roles; checks that a mesh or point cloud can be
+// read from them.
+void assign_roles(const std::string& path, Header& header) {
+  for (Element& element : header.elements) {
+    if (element.properties.empty() && element.count > 0) {
+      throw Error(fmt::format("{}: header line {}: element '{}' declares {} items but no property", path,
+                              element.header_line, element.name, element.count));
+    }
+    for (Property& p : element.properties) {
+      if (element.name == "vertex" && !p.is_list) {
+        static const std::pair<const char*, Role> roles[] = {{"x", Role::X},   {"y", Role::Y},
+                                                             {"z", Role::Z},   {"nx", Role::NX},
+                                                             {"ny", Role::NY}, {"nz", Role::NZ}};
+        for (const auto& [name, role] : roles) {
+          if (p.name == name) p.role = role;
+        }
+      }
+      if (element.name == "face" && p.is_list && (p.name == "vertex_indices" || p.name == "vertex_index")) {
+        if (!is_integral(p.type)) {
+          throw Error(fmt::format(
+              "{}: face property '{}' holds floating-point values; expected integer indices", path, p.name));
+        }
+        p.role = Role::Corners;
+      }
+    }
+  }
+}
+
+// Smallest number of body bytes one item of `element` takes: fixed sizes in binary, a value and
+// a separator per scalar in ASCII; a face's corner list holds at least 3 indices.
+std::size_t minimum_item_size(const Element& element, Encoding encoding) {
+  std::size_t size = 0;
+  for (const Property& p : element.properties) {
+    const std::size_t least_items = p.role == Role::Corners ? 3 : 0;
+    if (encoding == Encoding::Ascii) {
+      size += 2 * (1 + (p.is_list ? least_items : 0));
+    } else {
+      size += p.is_list ? size_of(p.count_type) + least_items * size_of(p.type) : size_of(p.type);
+    }
+  }
+  return size;
+}
+
+// Reads binary values with bounds checks; `swap` for big-endian files.
+class BinaryBody {
+ public:
+  BinaryBody(const std::string& path, std::string_view bytes, bool swap)
+      : path_(path), bytes_(bytes), swap_(swap) {}
+
+  double read(Scalar type, const Element& element, unsigned long long item) {
+    const std::size_t size = size_of(type);
+    if (bytes_.size() - position_ < size) {
+      throw Error(fmt::format("{}: truncated: {} {} of {} ends after {} bytes of data", path_, element.name,
+                              item, element.count, position_));
+    }
+    unsigned char raw[8];
+    std::memcpy(raw, bytes_.data() + position_, size);
+    position_ += size;
+    if (swap_) std::reverse(raw, raw + size);
+    switch (type) {
+      case Scalar::Int8: return static_cast<std::int8_t>(raw[0]);
+      case Scalar::UInt8: return raw[0];
+      case Scalar::Int16: return value<std::int16_t>(raw);
+      case Scalar::UInt16: return value<std::uint16_t>(raw);
+      case Scalar::Int32: return value<std::int32_t>(raw);
+      case Scalar::UInt32: return value<std::uint32_t>(raw);
+      case Scalar::Float32: return value<float>(raw);
+      case Scalar::Float64: return value<double>(raw);
+    }
+    return 0;
+  }
+  std::size_t remaining() const { return bytes_.size() - position_; }
+  bool swapped() const { return swap_; }
+
+  // The next `size` bytes, bounds-checked.
+  const char* take(std::size_t size, const Element& element, unsigned long long item) {
+    if (bytes_.size() - position_ < size) {
+      throw Error(fmt::format("{}: truncated: {} {} of {} ends after {} bytes of data", path_, element.name,
+                              item, element.count, position_));
+    }
+    const char* at = bytes_.data() + position_;
+    position_ += size;
+    return at;
+  }
+
+ private:
+  template <class T>
+  static double value(const unsigned char* raw) {
+    T v;
+    std::memcpy(&v, raw, sizeof v);
+    return static_cast<double>(v);
+  }
+  const std::string& path_;
+  std::string_view bytes_;
+  bool swap_;
+  std::size_t position_ = 0;
+};
+
+// Reads ASCII values one line per item, every token accounted for.
+class AsciiBody {
+ public:
+  AsciiBody(const std::string& path, std::string_view bytes, std::size_t header_lines)
+      : path_(path), cursor_(bytes), header_lines_(header_lines) {}
+
+  void start_item(const Element& element, unsigned long long item) {
+    element_ = &element;
+    item_ = item;
+    do {
+      if (!cursor_.next_line(rest_)) {
+        throw Error(fmt::format("{}: truncated: expected {} {} of {}, found the end of the file", path_,
+                                element.name, item, element.count));
+      }
+    } while (rest_.find_first_not_of(" \t") == std::string_view::npos);
+  }
+  double read(bool integral) {
+    const std::string_view token = next_token(rest_);
+    double value = 0;
+    long long whole = 0;
+    const bool ok = integral ? parse_number(token, whole) : parse_number(token, value);
+    if (!ok) throw fail(integral ? "an integer" : "a number", token);
+    return integral ? static_cast<double>(whole) : value;
+  }
+  // Bytes left on the item's line: a list cannot hold more values than that.
+  std::size_t remaining() const { return rest_.size(); }
+  void end_item() {
+    const std::string_view stray = next_token(rest_);
+    if (!stray.empty()) throw fail("the end of the line", stray);
+  }
+  void end_body() {
+    std::string_view line;
+    while (cursor_.next_line(line)) {
+      std::string_view rest = line;
+      const std::string_view token = next_token(rest);
+      if (!token.empty()) {
+        throw Error(fmt::format("{}:{}: expected the end of the file after the last element, found {}", path_,
+                                header_lines_ + cursor_.line_number(), quoted(token)));
+      }
+    }
+  }
+
+ private:
+  Error fail(const char* expected, std::string_view found) const {
+    return Error(fmt::format("{}:{}: {} {}: expected {}, found {}", path_,
+                             header_lines_ + cursor_.line_number(), element_->name, item_, expected,
+                             quoted(found)));
+  }
+  const std::string& path_;
+  LineCursor cursor_;
+  std::size_t header_lines_;
+  std::string_view rest_;
+  const Element* element_ = nullptr;
+  unsigned long long item_ = 0;
+};
+
+// The layouts nearly every binary PLY uses, read without per-value dispatch (in native byte
+// order): vertices of float properties only, and faces of one list of uchar count and 32-bit
+// indices. Same checks as the general path; false when `element` has another layout.
+bool read_plain_layout(const Element& element, BinaryBody& body, std::vector<Vec3>& positions,
+                       std::vector<Vec3>& normals, bool have_normals, std::optional<PolygonSink>& sink,
+                       std::vector<Triangle>& triangles) {
+  if (element.name == "vertex") {
+    for (const Property& p : element.properties) {
+      if (p.is_list || p.type != Scalar::Float32) return false;
+    }
+    const std::size_t stride = element.properties.size();
+    int slot[6] = {-1, -1, -1, -1, -1, -1};  // x y z nx ny nz
+    for (std::size_t i = 0; i < stride; ++i) {
+      const Role role = element.properties[i].role;
+      if (role != Role::Skip && role != Role::Corners) slot[static_cast<int>(role) - 1] = static_cast<int>(i);
+    }
+    float values[256];
+    if (stride > 256) return false;
+    for (unsigned long long item = 0; item < element.count; ++item) {
+      std::memcpy(values, body.take(4 * stride, element, item), 4 * stride);
+      positions.emplace_back(values[slot[0]], values[slot[1]], values[slot[2]]);
+      if (have_normals) normals.emplace_back(values[slot[3]], values[slot[4]], values[slot[5]]);
+    }
+    return true;
+  }
+  if (element.name == "face" && element.properties.size() == 1) {
+    const Property& p = element.properties[0];
+    if (p.role != Role::Corners || p.count_type != Scalar::UInt8 || size_of(p.type) != 4) return false;
+    const bool is_signed = p.type == Scalar::Int32;
+    std::vector<long long> corners;
+    for (unsigned long long item = 0; item < element.count; ++item) {
+      const auto count = static_cast<unsigned char>(*body.take(1, element, item));
+      const char* raw = body.take(4ull * count, element, item);
+      corners.resize(count);
+      for (unsigned c = 0; c < count; ++c) {
+        std::uint32_t index;
+        std::memcpy(&index, raw + 4 * c, 4);
+        corners[c] = is_signed ? static_cast<long long>(static_cast<std::int32_t>(index)) : index;
+      }
+      sink->add(corners, item, triangles);
+    }
+    return true;
+  }
+  return false;
+}
+
+template <class Body>
+void read_body(const std::string& path, const Header& header, Body& body, PlyContents& out) {
+  std::vector<Vec3> positions;
+  std::vector<Triangle> triangles;
+  std::vector<long long> corners;
+  bool have_normals = false;
+  for (const Element& element : header.elements) {
+    const bool is_vertex = element.name == "vertex";
+    const bool is_face = element.name == "face";
+    if (is_vertex) {
+      int axes = 0, normal_axes = 0;
+      for (const Property& p : element.properties) {
+        axes += p.role == Role::X || p.role == Role::Y || p.role == Role::Z;
+        normal_axes += p.role == Role::NX || p.role == Role::NY || p.role == Role::NZ;
+      }
+      if (axes != 3) {
+        throw Error(fmt::format("{}: header line {}: the vertex element needs properties x, y and z", path,
+                                element.header_line));
+      }
+      have_normals = normal_axes == 3;
+      positions.reserve(element.count);
+      if (have_normals) out.normals.reserve(element.count);
+    }
+    std::optional<PolygonSink> sink;
+    if (is_face) {
+      out.declares_faces = element.count > 0;
+      bool has_corners = false;
+      for (const Property& p : element.properties) has_corners |= p.role == Role::Corners;
+      if (!has_corners && element.count > 0) {
+        throw Error(fmt::format("{}: header line {}: the face element needs a list 'vertex_indices'", path,
+                                element.header_line));
+      }
+      sink.emplace(path, positions.size(), out.mesh);
+      triangles.reserve(element.count);
+    }
+    if constexpr (std::is_same_v<Body, BinaryBody>) {
+      if (!body.swapped() &&
+          read_plain_layout(element, body, positions, out.normals, have_normals, sink, triangles)) {
+        continue;
+      }
+    }
+    for (unsigned long long item = 0; item < element.count; ++item) {
+      if constexpr (std::is_same_v<Body, AsciiBody>) body.start_item(element, item);
+      Vec3 position = Vec3::Zero(), normal = Vec3::Zero();
+      for (const Property& p : element.properties) {
+        const auto read = [&](Scalar type) {
+          if constexpr (std::is_same_v<Body, AsciiBody>) {
+            return body.read(is_integral(type));
+          } else {
+            return body.read(type, element, item);
+          }
+        };
+        if (!p.is_list) {
+          const double v = read(p.type);
+          switch (p.role) {
+            case Role::X: position.x() = v; break;
+            case Role::Y: position.y() = v; break;
+            case Role::Z: position.z() = v; break;
+            case Role::NX: normal.x() = v; break;
+            case Role::NY: normal.y() = v; break;
+            case Role::NZ: normal.z() = v; break;
+            default: break;
+          }
+          continue;
+        }
+        const double count = read(p.count_type);
+        // A list cannot hold more values than bytes remain (ASCII: 2 per value).
+        if (count < 0 || count > double(body.remaining())) {
+          throw Error(fmt::format("{}: {} {}: list '{}' declares {} values; the file holds at most {} more",
+                                  path, element.name, item, p.name, count, body.remaining()));
+        }
+        const auto n = static_cast<std::size_t>(count);
+        if (p.role == Role::Corners) corners.clear();
+        for (std::size_t i = 0; i < n; ++i) {
+          const double v = read(p.type);
+          if (p.role == Role::Corners) corners.push_back(static_cast<long long>(v));
+        }
+      }
+      if constexpr (std::is_same_v<Body, AsciiBody>) body.end_item();
+      if (is_vertex) {
+        positions.push_back(position);
+        if (have_normals) out.normals.push_back(normal);
+      }
+      if (is_face) sink->add(corners, item, triangles);
+    }
+  }
+  if constexpr (std::is_same_v<Body, AsciiBody>) {
+    body.end_body();
+  } else if (body.remaining() != 0) {
+    throw Error(fmt::format("{}: {} bytes follow the last element; expected the end of the file", path,
+                            body.remaining()));
+  }
+  out.mesh.path = path;
+  out.mesh.mesh = TriangleMesh(std::move(positions), std::move(triangles), path);
+}
+
+Header checked_header(const std::string& path, std::string_view bytes) {
+  Header header = parse_header(path, bytes);
+  assign_roles(path, header);
+  // Every declared count against the bytes left, before anything is allocated.
+  std::size_t left = bytes.size() - header.body_offset;
+  for (const Element& element : header.elements) {
+    const std::size_t item = minimum_item_size(element, header.encoding);
+    if (item == 0) continue;
+    // ASCII: the last value needs no separator after it.
+    const std::size_t available = left + (header.encoding == Encoding::Ascii ? 1 : 0);
+    if (element.count > available / item) {
+      throw Error(fmt::format(
+          "{}: truncated or corrupt: header line {} declares {} {} items of at least {} bytes; the file "
+          "holds {} bytes after the header",
+          path, element.header_line, element.count, element.name, item, bytes.size() - header.body_offset));
+    }
+    left = available - element.count * item;
+  }
+  return header;
+}
+
+}  // namespace
+
+PlyContents read_ply(const std::string& path) {
+  const FileBytes file(path, "a .ply model");
+  const Header header = checked_header(path, file.bytes());
+  const std::string_view body_bytes = file.bytes().substr(header.body_offset);
+  PlyContents out;
+  if (header.encoding == Encoding::Ascii) {
+    AsciiBody body(path, body_bytes, header.lines);
+    read_body(path, header, body, out);
+  } else {
+    const bool big_endian_host = false;  // x86-64 and arm64 Linux
+    BinaryBody body(path, body_bytes, (header.encoding == Encoding::BinaryBig) != big_endian_host);
+    read_body(path, header, body, out);
+  }
+  return out;
+}
+
+bool ply_declares_no_faces(const std::string& path) {
+  const FileBytes file(path, "a .ply model");
+  const Header header = parse_header(path, file.bytes());
+  for (const Element& element : header.elements) {
+    if (element.name == "face" && element.count > 0) return false;
+  }
+  return true;
+}
+
+}  // namespace roving
