@@ -1,5 +1,6 @@
 // The `roving` executable end to end: a correct run, its outputs, and one-line errors with a
 // non-zero exit for every bad option or file.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <array>
@@ -148,6 +149,95 @@ TEST(Cli, BadFilesNameTheFile) {
   const std::string unwritable = "/nonexistent/out.csv";
   expect_error("measure " + bunny() + " " + bunny() + " --samples area:10 --samples-out " + unwritable,
                {unwritable.c_str(), "cannot open for writing"});
+}
+
+// A scratch folder removed at the end of a test.
+struct Folder {
+  fs::path path = fs::temp_directory_path() / ("roving-cli-out-" + std::to_string(::getpid()));
+  Folder() { fs::create_directories(path); }
+  ~Folder() { fs::remove_all(path); }
+  std::string file(const std::string& name, const std::string& content = "") const {
+    const std::string p = (path / name).string();
+    if (!content.empty()) std::ofstream(p, std::ios::binary) << content;
+    return p;
+  }
+  std::size_t entries() const {
+    return std::distance(fs::directory_iterator(path), fs::directory_iterator());
+  }
+};
+
+TEST(Cli, FailedRunsLeaveOutputsUntouched) {
+  const Folder folder;
+  const std::string json = folder.file("report.json", "old report\n");
+  // The CSV cannot be written: the JSON that existed stays as it was, and nothing else appears.
+  expect_error("measure " + bunny() + " " + bunny() + " --samples area:100 --json " + json +
+                   " --samples-out /nonexistent/samples.csv",
+               {"/nonexistent/samples.csv"});
+  std::ifstream kept(json);
+  EXPECT_EQ(std::string(std::istreambuf_iterator<char>(kept), {}), "old report\n");
+  EXPECT_EQ(folder.entries(), 1u);
+  // An output that names a directory is refused before any work.
+  expect_error("measure " + bunny() + " " + bunny() + " --json " + folder.path.string(),
+               {"--json", "directory"});
+  // A successful run replaces the file whole and leaves no temporary file.
+  const CliRun run = run_cli("measure " + bunny() + " " + bunny() + " --samples area:100 --json " + json);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  std::ifstream replaced(json);
+  EXPECT_EQ(nlohmann::json::parse(replaced)["samples"]["count"], 100);
+  EXPECT_EQ(folder.entries(), 1u);
+}
+
+TEST(Cli, FullStandardOutputIsAnError) {
+  for (const char* json : {"", " --json -"}) {
+    const CliRun run =
+        run_cli("measure " + bunny() + " " + bunny() + " --samples area:100" + json + " >/dev/full");
+    EXPECT_NE(run.exit_code, 0) << json;
+    EXPECT_NE(run.err.find("standard output: write failed"), std::string::npos) << run.err;
+  }
+}
+
+TEST(Cli, MaxErrorBeyondTheModelsIsRefused) {
+  // Beyond the models' extent the float rays lose the distances (1e19 aborted inside Embree,
+  // 1e10 gave SiAD 2.5e9 for a model against itself).
+  for (const char* h : {"1e19", "1e10"}) {
+    expect_error("measure " + bunny() + " " + bunny() + " --samples area:100 --max-error " + h,
+                 {"--max-error", "diagonal of both models", h});
+  }
+}
+
+TEST(Cli, AbsurdRequestsFailAtOnceWithTheirSizes) {
+  ::setenv("ROVING_MEMORY_LIMIT", "1G", 1);
+  expect_error("measure " + bunny() + " " + bunny() + " --samples area:2147483648",
+               {"sampling", "2147483648 samples", "GiB"});
+  ::unsetenv("ROVING_MEMORY_LIMIT");
+  const Folder folder;
+  // A 2048^3 binvox of 60-odd bytes: its runs cannot fill the grid.
+  const std::string binvox = folder.file(
+      "huge.binvox", std::string("#binvox 1\ndim 2048 2048 2048\ntranslate 0 0 0\nscale 1\ndata\n") +
+                         std::string("\x01\xff\x00\xff", 4));
+  expect_error("measure " + binvox + " " + bunny(), {"huge.binvox", "truncated", "8589934592"});
+  // Identical points: no extent to measure in.
+  const std::string xyz = folder.file("point.xyz", "1 2 3\n1 2 3\n1 2 3\n");
+  expect_error("measure " + xyz + " " + bunny(), {"point.xyz", "no extent"});
+}
+
+TEST(Cli, DegenerateOrAbsurdBezierPatchesAreRefused) {
+  const Folder folder;
+  // Patches collapsed onto a line: no surface, so no samples and nothing to draw.
+  std::string line_patch = "1\n3 3\n";
+  for (int k = 0; k < 16; ++k) line_patch += std::to_string(k % 4) + " 0 0\n";
+  const std::string flat = folder.file("line.bpt", line_patch);
+  expect_error("measure " + bunny() + " " + flat, {"line.bpt", "no area"});
+  expect_error("measure " + flat + " " + bunny() + " --samples area:10", {"line.bpt", "no area"});
+  // A zigzag net of degree 16 needs the finest tessellation on all three patches.
+  std::string wiggly = "3\n";
+  for (int patch = 0; patch < 3; ++patch) {
+    wiggly += "16 16\n";
+    for (int i = 0; i <= 16; ++i)
+      for (int j = 0; j <= 16; ++j)
+        wiggly += fmt::format("{} {} {}\n", i + 20 * patch, j, (i + j) % 2 ? 30 : -30);
+  }
+  expect_error("measure " + folder.file("wiggly.bpt", wiggly) + " " + bunny(), {"wiggly.bpt", "at most"});
 }
 
 }  // namespace

@@ -3,13 +3,16 @@
 
 #include <CLI/CLI.hpp>
 #include <cstdio>
-#include <fstream>
-#include <iostream>
+#include <filesystem>
+#include <memory>
+#include <new>
 
 #include "report.h"
 #include "roving/core/error.h"
+#include "roving/core/memory_budget.h"
 #include "roving/core/sample_set.h"
 #include "roving/core/stopwatch.h"
+#include "roving/formats/atomic_file.h"
 #include "roving/formats/mesh_io.h"
 #include "roving/formats/sample_output.h"
 #include "roving/registry/method_registry.h"
@@ -30,14 +33,21 @@ struct MeasureArguments {
   int resolution = 1024;
 };
 
-void write_json(const std::string& path, const nlohmann::json& json) {
-  if (path == "-") {
-    std::cout << json.dump(2) << "\n";
-    return;
+// What the run is doing, for the one-line message when memory runs out.
+std::string current_stage = "starting";
+
+// h bounded by what the models and Embree's float rays can represent: the view volume need
+// reach no farther than both models' extent, and beyond it the rays' float origins lose the
+// precision the distances need (h = 1e10 on a unit model gave SiAD 2.5e9 instead of 0).
+void require_representable(double max_error, const roving::BoundingBox& both, const std::string& given) {
+  const double extent = both.diagonal();
+  if (!(max_error <= extent)) {
+    throw roving::Error(
+        fmt::format("--max-error: expected at most the diagonal of both models' bounding box ({:.6g}), found "
+                    "{} ({:.6g}); "
+                    "a view volume reaches nothing farther",
+                    extent, given, max_error));
   }
-  std::ofstream file(path);
-  file << json.dump(2) << "\n";
-  if (!file) throw roving::Error(fmt::format("{}: cannot write the JSON report", path));
 }
 
 int run_measure(const MeasureArguments& args) {
@@ -57,6 +67,15 @@ int run_measure(const MeasureArguments& args) {
   options.max_error = 1;  // placeholder until the diagonal is known; checked for support now
   validate_options(*method, options);
 
+  for (const auto& [option, path] :
+       {std::pair{"--json", args.json_path}, std::pair{"--samples-out", args.samples_csv_path},
+        std::pair{"--heatmap", args.heatmap_path}}) {
+    std::error_code error;
+    if (!path.empty() && path != "-" && std::filesystem::is_directory(path, error)) {
+      throw Error(fmt::format("{}: expected a file to write, found the directory '{}'", option, path));
+    }
+  }
+
   MeasureReport report;
   Stopwatch watch;
   const auto type = [](const std::string& text, const char* option) {
@@ -69,15 +88,24 @@ int run_measure(const MeasureArguments& args) {
         "--test-type: a point cloud cannot be the test model: it has holes and records no surface to draw or "
         "intersect (the paper's limit); expected mesh or voxels, found 'points'");
   }
+  current_stage = fmt::format("loading the reference {}", args.reference_path);
   const Model reference = load_model(args.reference_path, reference_type);
   report.load_reference_seconds = watch.seconds();
   watch = Stopwatch();
+  current_stage = fmt::format("loading the test {}", args.test_path);
   const Model test = load_model(args.test_path, test_type);
   const TriangleMesh& test_mesh = test_surface(test);
   report.load_test_seconds = watch.seconds();
 
+  current_stage = fmt::format("sampling the reference ({})", sample_spec.to_string());
   const SampleSet samples = reference_samples(reference, sample_spec);
   options.max_error = max_error.resolve(reference.bounding_box().diagonal());
+  BoundingBox both = reference.bounding_box();
+  both.extend(test_mesh.bounding_box().min);
+  both.extend(test_mesh.bounding_box().max);
+  require_representable(options.max_error, both, args.max_error);
+  current_stage = fmt::format("measuring {} samples against {} triangles with {}", samples.size(),
+                              test_mesh.triangle_count(), method->name());
   const DistanceResult result = measure_distances(*method, test_mesh, samples, options);
 
   report.reference = &reference;
@@ -93,14 +121,30 @@ int run_measure(const MeasureArguments& args) {
   report.gl = result.gl ? &*result.gl : nullptr;
   report.query_seconds = result.query_seconds;
 
-  if (!args.samples_csv_path.empty()) write_samples_csv(args.samples_csv_path, samples, result);
+  // Every output file is written whole to a temporary file first; only when all succeeded are
+  // they moved into place, so a failed run changes none of them.
+  current_stage = "writing the outputs";
+  std::vector<std::unique_ptr<AtomicFile>> outputs;
+  if (!args.samples_csv_path.empty()) {
+    outputs.push_back(std::make_unique<AtomicFile>(args.samples_csv_path));
+    write_samples_csv(outputs.back()->stream(), samples, result);
+    outputs.back()->close_stream();
+  }
   if (!args.heatmap_path.empty()) {
+    outputs.push_back(std::make_unique<AtomicFile>(args.heatmap_path));
     const double range = std::max(report.statistics.max_abs, 1e-300);
-    write_heatmap_ply(args.heatmap_path, samples, result, std::min(range, options.max_error));
+    write_heatmap_ply(outputs.back()->stream(), samples, result, std::min(range, options.max_error));
+    outputs.back()->close_stream();
   }
   report.total_seconds = total.seconds();
-  if (args.json_path != "-") std::fputs(format_text(report).c_str(), stdout);
-  if (!args.json_path.empty()) write_json(args.json_path, to_json(report));
+  const std::string json = args.json_path.empty() ? "" : to_json(report).dump(2) + "\n";
+  if (!args.json_path.empty() && args.json_path != "-") {
+    outputs.push_back(std::make_unique<AtomicFile>(args.json_path));
+    std::fputs(json.c_str(), outputs.back()->stream());
+    outputs.back()->close_stream();
+  }
+  for (const auto& output : outputs) output->commit();
+  write_stdout(args.json_path == "-" ? json : format_text(report));
   return 0;
 }
 
@@ -158,6 +202,10 @@ int main(int argc, char** argv) {
   }
   try {
     return run_measure(args);
+  } catch (const std::bad_alloc&) {
+    std::fprintf(stderr, "roving: error: out of memory while %s (available: %.3g GiB)\n",
+                 current_stage.c_str(), roving::available_memory() / (1024.0 * 1024 * 1024));
+    return 1;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "roving: error: %s\n", e.what());
     return 1;

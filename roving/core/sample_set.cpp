@@ -8,6 +8,7 @@
 #include <random>
 
 #include "roving/core/error.h"
+#include "roving/core/memory_budget.h"
 
 namespace roving {
 
@@ -120,7 +121,11 @@ SampleSet make_samples(const TriangleMesh& reference, const SampleSpec& spec) {
   switch (spec.kind) {
     case SampleSpec::Kind::Faces: sample_faces(reference, samples); break;
     case SampleSpec::Kind::Vertices: sample_vertices(reference, samples); break;
-    case SampleSpec::Kind::Area: sample_area(reference, spec.count, spec.seed, samples); break;
+    case SampleSpec::Kind::Area:
+      // Positions, normals, weights, then a distance, a flag and a magnitude per sample.
+      require_memory("sampling", 81.0 * spec.count, fmt::format("{} samples", spec.count));
+      sample_area(reference, spec.count, spec.seed, samples);
+      break;
   }
   if (samples.size() == 0) {
     throw Error(fmt::format("reference model gives no '{}' samples ({} triangles, all degenerate?)",

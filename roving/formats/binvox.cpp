@@ -9,6 +9,8 @@
 #include <sstream>
 
 #include "roving/core/error.h"
+#include "roving/core/memory_budget.h"
+#include "roving/formats/atomic_file.h"
 
 namespace roving {
 
@@ -54,6 +56,18 @@ VoxelGrid read_binvox(const std::string& path) {
   if (!have_dim || !have_data) throw fail("header ends without 'dim' and 'data'");
   grid.voxel_size = scale / grid.dimension;
   const std::size_t total = static_cast<std::size_t>(grid.dimension) * grid.dimension * grid.dimension;
+  // Each 2-byte run covers at most 255 voxels: check that the data can fill the grid, and that
+  // the grid fits in memory, before allocating it.
+  const std::streamoff data_start = file.tellg();
+  file.seekg(0, std::ios::end);
+  const auto data_bytes = static_cast<std::size_t>(file.tellg() - data_start);
+  file.seekg(data_start);
+  if (data_bytes / 2 * 255 < total) {
+    throw fail(fmt::format("truncated: {} bytes of runs cover at most {} voxels; the {}^3 grid has {}",
+                           data_bytes, data_bytes / 2 * 255, grid.dimension, total));
+  }
+  require_memory(fmt::format("{}: reading", path), double(total),
+                 fmt::format("a {}^3 voxel grid", grid.dimension));
   grid.occupied.assign(total, 0);
   std::size_t filled = 0;
   unsigned char pair[2];
@@ -75,8 +89,7 @@ VoxelGrid read_binvox(const std::string& path) {
 }
 
 void write_binvox(const VoxelGrid& grid, const std::string& path) {
-  std::ofstream file(path, std::ios::binary);
-  if (!file) throw Error(fmt::format("{}: cannot open for writing", path));
+  std::ostringstream file;
   file << "#binvox 1\ndim " << grid.dimension << ' ' << grid.dimension << ' ' << grid.dimension << "\n";
   file.precision(17);
   file << "translate " << grid.origin.x() << ' ' << grid.origin.y() << ' ' << grid.origin.z() << "\n";
@@ -89,7 +102,10 @@ void write_binvox(const VoxelGrid& grid, const std::string& path) {
     file.put(static_cast<char>(run));
     i += run;
   }
-  if (!file) throw Error(fmt::format("{}: write failed", path));
+  AtomicFile out(path);
+  const std::string bytes = file.str();
+  std::fwrite(bytes.data(), 1, bytes.size(), out.stream());
+  out.commit();
 }
 
 }  // namespace roving

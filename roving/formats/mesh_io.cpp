@@ -18,6 +18,7 @@
 #include "off_reader.h"
 #include "ply_reader.h"
 #include "roving/core/error.h"
+#include "roving/formats/atomic_file.h"
 #include "stl_reader.h"
 
 namespace roving {
@@ -122,16 +123,20 @@ void save_mesh(const TriangleMesh& mesh, const std::string& path, bool binary) {
                     "faces accepted)",
                     path, om.n_faces(), mesh.triangle_count()));
   }
+  // OpenMesh writes by path: into the temporary file, which keeps the extension.
+  AtomicFile out(path);
+  out.close_stream();
   OpenMesh::IO::Options options;
   if (binary && (ext == "ply" || ext == "stl")) options += OpenMesh::IO::Options::Binary;
   std::string log;
   bool ok = false;
   {
     CapturedOpenMeshLog capture;
-    ok = OpenMesh::IO::write_mesh(om, path, options, 17);
+    ok = OpenMesh::IO::write_mesh(om, out.temporary_path(), options, 17);
     log = capture.text();
   }
   if (!ok) throw Error(fmt::format("{}: cannot write ({})", path, log.empty() ? "writer failed" : log));
+  out.commit();
 }
 
 }  // namespace roving

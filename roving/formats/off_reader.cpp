@@ -71,6 +71,7 @@ void check_counts(const std::string& path, long long vertices, long long faces, 
         "file holds {} bytes after the counts",
         path, vertices, faces, vertex_bytes, face_bytes, bytes));
   }
+  require_mesh_memory(path, v, f);
 }
 
 LoadedMesh read_ascii(const std::string& path, std::string_view text, OffLines& lines, std::string_view rest,

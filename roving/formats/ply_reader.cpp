@@ -475,6 +475,12 @@ Header checked_header(const std::string& path, std::string_view bytes) {
     }
     left = available - element.count * item;
   }
+  unsigned long long vertices = 0, faces = 0;
+  for (const Element& element : header.elements) {
+    if (element.name == "vertex") vertices = element.count;
+    if (element.name == "face") faces = element.count;
+  }
+  require_mesh_memory(path, vertices, faces);
   return header;
 }
 

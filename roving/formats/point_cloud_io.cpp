@@ -10,6 +10,7 @@
 
 #include "ply_reader.h"
 #include "roving/core/error.h"
+#include "roving/formats/atomic_file.h"
 
 namespace roving {
 namespace {
@@ -82,8 +83,7 @@ PointCloud read_point_cloud(const std::string& path) {
 }
 
 void write_point_cloud_ply(const PointCloud& cloud, const std::string& path) {
-  std::ofstream file(path);
-  if (!file) throw Error(fmt::format("{}: cannot open for writing", path));
+  std::ostringstream file;
   const bool normals = cloud.normals.size() == cloud.positions.size();
   file << "ply\nformat ascii 1.0\nelement vertex " << cloud.positions.size()
        << "\nproperty float x\nproperty float y\nproperty float z\n";
@@ -97,7 +97,10 @@ void write_point_cloud_ply(const PointCloud& cloud, const std::string& path) {
       file << ' ' << cloud.normals[i].x() << ' ' << cloud.normals[i].y() << ' ' << cloud.normals[i].z();
     file << '\n';
   }
-  if (!file) throw Error(fmt::format("{}: write failed", path));
+  AtomicFile out(path);
+  const std::string text = file.str();
+  std::fwrite(text.data(), 1, text.size(), out.stream());
+  out.commit();
 }
 
 }  // namespace roving

@@ -10,9 +10,18 @@
 #include <vector>
 
 #include "roving/core/error.h"
+#include "roving/core/memory_budget.h"
 #include "roving/formats/mesh_io.h"
 
 namespace roving {
+
+// Checks, before a reader allocates, that a mesh of the declared size fits in memory: its
+// positions, triangles and the per-face and per-vertex data TriangleMesh derives.
+inline void require_mesh_memory(const std::string& path, unsigned long long vertices,
+                                unsigned long long faces) {
+  require_memory(fmt::format("{}: reading", path), 49.0 * vertices + 44.0 * faces,
+                 fmt::format("{} vertices and {} faces", vertices, faces));
+}
 
 class PolygonSink {
  public:

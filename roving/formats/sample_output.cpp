@@ -2,29 +2,14 @@
 #include "roving/formats/sample_output.h"
 
 #include <fmt/format.h>
-#include <fmt/os.h>
 
 #include <algorithm>
 #include <cstdio>
-#include <memory>
 
 #include "roving/core/error.h"
 
 namespace roving {
 namespace {
-
-using File = std::unique_ptr<std::FILE, int (*)(std::FILE*)>;
-
-File open_for_writing(const std::string& path) {
-  File file(std::fopen(path.c_str(), "wb"), &std::fclose);
-  if (!file) throw Error(fmt::format("{}: cannot open for writing", path));
-  return file;
-}
-
-void finish(File& file, const std::string& path) {
-  const bool failed = std::ferror(file.get()) != 0;
-  if (std::fclose(file.release()) != 0 || failed) throw Error(fmt::format("{}: write failed", path));
-}
 
 // Blue (-1) .. white (0) .. red (+1).
 std::array<unsigned char, 3> diverging_colour(double s) {
@@ -36,27 +21,23 @@ std::array<unsigned char, 3> diverging_colour(double s) {
 
 }  // namespace
 
-void write_samples_csv(const std::string& path, const SampleSet& samples, const DistanceResult& result) {
-  File file = open_for_writing(path);
-  fmt::print(file.get(), "x,y,z,nx,ny,nz,d,hit\n");
+void write_samples_csv(std::FILE* out, const SampleSet& samples, const DistanceResult& result) {
+  fmt::print(out, "x,y,z,nx,ny,nz,d,hit\n");
   for (std::size_t k = 0; k < samples.size(); ++k) {
     const Vec3& p = samples.positions[k];
     const Vec3& n = samples.normals[k];
     if (result.hit[k]) {
-      fmt::print(file.get(), "{},{},{},{},{},{},{},1\n", p.x(), p.y(), p.z(), n.x(), n.y(), n.z(),
+      fmt::print(out, "{},{},{},{},{},{},{},1\n", p.x(), p.y(), p.z(), n.x(), n.y(), n.z(),
                  result.signed_distance[k]);
     } else {
-      fmt::print(file.get(), "{},{},{},{},{},{},,0\n", p.x(), p.y(), p.z(), n.x(), n.y(), n.z());
+      fmt::print(out, "{},{},{},{},{},{},,0\n", p.x(), p.y(), p.z(), n.x(), n.y(), n.z());
     }
   }
-  finish(file, path);
 }
 
-void write_heatmap_ply(const std::string& path, const SampleSet& samples, const DistanceResult& result,
-                       double range) {
+void write_heatmap_ply(std::FILE* out, const SampleSet& samples, const DistanceResult& result, double range) {
   if (!(range > 0)) range = 1;
-  File file = open_for_writing(path);
-  fmt::print(file.get(),
+  fmt::print(out,
              "ply\nformat ascii 1.0\ncomment surface roving heat map of signed distance d\n"
              "comment legend: d = -{0} blue, 0 white, +{0} red; grey = no hit\n"
              "element vertex {1}\nproperty float x\nproperty float y\nproperty float z\n"
@@ -70,11 +51,9 @@ void write_heatmap_ply(const std::string& path, const SampleSet& samples, const 
     const bool hit = result.hit[k] != 0;
     const double d = hit ? result.signed_distance[k] : 0.0;
     const auto colour = hit ? diverging_colour(d / range) : std::array<unsigned char, 3>{128, 128, 128};
-    fmt::print(file.get(), "{} {} {} {} {} {} {} {} {} {}\n", float(p.x()), float(p.y()), float(p.z()),
-               float(n.x()), float(n.y()), float(n.z()), colour[0], colour[1], colour[2],
-               hit ? float(d) : 0.0f);
+    fmt::print(out, "{} {} {} {} {} {} {} {} {} {}\n", float(p.x()), float(p.y()), float(p.z()), float(n.x()),
+               float(n.y()), float(n.z()), colour[0], colour[1], colour[2], hit ? float(d) : 0.0f);
   }
-  finish(file, path);
 }
 
 }  // namespace roving

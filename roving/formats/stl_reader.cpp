@@ -9,6 +9,7 @@
 #include <unordered_map>
 
 #include "file_bytes.h"
+#include "polygon_sink.h"
 #include "roving/core/error.h"
 
 namespace roving {
@@ -53,6 +54,7 @@ LoadedMesh finish(const std::string& path, VertexMerger& merger, std::vector<Tri
 }
 
 LoadedMesh read_binary(const std::string& path, std::string_view bytes, std::uint32_t count) {
+  require_mesh_memory(path, count / 2, count);  // closed meshes have half as many vertices
   VertexMerger merger(3ull * count);
   std::vector<Triangle> triangles;
   triangles.reserve(count);

@@ -9,6 +9,7 @@
 #include <random>
 
 #include "roving/core/error.h"
+#include "roving/core/memory_budget.h"
 
 namespace roving {
 namespace {
@@ -186,6 +187,18 @@ Tessellation tessellate(const BezierSurface& surface, double max_error) {
     t.cells_per_side *= 2;
   t.chordal_error_bound = chordal_bound(surface, t.cells_per_side);
   const int n = t.cells_per_side;
+  // Every patch gets the resolution of the wiggliest (shared edges must meet), so one patch far
+  // larger or wigglier than the rest multiplies the whole count: refuse before the work.
+  const double triangle_count = 2.0 * n * n * double(surface.patches.size());
+  if (triangle_count > kMaxTessellationTriangles) {
+    throw Error(fmt::format(
+        "tessellating {} patches with a chordal error below {:.3g} needs {}x{} cells per patch ({:.3g} "
+        "triangles); at most {:.3g} are allowed (is one patch's control net far larger or wigglier than the "
+        "rest?)",
+        surface.patches.size(), max_error, n, n, triangle_count, double(kMaxTessellationTriangles)));
+  }
+  require_memory("tessellating Bezier patches", triangle_count * 100,
+                 fmt::format("{:.3g} triangles", triangle_count));
   std::vector<Vec3> positions;
   std::vector<Triangle> triangles;
   for (const BezierPatch& p : surface.patches) {
@@ -229,6 +242,7 @@ SampleSet bezier_samples(const BezierSurface& surface, const SampleSpec& spec, i
     samples.weights.push_back(weight);
   };
   if (spec.kind == SampleSpec::Kind::Area) {
+    require_memory("sampling", 81.0 * spec.count, fmt::format("{} samples", spec.count));
     // Patch by its (tessellated) area, then (u, v) uniform, accepted with probability
     // |S_u x S_v| / max: uniform by area on the exact surface.
     std::vector<double> cumulative, largest;
@@ -247,9 +261,23 @@ SampleSet bezier_samples(const BezierSurface& surface, const SampleSpec& spec, i
       cumulative.push_back(total);
       largest.push_back(1.5 * peak);  // margin over the sampled peak
     }
+    if (!(total > 0) || !std::isfinite(total)) {
+      throw Error(fmt::format("--samples {}: the Bezier patches have no area to sample (total {})",
+                              spec.to_string(), total));
+    }
     std::mt19937_64 random(spec.seed);
     const auto uniform = [&random] { return (random() >> 11) * 0x1.0p-53; };
+    // Acceptance is at least 1 / (1.5 * 256) per try; far more tries than that means a surface
+    // whose area sits in a few spikes, which the bound cannot sample fairly.
+    const double max_tries = 400.0 * spec.count + 1e6;
+    double tries = 0;
     while (samples.size() < spec.count) {
+      if (++tries > max_tries) {
+        throw Error(
+            fmt::format("--samples {}: gave up after {:.3g} tries with {} samples accepted: the patches' "
+                        "area is too unevenly spread to sample by rejection",
+                        spec.to_string(), tries, samples.size()));
+      }
       const std::size_t k = std::min<std::size_t>(
           std::upper_bound(cumulative.begin(), cumulative.end(), uniform() * total) - cumulative.begin(),
           cumulative.size() - 1);

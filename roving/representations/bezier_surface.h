@@ -31,6 +31,8 @@ struct Tessellation {
   int cells_per_side = 0;
   double chordal_error_bound = 0;
 };
+// Throws roving::Error when that needs more than kMaxTessellationTriangles.
+constexpr std::size_t kMaxTessellationTriangles = std::size_t{1} << 22;  // the teapot needs 2^20
 Tessellation tessellate(const BezierSurface& surface, double max_error);
 
 // Samples by exact evaluation: `faces` at the centres of a cells_per_side^2 parameter grid per

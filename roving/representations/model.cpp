@@ -34,6 +34,14 @@ ModelType type_by_extension(const std::string& path) {
   return ModelType::Mesh;  // load_mesh names the file if the extension is unknown
 }
 
+void require_extent(const Model& model, const std::string& path) {
+  const double extent = model.bounding_box().diagonal();
+  if (!(extent > 0) || !std::isfinite(extent)) {
+    throw Error(fmt::format("{}: the model has no extent (bounding-box diagonal {}); expected a shape", path,
+                            extent));
+  }
+}
+
 }  // namespace
 
 const char* to_string(ModelType type) {
@@ -77,7 +85,16 @@ Model load_model(const std::string& path, std::optional<ModelType> type) {
       for (const BezierPatch& p : model.bezier->patches) {
         for (const Vec3& c : p.control) net.extend(c);
       }
-      Tessellation t = tessellate(*model.bezier, 1e-4 * net.diagonal());
+      Tessellation t;
+      try {
+        t = tessellate(*model.bezier, 1e-4 * net.diagonal());
+      } catch (const Error& e) {
+        throw Error(fmt::format("{}: {}", path, e.what()));
+      }
+      if (t.mesh.triangle_count() == t.mesh.degenerate_triangle_count()) {
+        throw Error(fmt::format("{}: the {} Bezier patches have no area; expected a surface", path,
+                                model.bezier->patches.size()));
+      }
       model.mesh.path = path;
       model.mesh.mesh = std::move(t.mesh);
       model.bezier_cells = t.cells_per_side;
@@ -88,10 +105,20 @@ Model load_model(const std::string& path, std::optional<ModelType> type) {
       model.mesh.path = path;
       model.points = read_point_cloud(path);
       if (model.points.normals.empty()) {
-        model.points.normals = estimate_normals(model.points.positions);
+        require_extent(model, path);
+        try {
+          model.points.normals = estimate_normals(model.points.positions);
+        } catch (const Error& e) {
+          throw Error(fmt::format("{}: {}", path, e.what()));
+        }
         model.normals_estimated = true;
       }
       break;
+  }
+  const double extent = model.bounding_box().diagonal();
+  if (!(extent > 0) || !std::isfinite(extent)) {
+    throw Error(fmt::format("{}: the model has no extent (bounding-box diagonal {}); expected a shape", path,
+                            extent));
   }
   return model;
 }
