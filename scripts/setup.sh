@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
 # Installs the build and run-time dependencies from Debian 12's archive (idempotent, as root).
+# `setup.sh fuzz` adds clang and its sanitizer runtimes for the fuzz harnesses.
 set -euo pipefail
 packages=(
   build-essential cmake ninja-build pkg-config
@@ -8,6 +9,7 @@ packages=(
   libbenchmark-dev libgtest-dev libgmock-dev
   libcli11-dev nlohmann-json3-dev libfmt-dev libssl-dev
 )
+if [ "${1:-}" = fuzz ]; then packages+=(clang libclang-rt-14-dev); fi
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

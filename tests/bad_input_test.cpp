@@ -145,6 +145,15 @@ TEST_F(BadFiles, PlyPropertyBeforeAnyElement) {
                {"header line 3", "'element' line before its properties"});
 }
 
+TEST_F(BadFiles, PlyPropertyDeclaredTwice) {
+  // Found by fuzz_ply: 'x' twice and no 'z' passed the three-axes check.
+  expect_error(write("twice.ply",
+                     "ply\nformat binary_little_endian 1.0\nelement vertex 1\nproperty float x\n"
+                     "property float y\nproperty float x\nend_header\n" +
+                         std::string(12, '\0')),
+               {"property 'x' twice"});
+}
+
 TEST_F(BadFiles, PlyFormatWithoutVersion) {
   expect_error(
       write("noversion.ply", "ply\nformat ascii\nelement vertex 1\nproperty float x\nend_header\n0\n"),
@@ -265,6 +274,14 @@ TEST_F(BadFiles, StlTruncatedAsciiAndNonFinite) {
   std::string nan_facet = facet;
   nan_facet.replace(nan_facet.find("vertex 1 0 0"), 12, "vertex nan 0 0");
   expect_error(write("nan.stl", "solid t\n" + nan_facet + "endsolid\n"), {"non-finite"});
+}
+
+TEST_F(BadFiles, KeywordsAtTheVeryEndOfTheFile) {
+  // Found by fuzz_off: a header keyword with no line break after it read past the end.
+  expect_error(write("eof.off", "OFF BINARY"), {"truncated", "vertex count"});
+  expect_error(write("eof2.off", "\x0c\x0cOFF\x0c\x0c BINARY\x0c"), {"eof2.off"});
+  expect_error(write("eof.ply", "ply\nformat ascii 1.0\nelement vertex 0\nproperty float x\nend_header"),
+               {"x, y and z"});
 }
 
 TEST_F(BadFiles, DirectoryIsNamedAsSuch) {

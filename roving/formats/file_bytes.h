@@ -2,6 +2,7 @@
 // a directory, empty), and little helpers for bounded parsing.
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -35,7 +36,7 @@ class LineCursor {
   // (counted from `offset`).
   bool next_line(std::string_view& line);
   std::size_t line_number() const { return line_number_; }
-  std::size_t offset() const { return position_; }
+  std::size_t offset() const { return std::min(position_, text_.size()); }
   bool at_end() const { return position_ >= text_.size(); }
 
  private:

@@ -169,6 +169,14 @@ void assign_roles(const std::string& path, Header& header) {
       throw Error(fmt::format("{}: header line {}: element '{}' declares {} items but no property", path,
                               element.header_line, element.name, element.count));
     }
+    for (std::size_t i = 0; i < element.properties.size(); ++i) {
+      for (std::size_t j = 0; j < i; ++j) {
+        if (element.properties[i].name == element.properties[j].name) {
+          throw Error(fmt::format("{}: element '{}' declares property '{}' twice", path, element.name,
+                                  element.properties[i].name));
+        }
+      }
+    }
     for (Property& p : element.properties) {
       if (element.name == "vertex" && !p.is_list) {
         static const std::pair<const char*, Role> roles[] = {{"x", Role::X},   {"y", Role::Y},
