@@ -15,6 +15,7 @@
 
 #include "roving/core/error.h"
 #include "roving/core/geometry.h"
+#include "roving/core/normal_line.h"
 #include "roving/core/stopwatch.h"
 
 namespace roving {
@@ -48,9 +49,7 @@ class CrossedTriangles {
 
   bool go_further() const { return true; }
 
-  void intersection(const Segment& segment, const Primitive& primitive) {
-    if (CGAL::do_intersect(segment, *primitive.id())) crossed_.push_back(primitive.id());
-  }
+  void intersection(const Segment&, const Primitive& primitive) { crossed_.push_back(primitive.id()); }
 
   template <class Node>
   bool do_intersect(const Segment&, const Node& node) const {
@@ -90,11 +89,13 @@ class CgalAabbMethod final : public DistanceMethod {
     triangles_.clear();
     triangles_.reserve(test.triangle_count());
     const auto& p = test.positions();
+    // Every triangle, degenerate ones too: under the shared rule a zero-area triangle is a
+    // segment or a point, met by a line passing within the tolerance.
     for (const Triangle& t : test.triangles()) {
-      // CGAL's segment-triangle test asserts on degenerate triangles: they have no area to hit.
-      Kernel::Triangle_3 triangle(to_point(p[t[0]]), to_point(p[t[1]]), to_point(p[t[2]]));
-      if (!triangle.is_degenerate()) triangles_.push_back(triangle);
+      triangles_.emplace_back(to_point(p[t[0]]), to_point(p[t[1]]), to_point(p[t[2]]));
     }
+    test_ = &test;
+    tolerance_ = kNormalLineTolerance * test.bounding_box().diagonal();
     tree_.clear();
     tree_.insert(triangles_.begin(), triangles_.end());
     tree_.build();
@@ -119,48 +120,24 @@ class CgalAabbMethod final : public DistanceMethod {
   }
 
  private:
-  // Every crossing of the segment from x + h n to x - h n, as d = (p - x) . n in [-h, h]:
-  // first-hit keeps the largest d (the first crossing from x + h n), nearest the smallest |d|.
-  // The tree decides exactly which triangles the segment meets (filtered predicates, no
-  // constructions); each crossing is then the segment's line against the triangle's plane, in
-  // double. A triangle containing the segment (parallel, coplanar) contributes its overlap.
+  // The crossings of the normal line by the shared rule (roving/core/normal_line.h): the tree
+  // lists the triangles whose boxes, widened by the rule's tolerance, the segment from
+  // x + h n to x - h n meets; NormalLine decides each, exactly as the Embree reference does.
   std::optional<double> along_normal(const Vec3& x, const Vec3& n, const DistanceOptions& options) const {
     const double h = options.max_error;
     const Segment segment(to_point(x + h * n), to_point(x - h * n));
     thread_local std::vector<Primitive::Id> crossed;  // scratch, reused across queries
     crossed.clear();
-    CrossedTriangles traversal(segment, box_margin_, crossed);
+    CrossedTriangles traversal(segment, box_margin_ + tolerance_, crossed);
     tree_.traversal(segment, traversal);
-    std::optional<double> best;
-    const auto consider = [&](double d) {
-      d = std::clamp(d, -h, h);
-      const bool better =
-          !best || (options.semantics == Semantics::FirstHit ? d > *best : std::abs(d) < std::abs(*best));
-      if (better) best = d;
-    };
+    const NormalLine line(x, n, h, tolerance_);
+    CrossingChoice choice(options.semantics);
+    const auto& p = test_->positions();
     for (const Primitive::Id& id : crossed) {
-      const Kernel::Triangle_3& triangle = *id;
-      const Vec3 a = to_vec(triangle[0]);
-      const Vec3 normal = (to_vec(triangle[1]) - a).cross(to_vec(triangle[2]) - a);
-      const double denominator = normal.dot(n);
-      if (std::abs(denominator) > 1e-12 * normal.norm()) {
-        consider(normal.dot(a - x) / denominator);
-        continue;
-      }
-      const auto overlap = CGAL::intersection(segment, triangle);
-      if (!overlap) continue;
-      if (const Point* point = boost::get<Point>(&*overlap)) {
-        consider((to_vec(*point) - x).dot(n));
-      } else if (const Segment* part = boost::get<Segment>(&*overlap)) {
-        const double d0 = (to_vec(part->source()) - x).dot(n), d1 = (to_vec(part->target()) - x).dot(n);
-        if (options.semantics == Semantics::FirstHit) {
-          consider(std::max(d0, d1));
-        } else {
-          consider(d0 * d1 <= 0 ? 0.0 : (std::abs(d0) < std::abs(d1) ? d0 : d1));
-        }
-      }
+      const Triangle& t = test_->triangles()[id - triangles_.begin()];
+      if (const auto crossing = line.crossing(p[t[0]], p[t[1]], p[t[2]])) choice.consider(*crossing);
     }
-    return best;
+    return choice.chosen();
   }
 
   double closest(const Vec3& x, const Vec3& n) const {
@@ -169,7 +146,9 @@ class CgalAabbMethod final : public DistanceMethod {
 
   std::string name_;
   std::vector<Semantics> semantics_;
-  TriangleList triangles_;
+  TriangleList triangles_;  // in the test mesh's order: a primitive's offset is its face
+  const TriangleMesh* test_ = nullptr;
+  double tolerance_ = 0;
   Tree tree_;
   double box_margin_ = 0;
   bool built_ = false;

@@ -16,23 +16,6 @@
 namespace roving {
 namespace {
 
-bool under_ci() {
-  const char* ci = std::getenv("CI");
-  return ci && std::string(ci) == "true";
-}
-
-// GL tests skip, with the reason, only where no context can be made at all; under CI a missing
-// context is a failure.
-#define REQUIRE_GL_CONTEXT(backend)                                                             \
-  do {                                                                                          \
-    try {                                                                                       \
-      make_depth_renderer(backend);                                                             \
-    } catch (const Error& e) {                                                                  \
-      if (under_ci()) FAIL() << "no GL context under CI: " << e.what();                         \
-      GTEST_SKIP() << "no " << to_string(backend) << " context can be made here: " << e.what(); \
-    }                                                                                           \
-  } while (0)
-
 class EachBackend : public ::testing::TestWithParam<GlBackend> {
  protected:
   GlMethodOptions options() const {

@@ -8,8 +8,10 @@
 #include <filesystem>
 #include <string>
 
+#include "roving/core/error.h"
 #include "roving/core/triangle_mesh.h"
 #include "roving/formats/mesh_io.h"
+#include "roving/gl/depth_renderer.h"
 
 namespace roving::testing {
 
@@ -46,3 +48,23 @@ inline TriangleMesh box(double s) {
 }
 
 }  // namespace roving::testing
+
+namespace roving::testing {
+// True under CI (CI=true), where a missing GL context is a failure, never a skip.
+inline bool under_ci() {
+  const char* ci = std::getenv("CI");
+  return ci && std::string(ci) == "true";
+}
+}  // namespace roving::testing
+
+// GL tests skip, with the reason, only where no context can be made at all; under CI a missing
+// context is a failure.
+#define REQUIRE_GL_CONTEXT(backend)                                                                       \
+  do {                                                                                                    \
+    try {                                                                                                 \
+      ::roving::make_depth_renderer(backend);                                                             \
+    } catch (const ::roving::Error& e) {                                                                  \
+      if (::roving::testing::under_ci()) FAIL() << "no GL context under CI: " << e.what();                \
+      GTEST_SKIP() << "no " << ::roving::to_string(backend) << " context can be made here: " << e.what(); \
+    }                                                                                                     \
+  } while (0)

@@ -18,6 +18,9 @@
 namespace roving {
 
 // What "the distance of a sample x with normal n to M_C" means (DESIGN.md "Definitions").
+// Where the normal line meets M_C is decided by one rule for every exact method
+// (normal_line.h): closed triangles widened by 1e-6 of M_C's diagonal, so a line through a test
+// vertex, along a test edge or by a boundary vertex meets it whatever the rounding.
 enum class Semantics {
   // Paper: first surface met by the ray from x + h n along -n, t in [0, 2h]; d = h - t.
   FirstHit,

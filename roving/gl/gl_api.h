@@ -55,6 +55,7 @@ namespace roving::gl {
   X(PFNGLGENBUFFERSPROC, GenBuffers)                           \
   X(PFNGLBINDBUFFERPROC, BindBuffer)                           \
   X(PFNGLBUFFERDATAPROC, BufferData)                           \
+  X(PFNGLBUFFERSUBDATAPROC, BufferSubData)                     \
   X(PFNGLDELETEBUFFERSPROC, DeleteBuffers)                     \
   X(PFNGLVERTEXATTRIBPOINTERPROC, VertexAttribPointer)         \
   X(PFNGLVERTEXATTRIBIPOINTERPROC, VertexAttribIPointer)       \

@@ -2,7 +2,11 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
+#include <cmath>
+
 #include "gl_passes.h"
+#include "roving/core/normal_line.h"
 #include "roving/gl_methods/gl_methods.h"
 
 namespace roving {
@@ -12,12 +16,25 @@ namespace {
 constexpr std::size_t kTilesPerBatch = 512 * 512;
 constexpr std::size_t kSamplesPerChunk = 512;
 
+// The 2D distance, in the camera's normalised frame (units of the camera half-width), from the
+// central ray to the segment p-q.
+double distance_to_ray(const Vec3& p, const Vec3& q) {
+  const double du = q.x() - p.x(), dv = q.y() - p.y();
+  const double length_squared = du * du + dv * dv;
+  const double t =
+      length_squared > 0 ? std::clamp(-(p.x() * du + p.y() * dv) / length_squared, 0.0, 1.0) : 0.0;
+  return std::hypot(p.x() + t * du, p.y() + t * dv);
+}
+
 // Appends, for sample camera `camera` in tile `tile`, every triangle of the grid cells along its
-// view volume that can reach the volume, in the camera's normalised frame. `stamp` marks
-// triangles already seen for this camera (cells share triangles).
+// view volume that can reach the volume, in the camera's normalised frame; and, where an edge or
+// a vertex passes within the camera's pixel, that edge as a line and that vertex as a point, so
+// that the ray meets a closed triangle widened by the pixel's half-width (the shared rule of
+// normal_line.h, whose tolerance the half-width is) whatever the fill rule decides on an edge.
+// `stamp` marks triangles already seen for this camera (cells share triangles).
 void emit_triangles(const TriangleMesh& test, const TriangleGrid& grid, const OrthoCamera& camera,
                     std::uint32_t tile, std::vector<std::uint32_t>& stamp, std::uint32_t mark,
-                    std::vector<TileVertex>& out) {
+                    TileBatch& out) {
   const Vec3 a = camera.centre - camera.half_depth * camera.forward;
   const Vec3 b = camera.centre + camera.half_depth * camera.forward;
   grid.for_each_along(a, b, [&](std::uint32_t face) {
@@ -34,7 +51,19 @@ void emit_triangles(const TriangleMesh& test, const TriangleGrid& grid, const Or
         return;
       }
     }
-    for (const Vec3& p : q) out.push_back({float(p.x()), float(p.y()), float(p.z()), tile});
+    const auto vertex = [&](const Vec3& p) {
+      return TileVertex{float(p.x()), float(p.y()), float(p.z()), tile};
+    };
+    for (const Vec3& p : q) out.triangles.push_back(vertex(p));
+    // Lines and points reach at most half a pixel (one normalised unit) across; 1.5 leaves room.
+    for (int e = 0; e < 3; ++e) {
+      const Vec3 &p = q[e], &r = q[(e + 1) % 3];
+      if (distance_to_ray(p, r) <= 1.5) {
+        out.lines.push_back(vertex(p));
+        out.lines.push_back(vertex(r));
+      }
+      if (std::abs(p.x()) <= 1.5 && std::abs(p.y()) <= 1.5) out.points.push_back(vertex(p));
+    }
   });
 }
 
@@ -59,10 +88,10 @@ std::vector<std::optional<double>> rove(GlScene& scene, const SampleSet& samples
                                         const std::vector<std::uint32_t>& indices, double max_error,
                                         GlReport& report) {
   const TriangleMesh& test = *scene.test;
-  // The camera's half-width: one pixel across. Only its centre (the central ray) is read, so
-  // it is kept tiny: rasteriser subpixel snapping (1/256 pixel in llvmpipe) then moves the ray
-  // by at most 1e-6 of a grid cell.
-  const double half_width = 1e-4 * scene.grid->cell_size();
+  // The camera's half-width: half a pixel across, and the shared rule's tolerance, which the
+  // lines and points drawn for edges and vertices near the ray reach (normal_line.h). Tiny:
+  // rasteriser subpixel snapping (1/256 pixel in llvmpipe) moves the ray by 1/128 of it.
+  const double half_width = kNormalLineTolerance * test.bounding_box().diagonal();
   report.camera_half_width = half_width;
   report.camera_depth_step = 2 * max_error * std::ldexp(1.0, -24);
   report.sample_cameras += indices.size();
@@ -72,7 +101,7 @@ std::vector<std::optional<double>> rove(GlScene& scene, const SampleSet& samples
   for (std::size_t first = 0; first < indices.size(); first += kTilesPerBatch) {
     const std::size_t count = std::min(kTilesPerBatch, indices.size() - first);
     const std::size_t chunks = (count + kSamplesPerChunk - 1) / kSamplesPerChunk;
-    std::vector<std::vector<TileVertex>> chunk_vertices(chunks);
+    std::vector<TileBatch> chunk_batches(chunks);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, chunks),
                       [&](const tbb::blocked_range<std::size_t>& range) {
                         thread_local std::vector<std::uint32_t> stamp;
@@ -90,16 +119,17 @@ std::vector<std::optional<double>> rove(GlScene& scene, const SampleSet& samples
                             const OrthoCamera camera = OrthoCamera::looking_along(
                                 -samples.normals[k], samples.positions[k], half_width, half_width, max_error);
                             emit_triangles(test, *scene.grid, camera, static_cast<std::uint32_t>(tile), stamp,
-                                           mark, chunk_vertices[chunk]);
+                                           mark, chunk_batches[chunk]);
                           }
                         }
                       });
-    std::vector<TileVertex> vertices;
-    std::size_t total = 0;
-    for (const auto& v : chunk_vertices) total += v.size();
-    vertices.reserve(total);
-    for (const auto& v : chunk_vertices) vertices.insert(vertices.end(), v.begin(), v.end());
-    scene.renderer->render_tiles(vertices, count, depth);
+    TileBatch batch;
+    for (const TileBatch& part : chunk_batches) {
+      batch.triangles.insert(batch.triangles.end(), part.triangles.begin(), part.triangles.end());
+      batch.lines.insert(batch.lines.end(), part.lines.begin(), part.lines.end());
+      batch.points.insert(batch.points.end(), part.points.begin(), part.points.end());
+    }
+    scene.renderer->render_tiles(batch, count, depth);
     for (std::size_t tile = 0; tile < count; ++tile) {
       // Depth z is t / 2h along the ray from x + h n; d = h - t. 1 is the cleared, empty tile.
       if (depth[tile] < 1.0f) out[first + tile] = max_error - double(depth[tile]) * 2 * max_error;

@@ -1,0 +1,62 @@
+// The one rule for where a sample's normal line meets the test surface (DESIGN.md "distance
+// semantics"), shared by every exact method so that they agree sample by sample, also where the
+// line passes through a test vertex, along a test edge, or by a boundary of an open mesh.
+//
+// The rule. The normal line of a sample x with unit normal n is {x + s n}; s is the signed
+// distance d. A triangle of the test surface is met where the line passes through the closed
+// triangle or within `tolerance` of it (measured across the line): at the point of the triangle
+// nearest the line, seen along n, and d is that point's s. So a line through a vertex or along
+// an edge meets it (whatever the rounding of either: the triangle is closed and widened by the
+// tolerance), a line through the gap of a crack narrower than twice the tolerance meets it, and
+// a line passing farther than the tolerance outside a boundary edge does not. A triangle edge-on
+// to the line meets it along an interval of s. Crossings count where s lies in [-h, h].
+// first-hit takes the largest such s (the first met from x + h n), nearest the smallest |s|.
+// The tolerance is kNormalLineTolerance of the test model's bounding-box diagonal: far above the
+// rounding of any input (1e-16 relative), far below any distance worth measuring, and the
+// half-width of a surface-roving camera, whose pixel is where GL decides the same question.
+#pragma once
+
+#include <optional>
+
+#include "roving/core/distance_method.h"
+#include "roving/core/triangle_mesh.h"
+
+namespace roving {
+
+constexpr double kNormalLineTolerance = 1e-6;
+
+// The normal line of one sample, with the frame the crossings are decided in.
+class NormalLine {
+ public:
+  // `tolerance` in model units (kNormalLineTolerance times the test model's diagonal).
+  NormalLine(const Vec3& x, const Vec3& n, double max_error, double tolerance);
+
+  // The range of s over which the line meets the closed triangle (a, b, c) widened by the
+  // tolerance, clipped to [-h, h]; nullopt where it does not.
+  struct Interval {
+    double low, high;
+  };
+  std::optional<Interval> crossing(const Vec3& a, const Vec3& b, const Vec3& c) const;
+
+  const Vec3& origin() const { return x_; }
+  const Vec3& direction() const { return n_; }
+
+ private:
+  Vec3 x_, n_, u_, v_;  // u, v: unit vectors across the line
+  double h_, tolerance_;
+};
+
+// Keeps the crossing a semantics chooses among all those of one line.
+class CrossingChoice {
+ public:
+  explicit CrossingChoice(Semantics semantics) : semantics_(semantics) {}
+  void consider(const NormalLine::Interval& crossing);
+  // The chosen d; nullopt when no crossing was considered (a no-hit).
+  const std::optional<double>& chosen() const { return best_; }
+
+ private:
+  Semantics semantics_;
+  std::optional<double> best_;
+};
+
+}  // namespace roving

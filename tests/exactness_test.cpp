@@ -1,0 +1,145 @@
+// Exact means exact: Embree, CGAL and GL roving implement one first-hit rule (normal_line.h),
+// so a model against itself has no no-hit and the same d from every exact method on every
+// sample, and lines through test vertices get the same hit flag from all three.
+#include <gtest/gtest.h>
+
+#include "analytic.h"
+#include "roving/core/error.h"
+#include "roving/core/normal_line.h"
+#include "roving/gl_methods/agreement.h"
+#include "roving/registry/method_registry.h"
+#include "roving/representations/model.h"
+#include "roving/representations/voxel_surface.h"
+#include "test_support.h"
+#include "voxelize.h"
+
+namespace roving {
+namespace {
+
+TEST(NormalLine, ClosedTrianglesWidenedByTheTolerance) {
+  const Vec3 a(0, 0, 0), b(1, 0, 0), c(0, 1, 0);
+  const auto s_of = [&](const Vec3& x, double tolerance) {
+    const auto crossing = NormalLine(x, Vec3(0, 0, 1), 1.0, tolerance).crossing(a, b, c);
+    return crossing ? std::optional<double>(crossing->high) : std::nullopt;
+  };
+  EXPECT_DOUBLE_EQ(*s_of({0.2, 0.2, 0.5}, 0), -0.5);  // through the interior: d = -0.5
+  EXPECT_TRUE(s_of({0, 0, 0}, 0));                    // through a vertex, no tolerance
+  EXPECT_TRUE(s_of({0.5, 0, 0}, 0));                  // along an edge
+  EXPECT_TRUE(s_of({0.5, 0.5, 0}, 0));                // through the hypotenuse
+  EXPECT_FALSE(s_of({-1e-9, 0.5, 0}, 0));             // just outside
+  EXPECT_TRUE(s_of({-1e-9, 0.5, 0}, 2e-9));           // within the tolerance
+  EXPECT_FALSE(s_of({-3e-9, 0.5, 0}, 2e-9));
+  EXPECT_FALSE(s_of({0.2, 0.2, 1.5}, 0));  // beyond h
+  // Edge-on: the line in the triangle's plane meets it over an interval of s.
+  const auto edge_on =
+      NormalLine({0.25, 0, 0.5}, Vec3(0, 1, 0), 2.0, 1e-9).crossing({0, 0, 0.5}, {1, 0, 0.5}, {0, 1, 0.5});
+  ASSERT_TRUE(edge_on);
+  EXPECT_NEAR(edge_on->low, 0, 1e-15);
+  EXPECT_NEAR(edge_on->high, 0.75, 1e-15);
+}
+
+TEST(NormalLine, NearestPrefersTheOuterOfTwoEquallyNearCrossings) {
+  for (bool reversed : {false, true}) {
+    CrossingChoice choice(Semantics::Nearest);
+    choice.consider({reversed ? 0.1 : -0.1, reversed ? 0.1 : -0.1});
+    choice.consider({reversed ? -0.1 : 0.1, reversed ? -0.1 : 0.1});
+    EXPECT_EQ(*choice.chosen(), 0.1);
+  }
+}
+
+struct SelfCase {
+  std::string name;
+  Model model;
+};
+
+std::vector<SelfCase> self_cases() {
+  std::vector<SelfCase> cases;
+  for (const char* file : {"stanford-bunny.obj", "rocker-arm.obj", "rocker-arm-80k.ply", "fandisk.obj",
+                           "igea.ply", "teapot.bpt"}) {
+    cases.push_back({file, load_model(testing::data_file(file))});
+  }
+  Model voxels;
+  voxels.type = ModelType::Voxels;
+  voxels.voxels = voxelize_thin(testing::bunny(), 48);
+  voxels.mesh.mesh = exposed_faces(*voxels.voxels);
+  cases.push_back({"bunny voxels 48^3", std::move(voxels)});
+  return cases;
+}
+
+// Every real model against itself: no no-hit, and Embree and CGAL give the same d on every
+// sample under every semantics; GL roving the same flags and d within its depth tolerance.
+TEST(Exactness, EveryModelAgainstItselfHasNoNoHitAndOneAnswer) {
+  const auto embree = make_method("embree"), cgal = make_method("cgal");
+  REQUIRE_GL_CONTEXT(GlBackend::OSMesa);
+  const auto roving = make_method("roving");
+  for (const SelfCase& c : self_cases()) {
+    const TriangleMesh& surface = test_surface(c.model);
+    embree->build(surface);
+    cgal->build(surface);
+    roving->build(surface);
+    const double h = 0.05 * c.model.bounding_box().diagonal();
+    for (const char* kind : {"faces", "vertices", "area:20000"}) {
+      if (c.model.type == ModelType::Voxels && std::string(kind) == "vertices") continue;
+      const SampleSet samples = reference_samples(c.model, parse_sample_spec(kind));
+      for (Semantics semantics : {Semantics::FirstHit, Semantics::Nearest, Semantics::Closest}) {
+        const DistanceOptions options{semantics, h};
+        const DistanceResult e = embree->measure(samples, options), g = cgal->measure(samples, options);
+        EXPECT_EQ(e.hit_count(), samples.size()) << c.name << " " << kind << " " << to_string(semantics);
+        std::size_t differ = 0;
+        for (std::size_t k = 0; k < samples.size(); ++k) {
+          differ += e.hit[k] != g.hit[k] || (e.hit[k] && e.signed_distance[k] != g.signed_distance[k]);
+        }
+        // Closest-point distances come from two different searches: equal to rounding.
+        if (semantics == Semantics::Closest) {
+          EXPECT_EQ(agreement(e, g, 1e-12 * h).close_fraction(), 1.0) << c.name << " " << kind;
+        } else {
+          EXPECT_EQ(differ, 0u) << c.name << " " << kind << " " << to_string(semantics);
+        }
+        if (semantics == Semantics::FirstHit) {
+          const DistanceResult r = roving->measure(samples, options);
+          EXPECT_EQ(r.hit_count(), samples.size()) << c.name << " " << kind << " roving";
+          const Agreement a = agreement(e, r, roving_tolerance(*r.gl));
+          EXPECT_EQ(a.same_flag, a.samples) << c.name << " " << kind << " roving";
+          // The depth tolerance assumes surfaces within 84 degrees of facing the camera;
+          // steeper ones are the 0.5% that roving's own gate leaves.
+          EXPECT_GE(a.close_fraction(), 0.995) << c.name << " " << kind << " roving";
+        }
+      }
+    }
+  }
+}
+
+// Vertex samples against a copy whose vertices moved along their normals by a smooth field:
+// every normal line passes through a test vertex (up to rounding). The three exact methods
+// give the same hit flag on >= 99.99% of samples.
+TEST(Exactness, LinesThroughTestVerticesGetOneHitFlag) {
+  const auto embree = make_method("embree"), cgal = make_method("cgal");
+  REQUIRE_GL_CONTEXT(GlBackend::OSMesa);
+  const auto roving = make_method("roving");
+  for (const char* file : {"stanford-bunny.obj", "fandisk.obj", "rocker-arm.obj"}) {
+    const TriangleMesh reference = load_mesh(testing::data_file(file)).mesh;
+    const double diagonal = reference.bounding_box().diagonal();
+    for (double amplitude : {0.002, 0.01}) {
+      const TriangleMesh test = smoothly_perturbed(reference, amplitude * diagonal, 0.2 * diagonal);
+      const SampleSet samples = make_samples(reference, parse_sample_spec("vertices"));
+      const DistanceOptions options{Semantics::FirstHit, 0.02 * diagonal};
+      embree->build(test);
+      cgal->build(test);
+      const DistanceResult e = embree->measure(samples, options), g = cgal->measure(samples, options);
+      const Agreement cpu = agreement(e, g, 0.0);
+      EXPECT_EQ(cpu.same_flag, cpu.samples) << file << " " << amplitude;
+      EXPECT_EQ(cpu.close, cpu.common_hits) << file << " " << amplitude;
+      {
+        roving->build(test);
+        const DistanceResult r = roving->measure(samples, options);
+        const Agreement gl = agreement(e, r, roving_tolerance(*r.gl));
+        EXPECT_GE(gl.same_flag_fraction(), 0.9999)
+            << file << " " << amplitude << ": " << gl.samples - gl.same_flag << " of " << gl.samples
+            << " differ";
+      }
+    }
+  }
+}
+
+}  // namespace
+}  // namespace roving
