@@ -95,13 +95,12 @@ TEST(Voxels, GridAlignedBoxIsAtZeroDistance) {
     for (const auto& [samples, test] : {std::pair{&box_samples, &faces}, std::pair{&voxel_samples, &box}}) {
       const DistanceResult r = measure_distances(*method, *test, *samples, {s, 0.5});
       for (std::size_t k = 0; k < samples->size(); ++k) {
-        // Viewpoint sampling alone leaves a sample within half a pixel of a silhouette
-        // unresolved (cooperative then roves it); every other method must hit.
+        // Viewpoint sampling alone leaves unresolved what a view cannot certify to 1%: here
+        // every sample, d being 0 (cooperative then roves them); every other method must hit.
         if (name == "viewpoint" && !r.hit[k]) continue;
         ASSERT_TRUE(r.hit[k]) << name;
         EXPECT_NEAR(r.signed_distance[k], 0.0, tolerance_of(r)) << name << " sample " << k;
       }
-      if (name == "viewpoint") EXPECT_GE(r.hit_count(), 0.9 * samples->size());
       if (r.gl && r.gl->views_rendered && samples == &voxel_samples) {
         EXPECT_EQ(r.gl->views_rendered, 6u) << "axis normals: the 6 axis views";
         EXPECT_TRUE(r.gl->axis_views);

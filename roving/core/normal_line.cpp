@@ -83,10 +83,11 @@ std::optional<NormalLine::Interval> NormalLine::crossing(const Vec3& a, const Ve
       }
     }
   }
-  if (!met) return std::nullopt;
-  low = std::max(low, -h_);
-  high = std::min(high, h_);
-  if (low > high) return std::nullopt;
+  // The view volume's ends are widened by the tolerance too (a vertex exactly at |d| = h is
+  // met whatever the rounding), and d is then clamped into [-h, h].
+  if (!met || high < -h_ - tolerance_ || low > h_ + tolerance_) return std::nullopt;
+  low = std::clamp(low, -h_, h_);
+  high = std::clamp(high, -h_, h_);
   return Interval{low, high};
 }
 

@@ -9,7 +9,8 @@
 // an edge meets it (whatever the rounding of either: the triangle is closed and widened by the
 // tolerance), a line through the gap of a crack narrower than twice the tolerance meets it, and
 // a line passing farther than the tolerance outside a boundary edge does not. A triangle edge-on
-// to the line meets it along an interval of s. Crossings count where s lies in [-h, h].
+// to the line meets it along an interval of s. Crossings count where s lies in [-h, h], widened
+// by the tolerance too and then clamped into it.
 // first-hit takes the largest such s (the first met from x + h n), nearest the smallest |s|.
 // The tolerance is kNormalLineTolerance of the test model's bounding-box diagonal: far above the
 // rounding of any input (1e-16 relative), far below any distance worth measuring, and the

@@ -40,15 +40,6 @@ struct TileVertex {
   std::uint32_t tile;
 };
 
-struct TileBatch {
-  std::vector<TileVertex> triangles, lines, points;
-  void clear() {
-    triangles.clear();
-    lines.clear();
-    points.clear();
-  }
-};
-
 struct RendererInfo {
   std::string backend, vendor, renderer, version;
 };
@@ -67,13 +58,12 @@ class DepthRenderer {
   // buffer and returns it row by row from the bottom (x along `right`); 1 where nothing was drawn.
   virtual void render_view(const OrthoCamera& camera, int resolution, std::vector<float>& depth) = 0;
 
-  // Draws a batch into a grid of one-pixel tiles, tile k at column k % columns, row k / columns,
-  // each clipped to its own view volume, and returns one depth per tile (1: nothing drawn).
-  // The pixel centre of tile k is its camera's central ray, so the depth read back is that
-  // ray's first crossing of what was drawn: triangles (three vertices each), and edges (two
-  // each) and vertices (one each) near the ray, so that a ray through an edge or a vertex is
-  // covered whatever the rasteriser's fill rule (lines and points reach half a pixel across).
-  virtual void render_tiles(const TileBatch& batch, std::size_t tile_count, std::vector<float>& depth) = 0;
+  // Draws `vertices` (triangles, three consecutive vertices each) into a grid of one-pixel tiles,
+  // tile k at column k % columns, row k / columns, each clipped to its own view volume, and
+  // returns one depth per tile (1: nothing drawn). The pixel centre of tile k is its camera's
+  // central ray, so the depth read back is that ray's first crossing of what was drawn.
+  virtual void render_tiles(const std::vector<TileVertex>& vertices, std::size_t tile_count,
+                            std::vector<float>& depth) = 0;
 };
 
 // Creates an offscreen context and its renderer. OSMesa gives Mesa's llvmpipe; EGL tries the

@@ -55,7 +55,6 @@ namespace roving::gl {
   X(PFNGLGENBUFFERSPROC, GenBuffers)                           \
   X(PFNGLBINDBUFFERPROC, BindBuffer)                           \
   X(PFNGLBUFFERDATAPROC, BufferData)                           \
-  X(PFNGLBUFFERSUBDATAPROC, BufferSubData)                     \
   X(PFNGLDELETEBUFFERSPROC, DeleteBuffers)                     \
   X(PFNGLVERTEXATTRIBPOINTERPROC, VertexAttribPointer)         \
   X(PFNGLVERTEXATTRIBIPOINTERPROC, VertexAttribIPointer)       \

@@ -142,7 +142,8 @@ class GlDepthRenderer final : public DepthRenderer {
     check("rendering a view");
   }
 
-  void render_tiles(const TileBatch& batch, std::size_t tile_count, std::vector<float>& depth) override {
+  void render_tiles(const std::vector<TileVertex>& vertices, std::size_t tile_count,
+                    std::vector<float>& depth) override {
     const std::size_t max_tiles = static_cast<std::size_t>(max_size_) * max_size_;
     if (tile_count == 0 || tile_count > max_tiles) {
       throw Error(fmt::format("gl: a tile batch must hold 1..{} tiles, found {}", max_tiles, tile_count));
@@ -150,24 +151,14 @@ class GlDepthRenderer final : public DepthRenderer {
     const int columns = std::min<int>(max_size_, static_cast<int>(std::ceil(std::sqrt(double(tile_count)))));
     const int rows = static_cast<int>((tile_count + columns - 1) / columns);
     bind_framebuffer(columns, rows);
-    const std::size_t total = batch.triangles.size() + batch.lines.size() + batch.points.size();
-    if (total > 0) {
+    if (!vertices.empty()) {
       gl_.UseProgram(tile_program_);
       gl_.Uniform2i(gl_.GetUniformLocation(tile_program_, "grid"), columns, rows);
       for (int plane = 0; plane < 4; ++plane) gl_.Enable(GL_CLIP_DISTANCE0 + plane);
       gl_.BindVertexArray(tile_vao_);
       gl_.BindBuffer(GL_ARRAY_BUFFER, tile_vertices_);
-      gl_.BufferData(GL_ARRAY_BUFFER, total * sizeof(TileVertex), nullptr, GL_STREAM_DRAW);
-      GLint first = 0;
-      for (const auto& [mode, part] :
-           {std::pair{GLenum(GL_TRIANGLES), &batch.triangles}, std::pair{GLenum(GL_LINES), &batch.lines},
-            std::pair{GLenum(GL_POINTS), &batch.points}}) {
-        if (part->empty()) continue;
-        gl_.BufferSubData(GL_ARRAY_BUFFER, first * sizeof(TileVertex), part->size() * sizeof(TileVertex),
-                          part->data());
-        gl_.DrawArrays(mode, first, static_cast<GLsizei>(part->size()));
-        first += static_cast<GLint>(part->size());
-      }
+      gl_.BufferData(GL_ARRAY_BUFFER, vertices.size() * sizeof(TileVertex), vertices.data(), GL_STREAM_DRAW);
+      gl_.DrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(vertices.size()));
       for (int plane = 0; plane < 4; ++plane) gl_.Disable(GL_CLIP_DISTANCE0 + plane);
     }
     read_depth(columns, rows, depth);

@@ -20,6 +20,11 @@ struct GlMethodOptions {
   // whether the along-view difference is turned into the along-normal one by cos(n, view).
   bool bilinear = true;
   bool cosine_correction = true;
+  // Instead of both: march the sample's normal line across the view's depth image to its first
+  // crossing of the visible surface (viewpoint_sampling.cpp), accepted only where that is
+  // certainly the line's first crossing of M_C. The default: its error is bounded on every
+  // kind of pair (results/gl-accuracy.md), where the cosine correction's is not.
+  bool normal_line = true;
 };
 
 // Parses "HxV" (each 1..720); throws roving::Error naming `--views` otherwise.

@@ -12,31 +12,71 @@
 namespace roving {
 namespace {
 
+// If the segment p-q (normalised camera frame) passes within the pixel, a strip of half-width 1
+// around its part near the pixel (two triangles, depth varying along it), and an octagon of
+// radius 1 around p if p is near (six triangles at p's depth): the points within one
+// half-width of the edge, as the shared rule widens it.
+template <class Emit>
+void widen_edge(const Vec3& p, const Vec3& q, const Emit& emit) {
+  constexpr double kWindow = 2;  // clip to this square first: small, exact coordinates
+  if (std::abs(p.x()) <= kWindow && std::abs(p.y()) <= kWindow) {
+    constexpr int kSides = 8;
+    Vec3 ring[kSides];
+    for (int i = 0; i < kSides; ++i) {
+      const double angle = 2 * M_PI * i / kSides;
+      ring[i] = Vec3(p.x() + std::cos(angle), p.y() + std::sin(angle), p.z());
+    }
+    for (int i = 1; i + 1 < kSides; ++i) {
+      emit(ring[0]);
+      emit(ring[i]);
+      emit(ring[i + 1]);
+    }
+  }
+  // Liang-Barsky: the part of p-q inside the window.
+  const Vec3 delta = q - p;
+  double enter = 0, leave = 1;
+  for (int axis = 0; axis < 2; ++axis) {
+    for (const double bound : {-kWindow, kWindow}) {
+      const double distance = bound - p[axis];
+      if (delta[axis] == 0) {
+        if ((bound < 0 && distance > 0) || (bound > 0 && distance < 0)) return;
+        continue;
+      }
+      const double t = distance / delta[axis];
+      if ((bound < 0) == (delta[axis] > 0)) {
+        enter = std::max(enter, t);
+      } else {
+        leave = std::min(leave, t);
+      }
+    }
+  }
+  if (enter >= leave) return;
+  const Vec3 start = p + enter * delta, end = p + leave * delta;
+  const double length = std::hypot(end.x() - start.x(), end.y() - start.y());
+  if (!(length > 1e-9)) return;  // seen end-on: the octagons at its ends cover it
+  const Vec3 across((start.y() - end.y()) / length, (end.x() - start.x()) / length, 0);
+  const Vec3 corners[4] = {start + across, end + across, end - across, start - across};
+  for (const int i : {0, 1, 2, 0, 2, 3}) emit(corners[i]);
+}
+
 // Tiles per draw: 512 x 512, well inside every GL's framebuffer and a few MB of vertices.
 constexpr std::size_t kTilesPerBatch = 512 * 512;
 constexpr std::size_t kSamplesPerChunk = 512;
 
-// The 2D distance, in the camera's normalised frame (units of the camera half-width), from the
-// central ray to the segment p-q.
-double distance_to_ray(const Vec3& p, const Vec3& q) {
-  const double du = q.x() - p.x(), dv = q.y() - p.y();
-  const double length_squared = du * du + dv * dv;
-  const double t =
-      length_squared > 0 ? std::clamp(-(p.x() * du + p.y() * dv) / length_squared, 0.0, 1.0) : 0.0;
-  return std::hypot(p.x() + t * du, p.y() + t * dv);
-}
-
 // Appends, for sample camera `camera` in tile `tile`, every triangle of the grid cells along its
-// view volume that can reach the volume, in the camera's normalised frame; and, where an edge or
-// a vertex passes within the camera's pixel, that edge as a line and that vertex as a point, so
-// that the ray meets a closed triangle widened by the pixel's half-width (the shared rule of
-// normal_line.h, whose tolerance the half-width is) whatever the fill rule decides on an edge.
+// view volume that can reach the volume, in the camera's normalised frame (x, y in units of the
+// camera half-width, which is the shared rule's tolerance: normal_line.h). Beside each triangle,
+// its edges and vertices that pass within the pixel are widened into thin strips and small
+// octagons one half-width across (built in double, here), so that the rasteriser covers the
+// pixel centre wherever the central ray passes through the closed triangle or within the
+// tolerance of it, whatever its fill rule decides on an edge.
 // `stamp` marks triangles already seen for this camera (cells share triangles).
 void emit_triangles(const TriangleMesh& test, const TriangleGrid& grid, const OrthoCamera& camera,
                     std::uint32_t tile, std::vector<std::uint32_t>& stamp, std::uint32_t mark,
-                    TileBatch& out) {
+                    std::vector<TileVertex>& out) {
   const Vec3 a = camera.centre - camera.half_depth * camera.forward;
   const Vec3 b = camera.centre + camera.half_depth * camera.forward;
+  const auto emit = [&](const Vec3& p) { out.push_back({float(p.x()), float(p.y()), float(p.z()), tile}); };
   grid.for_each_along(a, b, [&](std::uint32_t face) {
     if (stamp[face] == mark) return;
     stamp[face] = mark;
@@ -51,19 +91,8 @@ void emit_triangles(const TriangleMesh& test, const TriangleGrid& grid, const Or
         return;
       }
     }
-    const auto vertex = [&](const Vec3& p) {
-      return TileVertex{float(p.x()), float(p.y()), float(p.z()), tile};
-    };
-    for (const Vec3& p : q) out.triangles.push_back(vertex(p));
-    // Lines and points reach at most half a pixel (one normalised unit) across; 1.5 leaves room.
-    for (int e = 0; e < 3; ++e) {
-      const Vec3 &p = q[e], &r = q[(e + 1) % 3];
-      if (distance_to_ray(p, r) <= 1.5) {
-        out.lines.push_back(vertex(p));
-        out.lines.push_back(vertex(r));
-      }
-      if (std::abs(p.x()) <= 1.5 && std::abs(p.y()) <= 1.5) out.points.push_back(vertex(p));
-    }
+    for (const Vec3& p : q) emit(p);
+    for (int e = 0; e < 3; ++e) widen_edge(q[e], q[(e + 1) % 3], emit);
   });
 }
 
@@ -93,7 +122,10 @@ std::vector<std::optional<double>> rove(GlScene& scene, const SampleSet& samples
   // rasteriser subpixel snapping (1/256 pixel in llvmpipe) moves the ray by 1/128 of it.
   const double half_width = kNormalLineTolerance * test.bounding_box().diagonal();
   report.camera_half_width = half_width;
-  report.camera_depth_step = 2 * max_error * std::ldexp(1.0, -24);
+  // The view volume reaches the tolerance beyond h at both ends too (normal_line.h); d is then
+  // clamped into [-h, h].
+  const double half_depth = max_error + half_width;
+  report.camera_depth_step = 2 * half_depth * std::ldexp(1.0, -24);
   report.sample_cameras += indices.size();
 
   std::vector<std::optional<double>> out(indices.size());
@@ -101,38 +133,38 @@ std::vector<std::optional<double>> rove(GlScene& scene, const SampleSet& samples
   for (std::size_t first = 0; first < indices.size(); first += kTilesPerBatch) {
     const std::size_t count = std::min(kTilesPerBatch, indices.size() - first);
     const std::size_t chunks = (count + kSamplesPerChunk - 1) / kSamplesPerChunk;
-    std::vector<TileBatch> chunk_batches(chunks);
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, chunks),
-                      [&](const tbb::blocked_range<std::size_t>& range) {
-                        thread_local std::vector<std::uint32_t> stamp;
-                        thread_local std::uint32_t mark = 0;
-                        if (stamp.size() < test.triangle_count())
-                          stamp.assign(test.triangle_count(), mark = 0);
-                        for (std::size_t chunk = range.begin(); chunk != range.end(); ++chunk) {
-                          const std::size_t end = std::min(count, (chunk + 1) * kSamplesPerChunk);
-                          for (std::size_t tile = chunk * kSamplesPerChunk; tile < end; ++tile) {
-                            const std::uint32_t k = indices[first + tile];
-                            if (++mark == 0)
-                              std::fill(stamp.begin(), stamp.end(), mark++);  // wrapped: start afresh
-                            // Camera at x + h n looking along -n; its box spans t in [0, 2h] (depth 0 at x +
-                            // h n).
-                            const OrthoCamera camera = OrthoCamera::looking_along(
-                                -samples.normals[k], samples.positions[k], half_width, half_width, max_error);
-                            emit_triangles(test, *scene.grid, camera, static_cast<std::uint32_t>(tile), stamp,
-                                           mark, chunk_batches[chunk]);
-                          }
-                        }
-                      });
-    TileBatch batch;
-    for (const TileBatch& part : chunk_batches) {
-      batch.triangles.insert(batch.triangles.end(), part.triangles.begin(), part.triangles.end());
-      batch.lines.insert(batch.lines.end(), part.lines.begin(), part.lines.end());
-      batch.points.insert(batch.points.end(), part.points.begin(), part.points.end());
-    }
-    scene.renderer->render_tiles(batch, count, depth);
+    std::vector<std::vector<TileVertex>> chunk_vertices(chunks);
+    tbb::parallel_for(
+        tbb::blocked_range<std::size_t>(0, chunks), [&](const tbb::blocked_range<std::size_t>& range) {
+          thread_local std::vector<std::uint32_t> stamp;
+          thread_local std::uint32_t mark = 0;
+          if (stamp.size() < test.triangle_count()) stamp.assign(test.triangle_count(), mark = 0);
+          for (std::size_t chunk = range.begin(); chunk != range.end(); ++chunk) {
+            const std::size_t end = std::min(count, (chunk + 1) * kSamplesPerChunk);
+            for (std::size_t tile = chunk * kSamplesPerChunk; tile < end; ++tile) {
+              const std::uint32_t k = indices[first + tile];
+              if (++mark == 0) std::fill(stamp.begin(), stamp.end(), mark++);  // wrapped: start afresh
+              // Camera at x + h n looking along -n; its box spans t in [0, 2h] (depth 0 at x +
+              // h n).
+              const OrthoCamera camera = OrthoCamera::looking_along(-samples.normals[k], samples.positions[k],
+                                                                    half_width, half_width, half_depth);
+              emit_triangles(test, *scene.grid, camera, static_cast<std::uint32_t>(tile), stamp, mark,
+                             chunk_vertices[chunk]);
+            }
+          }
+        });
+    std::vector<TileVertex> vertices;
+    std::size_t total = 0;
+    for (const auto& v : chunk_vertices) total += v.size();
+    vertices.reserve(total);
+    for (const auto& v : chunk_vertices) vertices.insert(vertices.end(), v.begin(), v.end());
+    scene.renderer->render_tiles(vertices, count, depth);
     for (std::size_t tile = 0; tile < count; ++tile) {
       // Depth z is t / 2h along the ray from x + h n; d = h - t. 1 is the cleared, empty tile.
-      if (depth[tile] < 1.0f) out[first + tile] = max_error - double(depth[tile]) * 2 * max_error;
+      if (depth[tile] < 1.0f) {
+        out[first + tile] =
+            std::clamp(half_depth - double(depth[tile]) * 2 * half_depth, -max_error, max_error);
+      }
     }
   }
   return out;
