@@ -42,6 +42,8 @@ void require_extent(const Model& model, const std::string& path) {
   }
 }
 
+SampleSet samples_of(const Model& reference, const SampleSpec& spec);
+
 }  // namespace
 
 const char* to_string(ModelType type) {
@@ -124,6 +126,19 @@ Model load_model(const std::string& path, std::optional<ModelType> type) {
 }
 
 SampleSet reference_samples(const Model& reference, const SampleSpec& spec) {
+  try {
+    return samples_of(reference, spec);
+  } catch (const Error& e) {
+    // Name the file: the sampling code knows only the surface.
+    const std::string message = e.what();
+    if (message.rfind(reference.path(), 0) == 0 || message.rfind("--samples", 0) == 0) throw;
+    throw Error(fmt::format("{}: {}", reference.path(), message));
+  }
+}
+
+namespace {
+
+SampleSet samples_of(const Model& reference, const SampleSpec& spec) {
   switch (reference.type) {
     case ModelType::Mesh: return make_samples(reference.mesh.mesh, spec);
     case ModelType::Voxels:
@@ -150,6 +165,8 @@ SampleSet reference_samples(const Model& reference, const SampleSpec& spec) {
   }
   throw Error("unknown model type");
 }
+
+}  // namespace
 
 const TriangleMesh& test_surface(const Model& test) {
   if (test.type == ModelType::Points) {
