@@ -3,6 +3,8 @@
 // sample, and lines through test vertices get the same hit flag from all three.
 #include <gtest/gtest.h>
 
+#include <cctype>
+
 #include "analytic.h"
 #include "roving/core/error.h"
 #include "roving/core/normal_line.h"
@@ -47,67 +49,69 @@ TEST(NormalLine, NearestPrefersTheOuterOfTwoEquallyNearCrossings) {
   }
 }
 
-struct SelfCase {
-  std::string name;
-  Model model;
-};
+// Every real model against itself: no no-hit, and Embree and CGAL give the same d on every
+// sample under every semantics; GL roving the same flags and d within its depth tolerance.
+class EveryModel : public ::testing::TestWithParam<const char*> {};
 
-std::vector<SelfCase> self_cases() {
-  std::vector<SelfCase> cases;
-  for (const char* file : {"stanford-bunny.obj", "rocker-arm.obj", "rocker-arm-80k.ply", "fandisk.obj",
-                           "igea.ply", "teapot.bpt"}) {
-    cases.push_back({file, load_model(testing::data_file(file))});
-  }
+Model model_named(const std::string& name) {
+  if (name != "bunny voxels 48^3") return load_model(testing::data_file(name));
   Model voxels;
   voxels.type = ModelType::Voxels;
   voxels.voxels = voxelize_thin(testing::bunny(), 48);
   voxels.mesh.mesh = exposed_faces(*voxels.voxels);
-  cases.push_back({"bunny voxels 48^3", std::move(voxels)});
-  return cases;
+  return voxels;
 }
 
-// Every real model against itself: no no-hit, and Embree and CGAL give the same d on every
-// sample under every semantics; GL roving the same flags and d within its depth tolerance.
-TEST(Exactness, EveryModelAgainstItselfHasNoNoHitAndOneAnswer) {
-  const auto embree = make_method("embree"), cgal = make_method("cgal");
+TEST_P(EveryModel, AgainstItselfHasNoNoHitAndOneAnswer) {
   REQUIRE_GL_CONTEXT(GlBackend::OSMesa);
-  const auto roving = make_method("roving");
-  for (const SelfCase& c : self_cases()) {
-    const TriangleMesh& surface = test_surface(c.model);
-    embree->build(surface);
-    cgal->build(surface);
-    roving->build(surface);
-    const double h = 0.05 * c.model.bounding_box().diagonal();
-    for (const char* kind : {"faces", "vertices", "area:20000"}) {
-      if (c.model.type == ModelType::Voxels && std::string(kind) == "vertices") continue;
-      const SampleSet samples = reference_samples(c.model, parse_sample_spec(kind));
-      for (Semantics semantics : {Semantics::FirstHit, Semantics::Nearest, Semantics::Closest}) {
-        const DistanceOptions options{semantics, h};
-        const DistanceResult e = embree->measure(samples, options), g = cgal->measure(samples, options);
-        EXPECT_EQ(e.hit_count(), samples.size()) << c.name << " " << kind << " " << to_string(semantics);
-        std::size_t differ = 0;
-        for (std::size_t k = 0; k < samples.size(); ++k) {
-          differ += e.hit[k] != g.hit[k] || (e.hit[k] && e.signed_distance[k] != g.signed_distance[k]);
-        }
-        // Closest-point distances come from two different searches: equal to rounding.
-        if (semantics == Semantics::Closest) {
-          EXPECT_EQ(agreement(e, g, 1e-12 * h).close_fraction(), 1.0) << c.name << " " << kind;
-        } else {
-          EXPECT_EQ(differ, 0u) << c.name << " " << kind << " " << to_string(semantics);
-        }
-        if (semantics == Semantics::FirstHit) {
-          const DistanceResult r = roving->measure(samples, options);
-          EXPECT_EQ(r.hit_count(), samples.size()) << c.name << " " << kind << " roving";
-          const Agreement a = agreement(e, r, roving_tolerance(*r.gl));
-          EXPECT_EQ(a.same_flag, a.samples) << c.name << " " << kind << " roving";
-          // The depth tolerance assumes surfaces within 84 degrees of facing the camera;
-          // steeper ones are the 0.5% that roving's own gate leaves.
-          EXPECT_GE(a.close_fraction(), 0.995) << c.name << " " << kind << " roving";
-        }
+  const auto embree = make_method("embree"), cgal = make_method("cgal"), roving = make_method("roving");
+  const std::string name = GetParam();
+  const Model model = model_named(name);
+  const TriangleMesh& surface = test_surface(model);
+  embree->build(surface);
+  cgal->build(surface);
+  roving->build(surface);
+  const double h = 0.05 * model.bounding_box().diagonal();
+  for (const char* kind : {"faces", "vertices", "area:20000"}) {
+    if (model.type == ModelType::Voxels && std::string(kind) == "vertices") continue;
+    const SampleSet samples = reference_samples(model, parse_sample_spec(kind));
+    for (Semantics semantics : {Semantics::FirstHit, Semantics::Nearest, Semantics::Closest}) {
+      const DistanceOptions options{semantics, h};
+      const DistanceResult e = embree->measure(samples, options), g = cgal->measure(samples, options);
+      EXPECT_EQ(e.hit_count(), samples.size()) << name << " " << kind << " " << to_string(semantics);
+      std::size_t differ = 0;
+      for (std::size_t k = 0; k < samples.size(); ++k) {
+        differ += e.hit[k] != g.hit[k] || (e.hit[k] && e.signed_distance[k] != g.signed_distance[k]);
+      }
+      // Closest-point distances come from two different searches: equal to rounding.
+      if (semantics == Semantics::Closest) {
+        EXPECT_EQ(agreement(e, g, 1e-12 * h).close_fraction(), 1.0) << name << " " << kind;
+      } else {
+        EXPECT_EQ(differ, 0u) << name << " " << kind << " " << to_string(semantics);
+      }
+      if (semantics == Semantics::FirstHit) {
+        const DistanceResult r = roving->measure(samples, options);
+        EXPECT_EQ(r.hit_count(), samples.size()) << name << " " << kind << " roving";
+        const Agreement a = agreement(e, r, roving_tolerance(*r.gl));
+        EXPECT_EQ(a.same_flag, a.samples) << name << " " << kind << " roving";
+        // The depth tolerance assumes surfaces within 84 degrees of facing the camera;
+        // steeper ones are the 0.5% that roving's own gate leaves.
+        EXPECT_GE(a.close_fraction(), 0.995) << name << " " << kind << " roving";
       }
     }
   }
 }
+
+INSTANTIATE_TEST_SUITE_P(RealModels, EveryModel,
+                         ::testing::Values("stanford-bunny.obj", "rocker-arm.obj", "rocker-arm-80k.ply",
+                                           "fandisk.obj", "igea.ply", "teapot.bpt", "bunny voxels 48^3"),
+                         [](const ::testing::TestParamInfo<const char*>& info) {
+                           std::string name = info.param;
+                           for (char& c : name) {
+                             if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+                           }
+                           return name;
+                         });
 
 // Vertex samples against a copy whose vertices moved along their normals by a smooth field:
 // every normal line passes through a test vertex (up to rounding). The three exact methods
