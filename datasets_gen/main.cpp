@@ -2,7 +2,6 @@
 // voxelised, sampled and analytic) into a folder, with a JSON manifest of what made each file,
 // its parameters, counts and sha256.
 #include <fmt/format.h>
-#include <openssl/evp.h>
 
 #include <CLI/CLI.hpp>
 #include <cstdio>
@@ -16,6 +15,7 @@
 #include "roving/core/normalise.h"
 #include "roving/core/sample_set.h"
 #include "roving/formats/binvox.h"
+#include "roving/formats/file_hash.h"
 #include "roving/formats/mesh_io.h"
 #include "roving/formats/point_cloud_io.h"
 #include "voxelize.h"
@@ -25,19 +25,6 @@ using namespace roving;
 using nlohmann::json;
 
 namespace {
-
-std::string sha256_of(const std::string& path) {
-  std::ifstream file(path, std::ios::binary);
-  const std::string bytes((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
-  unsigned char digest[EVP_MAX_MD_SIZE];
-  unsigned int length = 0;
-  if (!EVP_Digest(bytes.data(), bytes.size(), digest, &length, EVP_sha256(), nullptr)) {
-    throw Error(fmt::format("{}: sha256 failed", path));
-  }
-  std::string hex;
-  for (unsigned int i = 0; i < length; ++i) hex += fmt::format("{:02x}", digest[i]);
-  return hex;
-}
 
 class Writer {
  public:
@@ -74,7 +61,7 @@ class Writer {
     json entry = {{"file", name},
                   {"made_by", std::move(made_by)},
                   {"counts", std::move(counts)},
-                  {"sha256", sha256_of(path(name))}};
+                  {"sha256", file_sha256(path(name))}};
     manifest_.push_back(entry);
     std::fprintf(stderr, "wrote %s\n", path(name).c_str());
   }

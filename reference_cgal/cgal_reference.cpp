@@ -116,7 +116,7 @@ class CgalAabbMethod final : public DistanceMethod {
       const Vec3& n = samples.normals[k];
       return options.semantics == Semantics::Closest ? std::optional<double>(closest(x, n))
                                                      : along_normal(x, n, options);
-    });
+    }, progress_);
   }
 
  private:

@@ -22,7 +22,7 @@ class ClosestPointBaseline : public DistanceMethod {
     return measure_each(samples.size(), [&](std::size_t k) {
       const Vec3& x = samples.positions[k];
       return std::optional<double>(signed_offset(x, samples.normals[k], nearest(x)));
-    });
+    }, progress_);
   }
 
  protected:

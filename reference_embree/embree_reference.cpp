@@ -110,7 +110,7 @@ class EmbreeReference final : public DistanceMethod {
       const Vec3& n = samples.normals[k];
       if (options.semantics == Semantics::Closest) return closest_point(x, n);
       return along_normal(x, n, h, options.semantics);
-    });
+    }, progress_);
   }
 
  private:

@@ -9,43 +9,12 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "test_support.h"
+#include "cli_support.h"
 
 namespace {
 
+using namespace roving::testing::cli;
 namespace fs = std::filesystem;
-
-struct CliRun {
-  int exit_code;
-  std::string out, err;
-};
-
-CliRun run_cli(const std::string& arguments) {
-  const fs::path err_file = fs::temp_directory_path() / ("roving-cli-err-" + std::to_string(::getpid()));
-  const std::string command = std::string(ROVING_CLI) + " " + arguments + " 2>" + err_file.string();
-  CliRun run{};
-  FILE* pipe = popen(command.c_str(), "r");
-  std::array<char, 4096> buffer;
-  while (std::size_t n = fread(buffer.data(), 1, buffer.size(), pipe)) run.out.append(buffer.data(), n);
-  const int status = pclose(pipe);
-  run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::ifstream err(err_file);
-  run.err.assign(std::istreambuf_iterator<char>(err), std::istreambuf_iterator<char>());
-  fs::remove(err_file);
-  return run;
-}
-
-std::string bunny() {
-  return roving::testing::data_file("stanford-bunny.obj");
-}
-
-void expect_error(const std::string& arguments, std::initializer_list<const char*> fragments) {
-  const CliRun run = run_cli(arguments);
-  EXPECT_NE(run.exit_code, 0) << arguments;
-  EXPECT_EQ(run.err.rfind("roving: error: ", 0), 0u) << run.err;
-  EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << "one line expected: " << run.err;
-  for (const char* fragment : fragments) EXPECT_NE(run.err.find(fragment), std::string::npos) << run.err;
-}
 
 TEST(Cli, MeasuresAndWritesEveryOutput) {
   const fs::path folder = fs::temp_directory_path() / ("roving-cli-" + std::to_string(::getpid()));
@@ -150,21 +119,6 @@ TEST(Cli, BadFilesNameTheFile) {
   expect_error("measure " + bunny() + " " + bunny() + " --samples area:10 --samples-out " + unwritable,
                {unwritable.c_str(), "cannot open for writing"});
 }
-
-// A scratch folder removed at the end of a test.
-struct Folder {
-  fs::path path = fs::temp_directory_path() / ("roving-cli-out-" + std::to_string(::getpid()));
-  Folder() { fs::create_directories(path); }
-  ~Folder() { fs::remove_all(path); }
-  std::string file(const std::string& name, const std::string& content = "") const {
-    const std::string p = (path / name).string();
-    if (!content.empty()) std::ofstream(p, std::ios::binary) << content;
-    return p;
-  }
-  std::size_t entries() const {
-    return std::distance(fs::directory_iterator(path), fs::directory_iterator());
-  }
-};
 
 TEST(Cli, FailedRunsLeaveOutputsUntouched) {
   const Folder folder;

@@ -7,6 +7,7 @@
 #include <random>
 
 #include "roving/core/error.h"
+#include "roving/core/mesh_orientation.h"
 #include "roving/core/sample_set.h"
 #include "roving/core/statistics.h"
 #include "test_support.h"
@@ -71,7 +72,9 @@ TEST(Statistics, HandComputedCase) {
   EXPECT_DOUBLE_EQ(s.usiad, (1 + 2 + 3 + 4) / 4.0);
   EXPECT_DOUBLE_EQ(s.rms, std::sqrt((1 + 4 + 9 + 16) / 4.0));
   EXPECT_NEAR(s.std_signed, std::sqrt((1 + 4 + 9 + 16) / 4.0 - 1.5 * 1.5), 1e-12);
-  EXPECT_DOUBLE_EQ(s.max_abs, 4);
+  EXPECT_DOUBLE_EQ(s.max_abs, 3);  // over the hits: the no-hit is counted apart, not folded in as h
+  EXPECT_DOUBLE_EQ(s.min_signed, -2);
+  EXPECT_DOUBLE_EQ(s.max_signed, 3);
   EXPECT_DOUBLE_EQ(s.siad_area, (1 - 2 + 6) / 4.0);  // the no-hit has weight 0 here
   EXPECT_DOUBLE_EQ(s.usiad_area, (1 + 2 + 6) / 4.0);
   EXPECT_DOUBLE_EQ(s.siad_hits, 2.0 / 3.0);
@@ -116,6 +119,25 @@ TEST(Statistics, RejectsEmptyAndMismatchedInput) {
   EXPECT_THROW(compute_statistics({1.0}, {1, 1}, {}, 1.0), Error);
   EXPECT_THROW(compute_statistics({1.0}, {1}, {}, 0.0), Error);
   EXPECT_THROW(compute_statistics({1.0}, {1}, {}, std::nan("")), Error);
+}
+
+TEST(Orientation, ClosedOutwardInsideOutAndOpen) {
+  const TriangleMesh outward = testing::box(1.0);
+  const Orientation o = orientation(outward);
+  EXPECT_TRUE(o.closed_and_consistent);
+  EXPECT_NEAR(o.signed_volume, 8.0, 1e-12);
+  std::vector<Triangle> flipped = outward.triangles(), open = outward.triangles();
+  for (Triangle& t : flipped) std::swap(t[1], t[2]);
+  const Orientation inside_out = orientation(TriangleMesh(outward.positions(), flipped));
+  EXPECT_TRUE(inside_out.closed_and_consistent);
+  EXPECT_NEAR(inside_out.signed_volume, -8.0, 1e-12);
+  open.pop_back();  // a hole
+  EXPECT_FALSE(orientation(TriangleMesh(outward.positions(), open)).closed_and_consistent);
+  std::vector<Triangle> one_flipped = outward.triangles();
+  std::swap(one_flipped[3][1], one_flipped[3][2]);  // closed, but one face disagrees with its neighbours
+  EXPECT_FALSE(orientation(TriangleMesh(outward.positions(), one_flipped)).closed_and_consistent);
+  // The bunny has holes: no claim about its inside.
+  EXPECT_FALSE(orientation(testing::bunny()).closed_and_consistent);
 }
 
 }  // namespace

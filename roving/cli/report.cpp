@@ -5,6 +5,8 @@
 #include <fmt/ranges.h>
 
 #include <algorithm>
+#include <cmath>
+#include <numeric>
 
 namespace roving {
 namespace {
@@ -48,7 +50,7 @@ std::size_t count(const GlReport& gl, Resolution how) {
   return static_cast<std::size_t>(std::count(gl.resolved_by.begin(), gl.resolved_by.end(), how));
 }
 
-std::string model_line(const char* role, const Model& model) {
+std::string model_line(const std::string& role, const Model& model) {
   const LoadedMesh& loaded = model.mesh;
   const TriangleMesh& m = loaded.mesh;
   if (model.type == ModelType::Points) {
@@ -81,147 +83,280 @@ std::string model_line(const char* role, const Model& model) {
   return line + "\n";
 }
 
-}  // namespace
-
-std::string format_text(const MeasureReport& r) {
-  const Statistics& s = r.statistics;
-  const double diagonal = r.reference->bounding_box().diagonal();
-  std::string out;
-  out += model_line("reference", *r.reference);
-  out += model_line("test", *r.test);
-  out += fmt::format("{:<10} bounding-box diagonal {:.6g} (reference)\n", "", diagonal);
-  out += fmt::format("{:<10} {}: {}", "samples", r.samples->kind, r.samples->size());
-  if (r.samples->skipped_degenerate_faces)
-    out += fmt::format(", {} zero-area faces skipped", r.samples->skipped_degenerate_faces);
-  if (r.samples->skipped_unreferenced_vertices)
-    out += fmt::format(", {} unreferenced vertices skipped", r.samples->skipped_unreferenced_vertices);
-  if (r.samples->skipped_zero_normal_vertices)
-    out += fmt::format(", {} vertices without a normal skipped", r.samples->skipped_zero_normal_vertices);
-  out += "\n";
-  out += fmt::format("{:<10} {}, semantics {}, max error h = {:.6g} ({})\n\n", "method", r.method,
-                     to_string(r.semantics), r.max_error, r.max_error_text);
-
-  out += fmt::format("  {:<28} {:>14} {:>14}\n", "statistic", "model units", "/ diagonal");
-  const auto row = [&](const std::string& name, double value) {
-    out += fmt::format("  {:<28} {:>14.6g} {:>14.6g}\n", name, value, value / diagonal);
-  };
-  row("SiAD (mean signed d)", s.siad);
-  row("USiAD (mean |d|)", s.usiad);
-  row("STD (of signed d)", s.std_signed);
-  row("STD of |d|", s.std_unsigned);
-  row("RMS", s.rms);
-  row("max |d|", s.max_abs);
-  row("|d| 50th percentile", s.p50);
-  row("|d| 90th percentile", s.p90);
-  row("|d| 95th percentile", s.p95);
-  row("|d| 99th percentile", s.p99);
-  row("SiAD, area-weighted", s.siad_area);
-  row("USiAD, area-weighted", s.usiad_area);
-  row("RMS, area-weighted", s.rms_area);
-  row("SiAD, hits only", s.siad_hits);
-  row("USiAD, hits only", s.usiad_hits);
-  out += fmt::format("\n  no hit within h: {} of {} samples ({:.4g}%), counted as d = +h\n", s.no_hit_count,
-                     s.sample_count, 100 * s.no_hit_fraction);
-  if (r.gl) {
-    const GlReport& g = *r.gl;
-    out += fmt::format("  GL: {}\n", g.renderer);
-    out += fmt::format(
-        "  observations: {} ({} views of {} at {} px + {} per-sample cameras); resolved by views {}, by "
-        "cameras {}, unresolved {}\n",
-        g.observations(), g.views_rendered,
-        g.axis_views ? "the 6 axes" : fmt::format("{}x{}", g.views_h, g.views_v), g.resolution,
-        g.sample_cameras, count(g, Resolution::View), count(g, Resolution::Camera),
-        count(g, Resolution::Unresolved));
-    // Only what was rendered: views, cameras, or both.
-    std::vector<std::string> precision;
-    if (g.views_rendered) {
-      precision.push_back(
-          fmt::format("view pixel {:.4g}, view depth step {:.3g}", g.view_pixel_size, g.view_depth_step));
-    }
-    if (g.sample_cameras) {
-      precision.push_back(fmt::format("camera half-width {:.3g}, camera depth step {:.3g}",
-                                      g.camera_half_width, g.camera_depth_step));
-    }
-    if (!precision.empty()) out += fmt::format("  precision (model units): {}\n", fmt::join(precision, "; "));
+const char* semantics_note(Semantics semantics) {
+  switch (semantics) {
+    case Semantics::FirstHit:
+      return "first-hit: d is where the ray from x + h n back along the normal first meets TEST; a no-hit "
+             "means no surface within h along the normal (counted as d = +h in the means, left out of max |d|); "
+             "a false alarm (the paper's Figure 4c) is another part of TEST met first. For a Hausdorff-style "
+             "figure use --semantics closest.";
+    case Semantics::Nearest:
+      return "nearest: d is TEST's crossing of the normal line nearest to x, within h; a no-hit means none "
+             "(counted as d = +h in the means, left out of max |d|). For a Hausdorff-style figure use "
+             "--semantics closest.";
+    case Semantics::Closest:
+      return "closest: |d| is the distance to TEST's nearest point (Metro, MeshLab, CloudCompare), signed + "
+             "where that point lies along REF's normal; every sample has a hit.";
   }
+  return "";
+}
+
+// The statistics every table shows, by JSON key and row label.
+const std::vector<std::pair<const char*, const char*>>& statistic_rows() {
+  static const std::vector<std::pair<const char*, const char*>> rows = {
+      {"siad", "SiAD (mean signed d)"},
+      {"usiad", "USiAD (mean |d|)"},
+      {"std_signed", "STD (of signed d)"},
+      {"std_unsigned", "STD of |d|"},
+      {"rms", "RMS"},
+      {"min_signed", "min signed d (hits)"},
+      {"max_signed", "max signed d (hits)"},
+      {"max_abs", "max |d| (hits)"},
+      {"p50", "|d| 50th percentile"},
+      {"p90", "|d| 90th percentile"},
+      {"p95", "|d| 95th percentile"},
+      {"p99", "|d| 99th percentile"},
+      {"siad_area", "SiAD, area-weighted"},
+      {"usiad_area", "USiAD, area-weighted"},
+      {"rms_area", "RMS, area-weighted"},
+      {"siad_hits", "SiAD, hits only"},
+      {"usiad_hits", "USiAD, hits only"}};
+  return rows;
+}
+
+nlohmann::json relative_json(const nlohmann::json& absolute, double diagonal) {
+  nlohmann::json relative;
+  for (const auto& [key, value] : absolute.items()) relative[key] = value.get<double>() / diagonal;
+  return relative;
+}
+
+// `text` wrapped greedily at `width` columns, each line indented by two spaces.
+std::string wrapped(const std::string& text, std::size_t width = 100) {
+  std::string out, line = " ";
+  std::size_t start = 0;
+  while (start < text.size()) {
+    const std::size_t end = std::min(text.find(' ', start), text.size());
+    const std::string word = text.substr(start, end - start);
+    if (line.size() + 1 + word.size() > width && line.size() > 1) {
+      out += line + "\n";
+      line = " ";
+    }
+    line += " " + word;
+    start = end + 1;
+  }
+  return out + line + "\n";
+}
+
+std::string gl_lines(const GlReport& g) {
+  std::string out = fmt::format("  GL: {}\n", g.renderer);
   out += fmt::format(
-      "  time: load {:.3f} s (reference {:.3f}, test {:.3f}), build {:.3f} s, "
-      "query {:.3f} s ({:.3g} samples/s), total {:.3f} s\n",
-      r.load_reference_seconds + r.load_test_seconds, r.load_reference_seconds, r.load_test_seconds,
-      r.build_seconds, r.query_seconds, r.query_seconds > 0 ? s.sample_count / r.query_seconds : 0.0,
-      r.total_seconds);
+      "  observations: {} ({} views of {} at {} px + {} per-sample cameras); resolved by views {}, by "
+      "cameras {}, unresolved {}\n",
+      g.observations(), g.views_rendered, g.axis_views ? "the 6 axes" : fmt::format("{}x{}", g.views_h, g.views_v),
+      g.resolution, g.sample_cameras, count(g, Resolution::View), count(g, Resolution::Camera),
+      count(g, Resolution::Unresolved));
+  // Only what was rendered: views, cameras, or both.
+  std::vector<std::string> precision;
+  if (g.views_rendered) {
+    precision.push_back(
+        fmt::format("view pixel {:.4g}, view depth step {:.3g}", g.view_pixel_size, g.view_depth_step));
+  }
+  if (g.sample_cameras) {
+    precision.push_back(
+        fmt::format("camera half-width {:.3g}, camera depth step {:.3g}", g.camera_half_width, g.camera_depth_step));
+  }
+  if (!precision.empty()) out += fmt::format("  precision (model units): {}\n", fmt::join(precision, "; "));
   return out;
 }
 
-nlohmann::json to_json(const MeasureReport& r) {
-  const Statistics& s = r.statistics;
-  const double diagonal = r.reference->bounding_box().diagonal();
-  nlohmann::json stats = {{"siad", s.siad},
-                          {"usiad", s.usiad},
-                          {"std_signed", s.std_signed},
-                          {"std_unsigned", s.std_unsigned},
-                          {"rms", s.rms},
-                          {"max_abs", s.max_abs},
-                          {"p50", s.p50},
-                          {"p90", s.p90},
-                          {"p95", s.p95},
-                          {"p99", s.p99},
-                          {"siad_area", s.siad_area},
-                          {"usiad_area", s.usiad_area},
-                          {"rms_area", s.rms_area},
-                          {"siad_hits", s.siad_hits},
-                          {"usiad_hits", s.usiad_hits}};
-  nlohmann::json relative;
-  for (const auto& [key, value] : stats.items()) relative[key] = value.get<double>() / diagonal;
+nlohmann::json gl_json(const GlReport& g) {
+  return {{"renderer", g.renderer},
+          {"observations", g.observations()},
+          {"views_rendered", g.views_rendered},
+          {"sample_cameras", g.sample_cameras},
+          {"views", g.axis_views ? "6 axes" : fmt::format("{}x{}", g.views_h, g.views_v)},
+          {"resolution", g.resolution},
+          {"resolved_by_view", count(g, Resolution::View)},
+          {"resolved_by_camera", count(g, Resolution::Camera)},
+          {"unresolved", count(g, Resolution::Unresolved)},
+          {"view_pixel_size", g.view_pixel_size},
+          {"view_depth_step", g.view_depth_step},
+          {"camera_half_width", g.camera_half_width},
+          {"camera_depth_step", g.camera_depth_step}};
+}
+
+std::string samples_line(const SampleSet& samples, std::uint64_t seed) {
+  std::string out = fmt::format("{}{}", samples.kind,
+                                samples.kind.rfind("area:", 0) == 0 ? fmt::format(" (seed {})", seed) : "");
+  out += fmt::format(": {}", samples.size());
+  if (samples.skipped_degenerate_faces)
+    out += fmt::format(", {} zero-area faces skipped", samples.skipped_degenerate_faces);
+  if (samples.skipped_unreferenced_vertices)
+    out += fmt::format(", {} unreferenced vertices skipped", samples.skipped_unreferenced_vertices);
+  if (samples.skipped_zero_normal_vertices)
+    out += fmt::format(", {} vertices without a normal skipped", samples.skipped_zero_normal_vertices);
+  return out;
+}
+
+// One direction's fields, in the layout a one-sided report has always had at its top level.
+nlohmann::json direction_json(const DirectionReport& d, const MeasureReport& r) {
+  const Statistics& s = d.statistics;
+  const nlohmann::json stats = statistics_json(s);
   nlohmann::json json = {
-      {"reference", model_json(*r.reference)},
-      {"test", model_json(*r.test)},
+      {"reference", model_json(*d.reference)},
+      {"test", model_json(*d.test)},
       {"samples",
-       {{"kind", r.samples->kind},
-        {"count", r.samples->size()},
-        {"skipped_degenerate_faces", r.samples->skipped_degenerate_faces},
-        {"skipped_unreferenced_vertices", r.samples->skipped_unreferenced_vertices},
-        {"skipped_zero_normal_vertices", r.samples->skipped_zero_normal_vertices}}},
-      {"method", r.method},
-      {"semantics", to_string(r.semantics)},
-      {"max_error",
-       {{"value", r.max_error}, {"given_as", r.max_error_text}, {"relative", r.max_error / diagonal}}},
-      {"diagonal", diagonal},
+       {{"kind", d.samples.kind},
+        {"count", d.samples.size()},
+        {"skipped_degenerate_faces", d.samples.skipped_degenerate_faces},
+        {"skipped_unreferenced_vertices", d.samples.skipped_unreferenced_vertices},
+        {"skipped_zero_normal_vertices", d.samples.skipped_zero_normal_vertices}}},
       {"statistics", stats},
-      {"statistics_relative_to_diagonal", relative},
+      {"statistics_relative_to_diagonal", relative_json(stats, r.diagonal)},
       {"hits", s.hit_count},
       {"no_hits", s.no_hit_count},
       {"no_hit_fraction", s.no_hit_fraction},
-      {"no_hit_rule", "counted as d = +max_error"},
+      {"no_hit_rule", "counted as d = +max_error in the means and percentiles; left out of min, max and max_abs"},
       {"histogram",
        {{"low", s.histogram.low},
         {"high", s.histogram.high},
         {"counts", s.histogram.counts},
         {"below", s.histogram.below},
         {"above", s.histogram.above}}},
-      {"seconds",
-       {{"load_reference", r.load_reference_seconds},
-        {"load_test", r.load_test_seconds},
-        {"build", r.build_seconds},
-        {"query", r.query_seconds},
-        {"total", r.total_seconds}}},
+      {"seconds", {{"build", d.result.build_seconds}, {"query", d.result.query_seconds}}},
   };
-  if (r.gl) {
-    const GlReport& g = *r.gl;
-    json["gl"] = {{"renderer", g.renderer},
-                  {"observations", g.observations()},
-                  {"views_rendered", g.views_rendered},
-                  {"sample_cameras", g.sample_cameras},
-                  {"views", g.axis_views ? "6 axes" : fmt::format("{}x{}", g.views_h, g.views_v)},
-                  {"resolution", g.resolution},
-                  {"resolved_by_view", count(g, Resolution::View)},
-                  {"resolved_by_camera", count(g, Resolution::Camera)},
-                  {"unresolved", count(g, Resolution::Unresolved)},
-                  {"view_pixel_size", g.view_pixel_size},
-                  {"view_depth_step", g.view_depth_step},
-                  {"camera_half_width", g.camera_half_width},
-                  {"camera_depth_step", g.camera_depth_step}};
+  if (d.result.gl) json["gl"] = gl_json(*d.result.gl);
+  return json;
+}
+
+}  // namespace
+
+nlohmann::json statistics_json(const Statistics& s) {
+  return {{"siad", s.siad},           {"usiad", s.usiad},         {"std_signed", s.std_signed},
+          {"std_unsigned", s.std_unsigned}, {"rms", s.rms},     {"min_signed", s.min_signed},
+          {"max_signed", s.max_signed}, {"max_abs", s.max_abs},   {"p50", s.p50},
+          {"p90", s.p90},             {"p95", s.p95},             {"p99", s.p99},
+          {"siad_area", s.siad_area}, {"usiad_area", s.usiad_area}, {"rms_area", s.rms_area},
+          {"siad_hits", s.siad_hits}, {"usiad_hits", s.usiad_hits}};
+}
+
+TwoSided MeasureReport::two_sided() const {
+  TwoSided t;
+  double weight = 0, sum_abs = 0, sum_squares = 0;
+  for (const DirectionReport& d : directions) {
+    t.max_abs = std::max(t.max_abs, d.statistics.max_abs);
+    const double w = std::accumulate(d.samples.weights.begin(), d.samples.weights.end(), 0.0);
+    weight += w;
+    sum_abs += w * d.statistics.usiad_area;
+    sum_squares += w * d.statistics.rms_area * d.statistics.rms_area;
   }
+  if (weight > 0) {
+    t.mean_abs = sum_abs / weight;
+    t.rms = std::sqrt(sum_squares / weight);
+  }
+  return t;
+}
+
+std::string format_header(const Model& a, const Model& b, const MeasureReport& r) {
+  const bool symmetric = r.diagonal_of_both;
+  std::string out = model_line(symmetric ? "A" : "reference", a) + model_line(symmetric ? "B" : "test", b);
+  out += fmt::format("{:<10} bounding-box diagonal {:.6g} ({})\n", "", r.diagonal,
+                     symmetric ? "of both models" : "reference");
+  out += fmt::format("{:<10} {}, semantics {}, max error h = {:.6g} ({})\n", "method", r.method,
+                     to_string(r.semantics), r.max_error, r.max_error_text);
+  return out;
+}
+
+std::string format_body(const MeasureReport& r) {
+  std::string out;
+  for (const DirectionReport& d : r.directions) {
+    out += fmt::format("{:<10} {}{}\n", "samples", d.label.empty() ? "" : d.label + ": ",
+                       samples_line(d.samples, r.seed));
+  }
+  out += "\n";
+  // A column pair per direction: model units and / diagonal.
+  std::string head = fmt::format("  {:<28}", "statistic");
+  for (const DirectionReport& d : r.directions) {
+    head += fmt::format(" {:>14} {:>12}", d.label.empty() ? "model units" : d.label, "/ diagonal");
+  }
+  out += head + "\n";
+  std::vector<nlohmann::json> stats;
+  for (const DirectionReport& d : r.directions) stats.push_back(statistics_json(d.statistics));
+  for (const auto& [key, label] : statistic_rows()) {
+    out += fmt::format("  {:<28}", label);
+    for (const auto& s : stats) {
+      const double value = s[key].get<double>();
+      out += fmt::format(" {:>14.6g} {:>12.6g}", value, value / r.diagonal);
+    }
+    out += "\n";
+  }
+  out += "\n";
+  for (const DirectionReport& d : r.directions) {
+    const Statistics& s = d.statistics;
+    out += fmt::format("  {}no hit within h: {} of {} samples ({:.4g}%)\n", d.label.empty() ? "" : d.label + ": ",
+                       s.no_hit_count, s.sample_count, 100 * s.no_hit_fraction);
+  }
+  out += wrapped(semantics_note(r.semantics));
+  if (r.symmetric()) {
+    const TwoSided t = r.two_sided();
+    const char* max_name =
+        r.semantics == Semantics::Closest ? "Hausdorff distance" : "max |d|, both directions (not Hausdorff)";
+    out += fmt::format("\n  {:<40} {:>14} {:>12}\n", "two-sided (Metro)", "model units", "/ diagonal");
+    for (const auto& [name, value] : {std::pair<std::string, double>{max_name, t.max_abs},
+                                      {"mean |d|, both (area-weighted)", t.mean_abs},
+                                      {"RMS, both (area-weighted)", t.rms}}) {
+      out += fmt::format("  {:<40} {:>14.6g} {:>12.6g}\n", name, value, value / r.diagonal);
+    }
+  }
+  for (const DirectionReport& d : r.directions) {
+    if (!d.result.gl) continue;
+    if (!d.label.empty()) out += fmt::format("  {}:\n", d.label);
+    out += gl_lines(*d.result.gl);
+  }
+  out += fmt::format("  time: load {:.3f} s ({} {:.3f}, {} {:.3f}), total {:.3f} s\n",
+                     r.load_seconds[0] + r.load_seconds[1], r.symmetric() ? "A" : "reference", r.load_seconds[0],
+                     r.symmetric() ? "B" : "test", r.load_seconds[1], r.total_seconds);
+  for (const DirectionReport& d : r.directions) {
+    out += fmt::format("        {}build {:.3f} s, query {:.3f} s ({:.3g} samples/s)\n",
+                       d.label.empty() ? "" : d.label + ": ", d.result.build_seconds, d.result.query_seconds,
+                       d.result.query_seconds > 0 ? d.samples.size() / d.result.query_seconds : 0.0);
+  }
+  return out;
+}
+
+nlohmann::json to_json(const MeasureReport& r) {
+  nlohmann::json json = {{"schema_version", kReportSchemaVersion}};
+  json.update(r.provenance);
+  json["method"] = r.method;
+  json["semantics"] = to_string(r.semantics);
+  json["semantics_note"] = semantics_note(r.semantics);
+  json["max_error"] = {{"value", r.max_error}, {"given_as", r.max_error_text}, {"relative", r.max_error / r.diagonal}};
+  json["diagonal"] = r.diagonal;
+  json["diagonal_of"] = r.diagonal_of_both ? "both models" : "reference";
+  json["seed"] = r.seed;
+  json["warnings"] = r.warnings;
+  if (r.symmetric()) {
+    json["directions"] = nlohmann::json::array();
+    for (const DirectionReport& d : r.directions) {
+      nlohmann::json direction = direction_json(d, r);
+      direction["label"] = d.label;
+      json["directions"].push_back(direction);
+    }
+    const TwoSided t = r.two_sided();
+    const nlohmann::json two_sided = {{"hausdorff", r.semantics == Semantics::Closest ? nlohmann::json(t.max_abs)
+                                                                                      : nlohmann::json(nullptr)},
+                                      {"max_abs", t.max_abs},
+                                      {"mean_both", t.mean_abs},
+                                      {"rms_both", t.rms}};
+    json["two_sided"] = two_sided;
+    json["two_sided_relative_to_diagonal"] = relative_json(
+        {{"max_abs", t.max_abs}, {"mean_both", t.mean_abs}, {"rms_both", t.rms}}, r.diagonal);
+  } else {
+    json.update(direction_json(r.directions.front(), r));
+  }
+  json["seconds"]["load_reference"] = r.load_seconds[0];
+  json["seconds"]["load_test"] = r.load_seconds[1];
+  json["seconds"]["total"] = r.total_seconds;
   return json;
 }
 

@@ -5,7 +5,9 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <atomic>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -47,6 +49,10 @@ struct MaxErrorSpec {
 // Parses VALUE or P%; throws roving::Error naming `--max-error` unless it is a finite number > 0
 // (and a percentage <= 100).
 MaxErrorSpec parse_max_error(const std::string& text);
+
+// How far a long stage has got ("samples", "views", "cameras"; done of total), for a progress
+// display. Called from any thread, possibly at once from several.
+using ProgressFn = std::function<void(const char* stage, std::size_t done, std::size_t total)>;
 
 struct DistanceOptions {
   Semantics semantics = Semantics::FirstHit;
@@ -102,18 +108,26 @@ class DistanceMethod {
   virtual DistanceResult measure(const SampleSet& samples, const DistanceOptions& options) = 0;
 
   bool supports(Semantics semantics) const;
+
+  // Who hears how far measure() has got (empty: nobody).
+  void set_progress(ProgressFn progress) { progress_ = std::move(progress); }
+
+ protected:
+  ProgressFn progress_;
 };
 
 // Calls `distance_of(k)` for k in [0, count) on all cores (TBB) and gathers the answers: a value
 // is a hit with that signed distance, nullopt a no-hit. query_seconds is the wall time taken.
 // `distance_of` must be safe to call from several threads at once. A template, so that the
-// per-sample call inlines (std::function cost 4% of an Embree query).
+// per-sample call inlines (std::function cost 4% of an Embree query). `progress` hears of each
+// finished block of samples.
 template <class DistanceOf>
-DistanceResult measure_each(std::size_t count, const DistanceOf& distance_of) {
+DistanceResult measure_each(std::size_t count, const DistanceOf& distance_of, const ProgressFn& progress = {}) {
   const Stopwatch watch;
   DistanceResult result;
   result.signed_distance.assign(count, 0.0);
   result.hit.assign(count, 0);
+  std::atomic<std::size_t> done{0};
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, 256),
                     [&](const tbb::blocked_range<std::size_t>& range) {
                       for (std::size_t k = range.begin(); k != range.end(); ++k) {
@@ -122,6 +136,7 @@ DistanceResult measure_each(std::size_t count, const DistanceOf& distance_of) {
                           result.signed_distance[k] = *d;
                         }
                       }
+                      if (progress) progress("samples", done += range.size(), count);
                     });
   result.query_seconds = watch.seconds();
   return result;

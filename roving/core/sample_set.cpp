@@ -52,12 +52,21 @@ SampleSet SampleSet::head(std::size_t n) const {
   subset.positions.resize(n);
   subset.normals.resize(n);
   subset.weights.resize(n);
+  subset.elements.resize(n);
   return subset;
 }
 
 namespace {
 
+void reserve(SampleSet& samples, std::size_t n) {
+  samples.positions.reserve(n);
+  samples.normals.reserve(n);
+  samples.weights.reserve(n);
+  samples.elements.reserve(n);
+}
+
 void sample_faces(const TriangleMesh& mesh, SampleSet& samples) {
+  reserve(samples, mesh.triangle_count());
   for (std::size_t f = 0; f < mesh.triangle_count(); ++f) {
     if (mesh.face_normals()[f].isZero()) {
       ++samples.skipped_degenerate_faces;
@@ -66,6 +75,7 @@ void sample_faces(const TriangleMesh& mesh, SampleSet& samples) {
     samples.positions.push_back(mesh.centroid(f));
     samples.normals.push_back(mesh.face_normals()[f]);
     samples.weights.push_back(mesh.face_areas()[f]);
+    samples.elements.push_back(static_cast<std::uint32_t>(f));
   }
 }
 
@@ -75,6 +85,7 @@ void sample_vertices(const TriangleMesh& mesh, SampleSet& samples) {
   for (std::size_t f = 0; f < mesh.triangle_count(); ++f) {
     for (int corner : mesh.triangles()[f]) vertex_area[corner] += mesh.face_areas()[f] / 3.0;
   }
+  reserve(samples, mesh.vertex_count());
   for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
     if (!mesh.vertex_referenced()[v]) {
       ++samples.skipped_unreferenced_vertices;
@@ -84,6 +95,7 @@ void sample_vertices(const TriangleMesh& mesh, SampleSet& samples) {
       samples.positions.push_back(mesh.positions()[v]);
       samples.normals.push_back(mesh.vertex_normals()[v]);
       samples.weights.push_back(vertex_area[v]);
+      samples.elements.push_back(static_cast<std::uint32_t>(v));
     }
   }
 }
@@ -100,6 +112,7 @@ void sample_area(const TriangleMesh& mesh, std::size_t count, std::uint64_t seed
   std::mt19937_64 random(seed);
   const auto uniform = [&random] { return (random() >> 11) * 0x1.0p-53; };
   const double weight = total / static_cast<double>(count);
+  reserve(samples, count);
   for (std::size_t i = 0; i < count; ++i) {
     const double target = uniform() * total;
     std::size_t f = std::upper_bound(cumulative.begin(), cumulative.end(), target) - cumulative.begin();
@@ -110,6 +123,7 @@ void sample_area(const TriangleMesh& mesh, std::size_t count, std::uint64_t seed
     samples.positions.push_back((1 - r1) * p[t[0]] + r1 * (1 - r2) * p[t[1]] + r1 * r2 * p[t[2]]);
     samples.normals.push_back(mesh.face_normals()[f]);
     samples.weights.push_back(weight);
+    samples.elements.push_back(static_cast<std::uint32_t>(f));
   }
 }
 
@@ -122,8 +136,8 @@ SampleSet make_samples(const TriangleMesh& reference, const SampleSpec& spec) {
     case SampleSpec::Kind::Faces: sample_faces(reference, samples); break;
     case SampleSpec::Kind::Vertices: sample_vertices(reference, samples); break;
     case SampleSpec::Kind::Area:
-      // Positions, normals, weights, then a distance, a flag and a magnitude per sample.
-      require_memory("sampling", 81.0 * spec.count, fmt::format("{} samples", spec.count));
+      // Positions, normals, weights, elements, then a distance, a flag and a magnitude per sample.
+      require_memory("sampling", 85.0 * spec.count, fmt::format("{} samples", spec.count));
       sample_area(reference, spec.count, spec.seed, samples);
       break;
   }

@@ -11,7 +11,7 @@ namespace roving {
 
 // Which points of M_R are measured: `faces` (triangle centroids with face normals, the paper's
 // default), `vertices` (referenced vertices with area-weighted normals) or `area:N` (N points
-// uniform by area with the face normal, from a fixed seed).
+// uniform by area with the face normal, from `seed`: reported, and fixed unless chosen).
 struct SampleSpec {
   enum class Kind { Faces, Vertices, Area };
   Kind kind = Kind::Faces;
@@ -29,6 +29,8 @@ struct SampleSet {
   std::vector<Vec3> positions;
   std::vector<Vec3> normals;    // unit length
   std::vector<double> weights;  // area each sample stands for (eq. 1); sums to M_R's area
+  // The element of M_R each sample comes from: its face (faces, area:N) or its vertex (vertices).
+  std::vector<std::uint32_t> elements;
   std::string kind;
   // Elements of M_R that gave no sample: zero-area faces, unreferenced vertices, or vertices
   // whose incident normals cancel.

@@ -67,8 +67,10 @@ Statistics compute_statistics(const std::vector<double>& signed_distance,
     w_d += w * d;
     w_abs += w * a;
     w_sq += w * d * d;
-    s.max_abs = std::max(s.max_abs, a);
     if (hit[k]) {
+      s.min_signed = s.hit_count ? std::min(s.min_signed, d) : d;
+      s.max_signed = s.hit_count ? std::max(s.max_signed, d) : d;
+      s.max_abs = std::max(s.max_abs, a);
       ++s.hit_count;
       hit_sum += d;
       hit_abs += a;

@@ -24,7 +24,10 @@ struct Statistics {
   double std_signed = 0;    // standard deviation of signed d (the paper's STD)
   double std_unsigned = 0;  // standard deviation of |d|
   double rms = 0;
-  double max_abs = 0;
+  // Extremes over the hits alone: a no-hit is counted in no_hit_count, never folded in as h.
+  double max_abs = 0;     // max |d| (0 when nothing was hit)
+  double min_signed = 0;  // most negative signed d
+  double max_signed = 0;  // most positive signed d
   // Area-weighted means (eq. 1) with the same no-hit rule.
   double siad_area = 0;
   double usiad_area = 0;
@@ -32,7 +35,7 @@ struct Statistics {
   // Over the hits alone (no MAX_ERROR substitution): what a no-hit would otherwise hide.
   double siad_hits = 0;
   double usiad_hits = 0;
-  // Percentiles of |d| over all samples (nearest-rank).
+  // Percentiles of |d| over all samples, a no-hit as h (nearest-rank).
   double p50 = 0, p90 = 0, p95 = 0, p99 = 0;
   Histogram histogram;  // of signed d over the hits, [-h, h]
 };

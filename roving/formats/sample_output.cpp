@@ -21,17 +21,26 @@ std::array<unsigned char, 3> diverging_colour(double s) {
 
 }  // namespace
 
-void write_samples_csv(std::FILE* out, const SampleSet& samples, const DistanceResult& result) {
-  fmt::print(out, "x,y,z,nx,ny,nz,d,hit\n");
+void write_samples_csv(std::FILE* out, const SampleSet& samples, const DistanceResult& result,
+                       const std::string& direction, bool header) {
+  if (header) fmt::print(out, "x,y,z,nx,ny,nz,d,hit,element,weight,resolved_by{}\n", direction.empty() ? "" : ",direction");
+  const std::string last = direction.empty() ? "" : "," + direction;
+  const auto resolved_by = [&](std::size_t k) -> const char* {
+    if (!result.gl) return "";
+    switch (result.gl->resolved_by[k]) {
+      case Resolution::View: return "view";
+      case Resolution::Camera: return "camera";
+      case Resolution::Unresolved: return "no-hit";
+    }
+    return "";
+  };
   for (std::size_t k = 0; k < samples.size(); ++k) {
     const Vec3& p = samples.positions[k];
     const Vec3& n = samples.normals[k];
-    if (result.hit[k]) {
-      fmt::print(out, "{},{},{},{},{},{},{},1\n", p.x(), p.y(), p.z(), n.x(), n.y(), n.z(),
-                 result.signed_distance[k]);
-    } else {
-      fmt::print(out, "{},{},{},{},{},{},,0\n", p.x(), p.y(), p.z(), n.x(), n.y(), n.z());
-    }
+    const std::string d = result.hit[k] ? fmt::format("{}", result.signed_distance[k]) : "";
+    const std::string element = k < samples.elements.size() ? fmt::format("{}", samples.elements[k]) : "";
+    fmt::print(out, "{},{},{},{},{},{},{},{},{},{},{}{}\n", p.x(), p.y(), p.z(), n.x(), n.y(), n.z(), d,
+               result.hit[k] ? 1 : 0, element, samples.weights[k], resolved_by(k), last);
   }
 }
 

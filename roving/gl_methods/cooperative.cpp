@@ -12,7 +12,7 @@ class Cooperative final : public GlMethod {
   std::string name() const override { return "cooperative"; }
 
   void resolve(const SampleSet& samples, double max_error, GlReport& report, const Record& record) override {
-    const auto viewed = view_sample(scene_, samples, max_error, options_, report);
+    const auto viewed = view_sample(scene_, samples, max_error, options_, report, progress_);
     std::vector<std::uint32_t> rejected;
     for (std::uint32_t k = 0; k < samples.size(); ++k) {
       if (viewed[k]) {
@@ -21,7 +21,7 @@ class Cooperative final : public GlMethod {
         rejected.push_back(k);
       }
     }
-    const auto roved = rove(scene_, samples, rejected, max_error, report);
+    const auto roved = rove(scene_, samples, rejected, max_error, report, progress_);
     for (std::size_t i = 0; i < rejected.size(); ++i) {
       if (roved[i]) record(rejected[i], *roved[i], Resolution::Camera);
     }

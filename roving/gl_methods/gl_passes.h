@@ -25,15 +25,16 @@ struct GlScene {
 };
 
 // Surface roving for samples[indices[i]]: out[i] is d (first hit) or nullopt. Fills the
-// report's camera fields.
+// report's camera fields; tells `progress` of each batch of cameras.
 std::vector<std::optional<double>> rove(GlScene& scene, const SampleSet& samples,
                                         const std::vector<std::uint32_t>& indices, double max_error,
-                                        GlReport& report);
+                                        GlReport& report, const ProgressFn& progress);
 
 // Viewpoint sampling of every sample: out[k] is d where a view accepted sample k. Fills the
-// report's view fields.
+// report's view fields; tells `progress` of each view.
 std::vector<std::optional<double>> view_sample(GlScene& scene, const SampleSet& samples, double max_error,
-                                               const GlMethodOptions& options, GlReport& report);
+                                               const GlMethodOptions& options, GlReport& report,
+                                               const ProgressFn& progress);
 
 // What the three GL methods share: checks, timing, and filling in the result and report; each
 // method only says how it resolves samples.

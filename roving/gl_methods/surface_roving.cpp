@@ -104,7 +104,7 @@ class SurfaceRoving final : public GlMethod {
   void resolve(const SampleSet& samples, double max_error, GlReport& report, const Record& record) override {
     std::vector<std::uint32_t> all(samples.size());
     for (std::uint32_t k = 0; k < all.size(); ++k) all[k] = k;
-    const auto d = rove(scene_, samples, all, max_error, report);
+    const auto d = rove(scene_, samples, all, max_error, report, progress_);
     for (std::uint32_t k = 0; k < all.size(); ++k) {
       if (d[k]) record(k, *d[k], Resolution::Camera);
     }
@@ -115,7 +115,7 @@ class SurfaceRoving final : public GlMethod {
 
 std::vector<std::optional<double>> rove(GlScene& scene, const SampleSet& samples,
                                         const std::vector<std::uint32_t>& indices, double max_error,
-                                        GlReport& report) {
+                                        GlReport& report, const ProgressFn& progress) {
   const TriangleMesh& test = *scene.test;
   // The camera's half-width: half a pixel across, and the shared rule's tolerance, which the
   // lines and points drawn for edges and vertices near the ray reach (normal_line.h). Tiny:
@@ -166,6 +166,7 @@ std::vector<std::optional<double>> rove(GlScene& scene, const SampleSet& samples
             std::clamp(half_depth - double(depth[tile]) * 2 * half_depth, -max_error, max_error);
       }
     }
+    if (progress) progress("cameras", first + count, indices.size());
   }
   return out;
 }

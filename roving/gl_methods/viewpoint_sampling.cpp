@@ -168,7 +168,8 @@ class ViewLine {
 }  // namespace
 
 std::vector<std::optional<double>> view_sample(GlScene& scene, const SampleSet& samples, double max_error,
-                                               const GlMethodOptions& options, GlReport& report) {
+                                               const GlMethodOptions& options, GlReport& report,
+                                               const ProgressFn& progress) {
   // Voxel references have only axis normals: then the 6 axis views suffice (Section 4.3).
   const bool axis_normals = std::all_of(samples.normals.begin(), samples.normals.end(), [](const Vec3& n) {
     return n.cwiseAbs().maxCoeff() == 1.0 && n.cwiseAbs().sum() == 1.0;
@@ -206,8 +207,10 @@ std::vector<std::optional<double>> view_sample(GlScene& scene, const SampleSet& 
   const double smooth_span = 2 * report.view_pixel_size * std::tan(80 * M_PI / 180) / (2 * radius);
   std::vector<std::optional<double>> out(samples.size());
   std::vector<float> depth;
+  const std::size_t views = std::count_if(groups.begin(), groups.end(), [](const auto& g) { return !g.empty(); });
   for (std::size_t d = 0; d < directions.size(); ++d) {
     if (groups[d].empty()) continue;
+    if (progress) progress("views", report.views_rendered, views);
     ++report.views_rendered;
     // The camera looks against the direction, at the surfaces facing it.
     const OrthoCamera camera =
@@ -249,7 +252,7 @@ class ViewpointSampling final : public GlMethod {
   std::string name() const override { return "viewpoint"; }
 
   void resolve(const SampleSet& samples, double max_error, GlReport& report, const Record& record) override {
-    const auto d = view_sample(scene_, samples, max_error, options_, report);
+    const auto d = view_sample(scene_, samples, max_error, options_, report, progress_);
     for (std::uint32_t k = 0; k < samples.size(); ++k) {
       if (d[k]) record(k, *d[k], Resolution::View);
     }

@@ -229,7 +229,8 @@ Tessellation tessellate(const BezierSurface& surface, double max_error) {
 SampleSet bezier_samples(const BezierSurface& surface, const SampleSpec& spec, int cells) {
   SampleSet samples;
   samples.kind = spec.to_string();
-  const auto add = [&](const BezierPatch& p, double u, double v, double weight) {
+  const auto add = [&](std::size_t patch, double u, double v, double weight) {
+    const BezierPatch& p = surface.patches[patch];
     const Vec3 n = normal_at(p, u, v);
     if (n.isZero()) {
       ++samples.skipped_degenerate_faces;
@@ -240,9 +241,10 @@ SampleSet bezier_samples(const BezierSurface& surface, const SampleSpec& spec, i
     samples.positions.push_back(point);
     samples.normals.push_back(n);
     samples.weights.push_back(weight);
+    samples.elements.push_back(static_cast<std::uint32_t>(patch));
   };
   if (spec.kind == SampleSpec::Kind::Area) {
-    require_memory("sampling", 81.0 * spec.count, fmt::format("{} samples", spec.count));
+    require_memory("sampling", 85.0 * spec.count, fmt::format("{} samples", spec.count));
     // Patch by its (tessellated) area, then (u, v) uniform, accepted with probability
     // |S_u x S_v| / max: uniform by area on the exact surface.
     std::vector<double> cumulative, largest;
@@ -284,19 +286,20 @@ SampleSet bezier_samples(const BezierSurface& surface, const SampleSpec& spec, i
       const double u = uniform(), v = uniform();
       Vec3 point, du, dv;
       evaluate(surface.patches[k], u, v, point, du, dv);
-      if (uniform() * largest[k] <= du.cross(dv).norm()) add(surface.patches[k], u, v, total / spec.count);
+      if (uniform() * largest[k] <= du.cross(dv).norm()) add(k, u, v, total / spec.count);
     }
     return samples;
   }
   const bool nodes = spec.kind == SampleSpec::Kind::Vertices;
   const double d = 1.0 / cells;
-  for (const BezierPatch& p : surface.patches) {
+  for (std::size_t patch = 0; patch < surface.patches.size(); ++patch) {
+    const BezierPatch& p = surface.patches[patch];
     for (int i = 0; i < cells + (nodes ? 1 : 0); ++i)
       for (int j = 0; j < cells + (nodes ? 1 : 0); ++j) {
         const double u = nodes ? i * d : (i + 0.5) * d, v = nodes ? j * d : (j + 0.5) * d;
         Vec3 point, du, dv;
         evaluate(p, u, v, point, du, dv);
-        add(p, u, v, du.cross(dv).norm() * d * d);
+        add(patch, u, v, du.cross(dv).norm() * d * d);
       }
   }
   if (samples.size() == 0) throw Error("Bezier surface gives no samples (every patch degenerate?)");

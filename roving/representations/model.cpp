@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <numeric>
 
 #include "roving/core/error.h"
 #include "roving/formats/binvox.h"
@@ -160,6 +161,8 @@ SampleSet samples_of(const Model& reference, const SampleSpec& spec) {
       samples.positions = reference.points.positions;
       samples.normals = reference.points.normals;
       samples.weights.assign(samples.positions.size(), 1.0);  // no area: plain means
+      samples.elements.resize(samples.positions.size());
+      std::iota(samples.elements.begin(), samples.elements.end(), 0u);
       return samples;
     }
   }

@@ -76,6 +76,7 @@ SampleSet exposed_face_samples(const VoxelGrid& grid) {
     samples.positions.push_back(centre + 0.5 * grid.voxel_size * normal);
     samples.normals.push_back(normal);
     samples.weights.push_back(area);
+    samples.elements.push_back(static_cast<std::uint32_t>(samples.elements.size()));  // exposed face k
   });
   return samples;
 }

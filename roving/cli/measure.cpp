@@ -1,0 +1,244 @@
+// `roving measure`: the run from options to report.
+#include "measure.h"
+
+#include <fmt/format.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <future>
+#include <memory>
+
+#include "checks.h"
+#include "gates.h"
+#include "progress.h"
+#include "provenance.h"
+#include "report.h"
+#include "roving/core/error.h"
+#include "roving/formats/atomic_file.h"
+#include "roving/formats/file_hash.h"
+#include "roving/formats/sample_output.h"
+#include "roving/registry/method_registry.h"
+
+namespace roving {
+namespace {
+
+// h bounded by what the models and Embree's float rays can represent: the view volume need
+// reach no farther than both models' extent, and beyond it the rays' float origins lose the
+// precision the distances need (h = 1e10 on a unit model gave SiAD 2.5e9 instead of 0).
+void require_representable(double max_error, const BoundingBox& both, const std::string& given) {
+  const double extent = both.diagonal();
+  if (!(max_error <= extent)) {
+    throw Error(
+        fmt::format("--max-error: expected at most the diagonal of both models' bounding box ({:.6g}), found "
+                    "{} ({:.6g}); a view volume reaches nothing farther",
+                    extent, given, max_error));
+  }
+}
+
+std::string file_name(const std::string& path) { return std::filesystem::path(path).filename().string(); }
+
+void require_writable_paths(const MeasureArguments& args) {
+  for (const auto& [option, path] :
+       {std::pair{"--json", args.json_path}, std::pair{"--samples-out", args.samples_csv_path},
+        std::pair{"--heatmap", args.heatmap_path}}) {
+    std::error_code error;
+    if (!path.empty() && path != "-" && std::filesystem::is_directory(path, error)) {
+      throw Error(fmt::format("{}: expected a file to write, found the directory '{}'", option, path));
+    }
+  }
+}
+
+// Every value a gate can check: each direction's statistics, and the two-sided summary.
+std::vector<MetricValue> gate_values(const MeasureReport& report) {
+  std::vector<MetricValue> values;
+  for (const DirectionReport& d : report.directions) {
+    const Statistics& s = d.statistics;
+    const nlohmann::json statistics = statistics_json(s);
+    for (const auto& [name, value] : statistics.items()) {
+      values.push_back({name, d.label, value.get<double>(), report.diagonal});
+    }
+    values.push_back({"no_hits", d.label, static_cast<double>(s.no_hit_count), static_cast<double>(s.sample_count)});
+  }
+  if (report.symmetric()) {
+    const TwoSided t = report.two_sided();
+    values.push_back({"hausdorff", "", t.max_abs, report.diagonal});
+    values.push_back({"mean_both", "", t.mean_abs, report.diagonal});
+    values.push_back({"rms_both", "", t.rms, report.diagonal});
+  }
+  return values;
+}
+
+}  // namespace
+
+int run_measure(const MeasureArguments& args, std::string& stage) {
+  const Stopwatch total;
+  // Parse every option before the (slow) loads, so a typo fails at once.
+  GlMethodOptions gl;
+  parse_views(args.views, gl.views_h, gl.views_v);
+  gl.backend = parse_gl_backend(args.backend);
+  gl.resolution = args.resolution;
+  const auto method = make_method(args.method, gl);
+  SampleSpec sample_spec = parse_sample_spec(args.samples);
+  if (args.seed) {
+    if (sample_spec.kind != SampleSpec::Kind::Area) {
+      throw Error(fmt::format("--seed: only --samples area:N is random; found --samples {}", args.samples));
+    }
+    sample_spec.seed = *args.seed;
+  }
+  const MaxErrorSpec max_error = parse_max_error(args.max_error);
+  DistanceOptions options;
+  if (!args.semantics.empty()) {
+    options.semantics = parse_semantics(args.semantics);
+  } else {
+    // Metro's two-sided figures are closest-point ones: the default wherever the method has it.
+    options.semantics = args.symmetric && method->supports(Semantics::Closest) ? Semantics::Closest
+                                                                               : method->supported_semantics().front();
+  }
+  options.max_error = 1;  // placeholder until the diagonal is known; checked for support now
+  validate_options(*method, options);
+  std::vector<Gate> gates;
+  for (const std::string& text : args.gates) {
+    gates.push_back(parse_gate(text, args.symmetric));
+    if (gates.back().metric == "hausdorff" && options.semantics != Semantics::Closest) {
+      throw Error(fmt::format("--fail-above {}: the Hausdorff distance needs --semantics closest, found {}", text,
+                              to_string(options.semantics)));
+    }
+  }
+  if (args.symmetric && !args.heatmap_path.empty()) {
+    throw Error("--heatmap: a heat map shows one direction; found --symmetric (run REF TEST without it)");
+  }
+  require_writable_paths(args);
+
+  const auto type = [](const std::string& text, const char* option) {
+    return text.empty() ? std::nullopt : std::optional<ModelType>(parse_model_type(text, option));
+  };
+  const auto reference_type = type(args.reference_type, "--ref-type");
+  const auto test_type = type(args.test_type, "--test-type");
+  if (test_type == ModelType::Points) {
+    throw Error(
+        "--test-type: a point cloud cannot be the test model: it has holes and records no surface to draw or "
+        "intersect (the paper's limit); expected mesh or voxels, found 'points'");
+  }
+
+  Progress progress(args.quiet);
+  MeasureReport report;
+  report.method = method->name();
+  report.semantics = options.semantics;
+  report.max_error_text = max_error.to_string();
+  report.seed = sample_spec.seed;
+  // The inputs' hashes on another core while they load.
+  auto reference_hash = std::async(std::launch::async, file_sha256, args.reference_path);
+  auto test_hash = std::async(std::launch::async, file_sha256, args.test_path);
+  Stopwatch watch;
+  stage = fmt::format("loading the reference {}", args.reference_path);
+  progress.stage("loading " + file_name(args.reference_path));
+  const Model a = load_model(args.reference_path, reference_type);
+  report.load_seconds[0] = watch.seconds();
+  watch = Stopwatch();
+  stage = fmt::format("loading the test {}", args.test_path);
+  progress.stage("loading " + file_name(args.test_path));
+  const Model b = load_model(args.test_path, test_type);
+  report.load_seconds[1] = watch.seconds();
+  test_surface(b);  // a point cloud cannot be measured against
+  if (args.symmetric && a.type == ModelType::Points) {
+    throw Error(fmt::format("--symmetric: {} is a point cloud, which has no surface to measure {} against",
+                            a.path(), b.path()));
+  }
+  report.provenance = {
+      {"tool", tool_json()},
+      {"command_line", args.command_line},
+      {"inputs",
+       {{{"role", args.symmetric ? "A" : "reference"},
+         {"path", a.path()},
+         {"bytes", std::filesystem::file_size(a.path())},
+         {"sha256", reference_hash.get()}},
+        {{"role", args.symmetric ? "B" : "test"},
+         {"path", b.path()},
+         {"bytes", std::filesystem::file_size(b.path())},
+         {"sha256", test_hash.get()}}}}};
+
+  BoundingBox both = a.bounding_box();
+  both.extend(b.bounding_box().min);
+  both.extend(b.bounding_box().max);
+  report.diagonal_of_both = args.symmetric;
+  report.diagonal = args.symmetric ? both.diagonal() : a.bounding_box().diagonal();
+  options.max_error = max_error.resolve(report.diagonal);
+  report.max_error = options.max_error;
+  require_representable(options.max_error, both, args.max_error);
+
+  const bool text_to_stdout = args.json_path != "-";
+  if (text_to_stdout) {
+    progress.clear();
+    write_stdout(format_header(a, b, report));
+  }
+  const auto warn = [&](const std::vector<std::string>& lines) {
+    if (lines.empty()) return;
+    progress.clear();
+    for (const std::string& line : lines) {
+      std::fprintf(stderr, "roving: warning: %s\n", line.c_str());
+      report.warnings.push_back(line);
+    }
+  };
+  warn(alignment_warnings(a, b, options.max_error));
+  warn(orientation_warnings(a));
+  if (args.symmetric) warn(orientation_warnings(b));
+
+  method->set_progress(progress.callback());
+  const std::vector<std::pair<const Model*, const Model*>> pairs =
+      args.symmetric ? std::vector<std::pair<const Model*, const Model*>>{{&a, &b}, {&b, &a}}
+                     : std::vector<std::pair<const Model*, const Model*>>{{&a, &b}};
+  for (const auto& [reference, test] : pairs) {
+    DirectionReport& d = report.directions.emplace_back();
+    d.reference = reference;
+    d.test = test;
+    if (args.symmetric) d.label = reference == &a ? "A -> B" : "B -> A";
+    stage = fmt::format("sampling {} ({})", reference->path(), sample_spec.to_string());
+    progress.stage(fmt::format("{}sampling", d.label.empty() ? "" : d.label + ": "));
+    d.samples = reference_samples(*reference, sample_spec);
+    const TriangleMesh& test_mesh = test_surface(*test);
+    stage = fmt::format("measuring {} samples against {} triangles with {}", d.samples.size(),
+                        test_mesh.triangle_count(), method->name());
+    progress.stage(fmt::format("{}measuring", d.label.empty() ? "" : d.label + ": "));
+    d.result = measure_distances(*method, test_mesh, d.samples, options);
+    d.statistics = compute_statistics(d.result.signed_distance, d.result.hit, d.samples.weights,
+                                      options.max_error, args.histogram_bins);
+    std::vector<std::string> found = result_warnings(d.statistics, options.semantics);
+    for (std::string& line : found) line = (d.label.empty() ? "" : d.label + ": ") + line;
+    warn(found);
+  }
+  progress.clear();
+
+  // Every output file is written whole to a temporary file first; only when all succeeded are
+  // they moved into place, so a failed run changes none of them.
+  stage = "writing the outputs";
+  std::vector<std::unique_ptr<AtomicFile>> outputs;
+  if (!args.samples_csv_path.empty()) {
+    outputs.push_back(std::make_unique<AtomicFile>(args.samples_csv_path));
+    for (const DirectionReport& d : report.directions) {
+      write_samples_csv(outputs.back()->stream(), d.samples, d.result, d.label, &d == &report.directions.front());
+    }
+    outputs.back()->close_stream();
+  }
+  if (!args.heatmap_path.empty()) {
+    const DirectionReport& d = report.directions.front();
+    outputs.push_back(std::make_unique<AtomicFile>(args.heatmap_path));
+    const double range = std::max(d.statistics.max_abs, 1e-300);
+    write_heatmap_ply(outputs.back()->stream(), d.samples, d.result, std::min(range, options.max_error));
+    outputs.back()->close_stream();
+  }
+  report.total_seconds = total.seconds();
+  const std::string json = args.json_path.empty() ? "" : to_json(report).dump(2) + "\n";
+  if (!args.json_path.empty() && args.json_path != "-") {
+    outputs.push_back(std::make_unique<AtomicFile>(args.json_path));
+    std::fputs(json.c_str(), outputs.back()->stream());
+    outputs.back()->close_stream();
+  }
+  for (const auto& output : outputs) output->commit();
+  write_stdout(text_to_stdout ? format_body(report) : json);
+
+  const std::vector<std::string> breached = breached_gates(gates, gate_values(report));
+  for (const std::string& line : breached) std::fprintf(stderr, "roving: %s\n", line.c_str());
+  return breached.empty() ? 0 : kGateExitCode;
+}
+
+}  // namespace roving

@@ -1,0 +1,240 @@
+// What `roving measure` reports beyond the statistics: both directions (Metro's summary),
+// provenance, gates for a user's CI, warnings, the samples table's columns, suggestions for
+// typos, and silence in pipes. Two concentric cubes (half-sides 0.5 and 0.55) give every figure
+// in closed form: each face sample is 0.05 from the other cube's face.
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "cli_support.h"
+
+namespace {
+
+using namespace roving::testing::cli;
+
+// An OBJ cube [-s, s]^3 moved by `shift` along x, outward-facing unless `inside_out`.
+std::string cube_obj(double s, double shift = 0, bool inside_out = false) {
+  std::string obj;
+  for (int i = 0; i < 8; ++i) {
+    obj += fmt::format("v {} {} {}\n", (i & 1 ? s : -s) + shift, i & 2 ? s : -s, i & 4 ? s : -s);
+  }
+  const int faces[12][3] = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6}, {0, 1, 4}, {1, 5, 4},
+                            {2, 6, 3}, {3, 6, 7}, {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
+  for (const auto& f : faces) {
+    obj += inside_out ? fmt::format("f {} {} {}\n", f[0] + 1, f[2] + 1, f[1] + 1)
+                      : fmt::format("f {} {} {}\n", f[0] + 1, f[1] + 1, f[2] + 1);
+  }
+  return obj;
+}
+
+struct Cubes {
+  Folder folder;
+  std::string small = folder.file("small.obj", cube_obj(0.5));
+  std::string large = folder.file("large.obj", cube_obj(0.55));
+  std::string pair = small + " " + large;
+};
+
+// Embree's closest point is computed in float: 0.05 to about 1e-7.
+constexpr double kFloatTolerance = 1e-6;
+
+TEST(CliReport, SymmetricGivesBothDirectionsAndMetrosSummary) {
+  const Cubes cubes;
+  const CliRun run = run_cli("measure " + cubes.pair + " --symmetric --json -");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const auto json = nlohmann::json::parse(run.out);
+  EXPECT_EQ(json["semantics"], "closest");  // the default where the method has it
+  EXPECT_EQ(json["diagonal_of"], "both models");
+  EXPECT_NEAR(json["diagonal"].get<double>(), 1.1 * std::sqrt(3.0), 1e-12);
+  ASSERT_EQ(json["directions"].size(), 2u);
+  // The large cube lies outside the small one's faces (+0.05), the small one inside the large's.
+  EXPECT_NEAR(json["directions"][0]["statistics"]["siad"].get<double>(), 0.05, kFloatTolerance);
+  EXPECT_NEAR(json["directions"][1]["statistics"]["siad"].get<double>(), -0.05, kFloatTolerance);
+  EXPECT_EQ(json["directions"][0]["label"], "A -> B");
+  EXPECT_EQ(json["directions"][0]["samples"]["count"], 12);
+  EXPECT_NEAR(json["two_sided"]["hausdorff"].get<double>(), 0.05, kFloatTolerance);
+  EXPECT_NEAR(json["two_sided"]["mean_both"].get<double>(), 0.05, kFloatTolerance);
+  EXPECT_NEAR(json["two_sided"]["rms_both"].get<double>(), 0.05, kFloatTolerance);
+  EXPECT_NEAR(json["two_sided_relative_to_diagonal"]["max_abs"].get<double>(), 0.05 / (1.1 * std::sqrt(3.0)),
+              kFloatTolerance);
+
+  const CliRun text = run_cli("measure " + cubes.pair + " --symmetric");
+  ASSERT_EQ(text.exit_code, 0) << text.err;
+  for (const char* field : {"A -> B", "B -> A", "Hausdorff distance", "of both models", "mean |d|, both"}) {
+    EXPECT_NE(text.out.find(field), std::string::npos) << field;
+  }
+  // Under first-hit the two-sided maximum is not a Hausdorff distance, and says so.
+  const CliRun first_hit = run_cli("measure " + cubes.pair + " --symmetric --semantics first-hit --json -");
+  ASSERT_EQ(first_hit.exit_code, 0) << first_hit.err;
+  EXPECT_TRUE(nlohmann::json::parse(first_hit.out)["two_sided"]["hausdorff"].is_null());
+}
+
+TEST(CliReport, ExtremesLeaveNoHitsOut) {
+  const Cubes cubes;
+  // h = 0.03 is closer than the other cube: every first-hit sample is a no-hit.
+  const CliRun run = run_cli("measure " + cubes.pair + " --max-error 0.03 --json -");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const auto json = nlohmann::json::parse(run.out);
+  EXPECT_EQ(json["no_hits"], 12);
+  EXPECT_EQ(json["statistics"]["max_abs"], 0.0);  // not h: no-hits are counted, not folded in
+  EXPECT_NEAR(json["statistics"]["usiad"].get<double>(), 0.03, 1e-12);  // the means keep the paper's rule
+  const CliRun hits = run_cli("measure " + cubes.pair + " --max-error 0.2 --json -");
+  const auto stats = nlohmann::json::parse(hits.out)["statistics"];
+  EXPECT_NEAR(stats["min_signed"].get<double>(), 0.05, kFloatTolerance);
+  EXPECT_NEAR(stats["max_signed"].get<double>(), 0.05, kFloatTolerance);
+  EXPECT_NEAR(stats["max_abs"].get<double>(), 0.05, kFloatTolerance);
+}
+
+TEST(CliReport, ProvenanceNamesToolInputsAndSeed) {
+  const Cubes cubes;
+  const CliRun version = run_cli("--version");
+  ASSERT_EQ(version.exit_code, 0);
+  EXPECT_EQ(version.out.rfind("roving ", 0), 0u) << version.out;
+  EXPECT_NE(version.out.find("(commit "), std::string::npos) << version.out;
+
+  const CliRun run = run_cli("measure " + cubes.pair + " --samples area:50 --json -");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const auto json = nlohmann::json::parse(run.out);
+  EXPECT_EQ(json["schema_version"], 2);
+  EXPECT_EQ(json["tool"]["name"], "roving");
+  EXPECT_FALSE(json["tool"]["commit"].get<std::string>().empty());
+  EXPECT_NE(json["command_line"].get<std::string>().find("--samples area:50"), std::string::npos);
+  ASSERT_EQ(json["inputs"].size(), 2u);
+  EXPECT_EQ(json["inputs"][0]["path"], cubes.small);
+  EXPECT_EQ(json["inputs"][0]["bytes"], fs::file_size(cubes.small));
+  const std::string hash = json["inputs"][0]["sha256"];
+  EXPECT_EQ(hash.size(), 64u);
+  EXPECT_EQ(hash.find_first_not_of("0123456789abcdef"), std::string::npos);
+  EXPECT_NE(json["inputs"][1]["sha256"], hash);  // different files
+  EXPECT_EQ(json["seed"], 12345);                // the fixed default, reported
+
+  // Another seed, other samples; the same seed, the same ones.
+  const auto rows = [&](const std::string& seed) {
+    const std::string csv = cubes.folder.file("samples-" + seed + ".csv");
+    const CliRun r = run_cli("measure " + cubes.pair + " --samples area:50 --seed " + seed + " --samples-out " + csv);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    std::ifstream file(csv);
+    return std::string(std::istreambuf_iterator<char>(file), {});
+  };
+  EXPECT_NE(rows("7"), rows("8"));
+  EXPECT_EQ(rows("7"), rows("7"));
+  expect_error("measure " + cubes.pair + " --seed 7", {"--seed", "area:N", "faces"});
+  expect_error("measure " + cubes.pair + " --samples area:10 --seed x", {"--seed"});
+}
+
+TEST(CliReport, GatesPassFailAndRefuseMalformedLimits) {
+  const Cubes cubes;
+  const std::string run_pair = "measure " + cubes.pair + " --semantics closest";
+  // USiAD is 0.05; the small cube's diagonal is sqrt(3): 2% of it is 0.0346, 3% is 0.052.
+  for (const char* pass : {"usiad=0.1", "usiad=3%", "max_abs=0.06", "no_hits=0", "siad=0.1"}) {
+    const CliRun run = run_cli(run_pair + " --fail-above " + pass);
+    EXPECT_EQ(run.exit_code, 0) << pass << ": " << run.err;
+    EXPECT_EQ(run.err, "") << pass;
+  }
+  const CliRun fail = run_cli(run_pair + " --fail-above usiad=2% --fail-above rms=0.03 --fail-above p99=1");
+  EXPECT_EQ(fail.exit_code, 3) << fail.err;
+  EXPECT_EQ(std::count(fail.err.begin(), fail.err.end(), '\n'), 2) << fail.err;
+  for (const char* fragment : {"usiad = 0.05", "0.034641", "--fail-above usiad=2%", "rms = 0.05", "limit 0.03"}) {
+    EXPECT_NE(fail.err.find(fragment), std::string::npos) << fragment << " in " << fail.err;
+  }
+  EXPECT_FALSE(fail.out.empty());  // the report is still written
+  // Both directions are checked, and the two-sided summary has its own names.
+  const CliRun symmetric = run_cli("measure " + cubes.pair + " --symmetric --fail-above siad=0.03 "
+                                   "--fail-above hausdorff=0.1");
+  EXPECT_EQ(symmetric.exit_code, 3);
+  EXPECT_NE(symmetric.err.find("siad (A -> B) = 0.05"), std::string::npos) << symmetric.err;
+  EXPECT_NE(symmetric.err.find("siad (B -> A) = -0.05"), std::string::npos) << symmetric.err;
+  EXPECT_EQ(symmetric.err.find("hausdorff"), std::string::npos) << symmetric.err;
+
+  expect_error(run_pair + " --fail-above usiad", {"--fail-above", "METRIC=LIMIT", "'usiad'"});
+  expect_error(run_pair + " --fail-above usiad=abc", {"--fail-above", "'usiad=abc'"});
+  expect_error(run_pair + " --fail-above usiad=-1", {"--fail-above", "'usiad=-1'"});
+  expect_error(run_pair + " --fail-above usiad=150%", {"--fail-above", "'usiad=150%'"});
+  expect_error(run_pair + " --fail-above bogus=1", {"--fail-above", "'bogus=1'", "usiad"});
+  expect_error(run_pair + " --fail-above hausdorff=1", {"--fail-above", "needs --symmetric"});
+  expect_error("measure " + cubes.pair + " --symmetric --semantics first-hit --fail-above hausdorff=1",
+               {"--fail-above", "closest"});
+}
+
+TEST(CliReport, WarningsForMisalignedAndInsideOutModels) {
+  const Cubes cubes;
+  // A clean run in a pipe says nothing on stderr: no warnings, no progress.
+  const CliRun clean = run_cli("measure " + cubes.pair + " --json -");
+  EXPECT_EQ(clean.err, "");
+  EXPECT_TRUE(nlohmann::json::parse(clean.out)["warnings"].empty());
+
+  const std::string far = cubes.folder.file("far.obj", cube_obj(0.5, 10));
+  const CliRun disjoint = run_cli("measure " + cubes.small + " " + far + " --json -");
+  ASSERT_EQ(disjoint.exit_code, 0) << disjoint.err;
+  EXPECT_NE(disjoint.err.find("roving: warning: the bounding boxes"), std::string::npos) << disjoint.err;
+  EXPECT_NE(disjoint.err.find("do not overlap"), std::string::npos) << disjoint.err;
+  EXPECT_NE(disjoint.err.find("100% of the samples (12 of 12) found no surface"), std::string::npos)
+      << disjoint.err;
+  EXPECT_EQ(nlohmann::json::parse(disjoint.out)["warnings"].size(), 2u);
+
+  const std::string shifted = cubes.folder.file("shifted.obj", cube_obj(0.5, 0.2));
+  const CliRun offset = run_cli("measure " + cubes.small + " " + shifted + " --max-error 0.1");
+  EXPECT_NE(offset.err.find("small.obj reaches 0.2 beyond that of"), std::string::npos) << offset.err;
+  // A part measured against the whole (a partial scan) is no mistake: no warning.
+  const std::string part = cubes.folder.file("part.obj", "v 0 0 0.5\nv 0.5 0 0.5\nv 0 0.5 0.5\nf 1 2 3\n");
+  EXPECT_EQ(run_cli("measure " + part + " " + cubes.small).err, "");
+
+  const std::string flipped = cubes.folder.file("flipped.obj", cube_obj(0.5, 0, true));
+  const CliRun inside_out = run_cli("measure " + flipped + " " + cubes.large + " --json -");
+  ASSERT_EQ(inside_out.exit_code, 0) << inside_out.err;
+  EXPECT_NE(inside_out.err.find("inside out"), std::string::npos) << inside_out.err;
+  EXPECT_NE(inside_out.err.find("flipped.obj"), std::string::npos) << inside_out.err;
+}
+
+TEST(CliReport, SamplesTableNamesElementWeightAndResolution) {
+  const Cubes cubes;
+  const std::string csv = cubes.folder.file("faces.csv");
+  ASSERT_EQ(run_cli("measure " + cubes.pair + " --samples-out " + csv).exit_code, 0);
+  std::ifstream file(csv);
+  std::string line;
+  std::getline(file, line);
+  EXPECT_EQ(line, "x,y,z,nx,ny,nz,d,hit,element,weight,resolved_by");
+  std::getline(file, line);
+  // Face 0 of the unit cube: a right triangle of legs 1, area 0.5; Embree resolves no "how".
+  EXPECT_NE(line.find(",1,0,0.5,"), std::string::npos) << line;
+
+  const std::string gl = cubes.folder.file("gl.csv");
+  ASSERT_EQ(run_cli("measure " + cubes.pair + " --method roving --max-error 0.03 --samples-out " + gl).exit_code, 0);
+  std::ifstream gl_file(gl);
+  std::getline(gl_file, line);
+  std::getline(gl_file, line);
+  EXPECT_NE(line.find(",,0,0,0.5,no-hit"), std::string::npos) << line;  // nothing within 0.03
+
+  const std::string both = cubes.folder.file("both.csv");
+  ASSERT_EQ(run_cli("measure " + cubes.pair + " --symmetric --samples-out " + both).exit_code, 0);
+  std::ifstream both_file(both);
+  std::string text((std::istreambuf_iterator<char>(both_file)), {});
+  EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), 25);  // header + 12 + 12
+  EXPECT_NE(text.find(",direction\n"), std::string::npos);
+  EXPECT_NE(text.find(",B -> A\n"), std::string::npos);
+}
+
+TEST(CliReport, TyposGetSuggestionsAndHelpListsEveryFormat) {
+  const Cubes cubes;
+  expect_error("mesure " + cubes.pair, {"unknown command 'mesure'", "did you mean 'measure'"});
+  expect_error("measure " + cubes.pair + " --max-eror 3", {"unknown option '--max-eror'", "'--max-error'"});
+  expect_error("measure " + cubes.pair + " --symetric", {"'--symmetric'"});
+  const CliRun help = run_cli("measure --help");
+  EXPECT_EQ(help.exit_code, 0);
+  for (const char* listed : {".obj", ".ply", ".off", ".stl", ".bpt", ".xyz", ".binvox", "bezier", "--fail-above",
+                             "--symmetric", "--seed", "--quiet"}) {
+    EXPECT_NE(help.out.find(listed), std::string::npos) << listed;
+  }
+}
+
+TEST(CliReport, SymmetricRefusesWhatHasOneDirection) {
+  const Cubes cubes;
+  expect_error("measure " + cubes.pair + " --symmetric --heatmap " + cubes.folder.file("h.ply"),
+               {"--heatmap", "--symmetric"});
+  const std::string xyz = cubes.folder.file("points.xyz", "0 0 0.5 0 0 1\n0.1 0 0.5 0 0 1\n0 0.1 0.5 0 0 1\n");
+  expect_error("measure " + xyz + " " + cubes.large + " --symmetric", {"--symmetric", "points.xyz", "point cloud"});
+}
+
+}  // namespace
