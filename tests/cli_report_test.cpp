@@ -7,7 +7,7 @@
 
 #include <cmath>
 #include <nlohmann/json.hpp>
-#include <sstream>
+#include <set>
 
 #include "cli_support.h"
 
@@ -235,6 +235,79 @@ TEST(CliReport, SymmetricRefusesWhatHasOneDirection) {
                {"--heatmap", "--symmetric"});
   const std::string xyz = cubes.folder.file("points.xyz", "0 0 0.5 0 0 1\n0.1 0 0.5 0 0 1\n0 0.1 0.5 0 0 1\n");
   expect_error("measure " + xyz + " " + cubes.large + " --symmetric", {"--symmetric", "points.xyz", "point cloud"});
+}
+
+// Every field path of a JSON value: objects by dotted names, arrays of objects as NAME[].
+void collect_paths(const nlohmann::json& json, const std::string& prefix, std::set<std::string>& out) {
+  if (json.is_object()) {
+    for (const auto& [key, value] : json.items()) collect_paths(value, prefix.empty() ? key : prefix + "." + key, out);
+  } else if (json.is_array() && !json.empty() && json.front().is_object()) {
+    for (const auto& value : json) collect_paths(value, prefix + "[]", out);
+  } else {
+    out.insert(prefix);
+  }
+}
+
+// The backticked names in the first column of docs/report-json.md's tables.
+std::set<std::string> documented_paths() {
+  std::ifstream file(std::string(ROVING_SOURCE_DIR) + "/docs/report-json.md");
+  std::set<std::string> paths;
+  std::string line;
+  while (std::getline(file, line)) {
+    if (line.rfind("| `", 0) != 0) continue;
+    const std::string cell = line.substr(1, line.find('|', 1) - 1);
+    for (std::size_t open = cell.find('`'); open != std::string::npos; open = cell.find('`', open + 1)) {
+      const std::size_t close = cell.find('`', open + 1);
+      paths.insert(cell.substr(open + 1, close - open - 1));
+      open = close;
+    }
+  }
+  return paths;
+}
+
+bool documented(const std::string& path, const std::set<std::string>& documented) {
+  if (documented.count(path)) return true;
+  for (const std::string& pattern : documented) {  // NAME.* stands for every field under NAME
+    if (pattern.size() > 2 && pattern.compare(pattern.size() - 2, 2, ".*") == 0 &&
+        path.rfind(pattern.substr(0, pattern.size() - 1), 0) == 0) {
+      return true;
+    }
+  }
+  return false;
+}
+
+TEST(CliReport, JsonLayoutIsTheDocumentedOne) {
+  const Cubes cubes;
+  const std::set<std::string> docs = documented_paths();
+  ASSERT_GT(docs.size(), 50u) << "docs/report-json.md not found or not parsed";
+  const std::string teapot = roving::testing::data_file("teapot.bpt");
+  const std::string points = cubes.folder.file("points.xyz", "0 0 0.5 0 0 1\n0.1 0 0.5 0 0 1\n0 0.1 0.5 0 0 1\n");
+  std::set<std::string> written;
+  for (const std::string& arguments :
+       {cubes.pair, cubes.pair + " --symmetric", cubes.pair + " --method cooperative --views 4x2 --resolution 64",
+        teapot + " " + teapot + " --samples area:100", points + " " + cubes.small}) {
+    const CliRun run = run_cli("measure " + arguments + " --json -");
+    ASSERT_EQ(run.exit_code, 0) << arguments << ": " << run.err;
+    const auto json = nlohmann::json::parse(run.out);
+    EXPECT_EQ(json["schema_version"], 2);
+    std::set<std::string> paths;
+    collect_paths(json, "", paths);
+    for (const std::string& path : paths) {
+      // A direction of a two-sided report has the one-sided layout.
+      const std::string one_sided = path.rfind("directions[].", 0) == 0 && path != "directions[].label"
+                                        ? path.substr(std::string("directions[].").size())
+                                        : path;
+      EXPECT_TRUE(documented(one_sided, docs)) << arguments << ": '" << path << "' is not in docs/report-json.md";
+      written.insert(one_sided);
+    }
+  }
+  // And the document names nothing the tool no longer writes (voxels need a .binvox: not run here).
+  for (const std::string& path : docs) {
+    if (path.find(".*") != std::string::npos || path.find("voxels") != std::string::npos || path == "directions") {
+      continue;
+    }
+    EXPECT_TRUE(written.count(path)) << "docs/report-json.md lists '" << path << "', which no run wrote";
+  }
 }
 
 }  // namespace
