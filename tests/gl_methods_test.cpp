@@ -2,7 +2,10 @@
 // cases, exact observation counts, and the accuracy gates against Embree on the bunny.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdlib>
+#include <cstring>
 
 #include "accuracy_pairs.h"
 #include "analytic.h"
@@ -11,6 +14,7 @@
 #include "roving/core/normalise.h"
 #include "roving/core/statistics.h"
 #include "roving/gl_methods/agreement.h"
+#include "roving/gl_methods/view_footprint.h"
 #include "roving/registry/method_registry.h"
 #include "test_support.h"
 
@@ -219,6 +223,80 @@ TEST(CooperativeBound, WithinOnePercentOnEveryKindOfPair) {
   const TriangleMesh box = testing::box(1.0), big = testing::box(1.1);
   check("box vertices", box, big, make_samples(box, parse_sample_spec("vertices")),
         0.05 * box.bounding_box().diagonal());
+}
+
+}  // namespace
+}  // namespace roving
+
+namespace roving {
+namespace {
+
+// Culling and scissoring a view change no result: every pixel its samples read has the depth
+// of the whole view, bit for bit, whichever reading (normal line marched across the view, or
+// the paper's read at the sample) and whatever the direction.
+TEST(ViewCulling, EveryPixelReadHasTheWholeViewsDepth) {
+  REQUIRE_GL_CONTEXT(GlBackend::OSMesa);
+  const TriangleMesh bunny = normalised(testing::bunny());
+  const TriangleMesh test = smoothly_perturbed(decimate_quadric(bunny, 10459), 0.01 * bunny.bounding_box().diagonal(),
+                                               0.5 * bunny.bounding_box().diagonal());
+  const SampleSet samples = make_samples(bunny, {});
+  const double h = 0.05 * bunny.bounding_box().diagonal();
+  auto renderer = make_depth_renderer(GlBackend::OSMesa);
+  renderer->upload_model(test);
+  BoundingBox box = test.bounding_box();
+  for (const Vec3& x : samples.positions) box.extend(x);
+  const double radius = 0.5 * box.diagonal() + h;
+  const int resolution = 1024;
+  std::size_t pixels_compared = 0;
+  for (const Vec3& direction : {Vec3(0, 0, 1), Vec3(0.3, -1, 0.2), Vec3(-1, 0.1, 0.5)}) {
+    const Vec3 d = direction.normalized();
+    std::vector<std::uint32_t> group;  // the samples facing the view, as viewpoint sampling groups them
+    for (std::uint32_t k = 0; k < samples.size(); ++k) {
+      if (samples.normals[k].dot(d) > std::cos(10 * M_PI / 180)) group.push_back(k);
+    }
+    const OrthoCamera camera = OrthoCamera::looking_along(-d, box.centre(), radius, radius, radius);
+    std::vector<float> whole, part(static_cast<std::size_t>(resolution) * resolution, -1.0f);
+    renderer->render_view(camera, resolution, whole);
+    for (const double reach : {h, 0.0}) {
+      const ViewFootprint footprint(camera, resolution, samples, group, reach);
+      const std::vector<std::uint32_t> triangles = footprint.triangles_reaching(test);
+      EXPECT_LT(triangles.size(), test.triangle_count() / 2) << "culling keeps most triangles";
+      renderer->render_view_part(camera, resolution, footprint.rect(), triangles, part);
+      for (int j = 0; j < resolution; ++j) {
+        for (int i = 0; i < resolution; ++i) {
+          if (!footprint.covers(i, j)) continue;
+          const std::size_t p = static_cast<std::size_t>(j) * resolution + i;
+          ASSERT_EQ(std::memcmp(&whole[p], &part[p], sizeof(float)), 0)
+              << "pixel (" << i << ", " << j << "): " << whole[p] << " vs " << part[p];
+          ++pixels_compared;
+        }
+      }
+    }
+  }
+  EXPECT_GT(pixels_compared, 10000u);
+}
+
+// And so the GL methods give the same distances, hits and resolutions with and without it.
+TEST(ViewCulling, CooperativeIsIdenticalWithAndWithout) {
+  REQUIRE_GL_CONTEXT(GlBackend::OSMesa);
+  const TriangleMesh bunny = normalised(testing::bunny());
+  const double diagonal = bunny.bounding_box().diagonal();
+  const TriangleMesh test = smoothly_perturbed(decimate_quadric(bunny, 10459), 0.01 * diagonal, 0.5 * diagonal);
+  const SampleSet samples = make_samples(bunny, parse_sample_spec("area:6000"));
+  const DistanceOptions options{Semantics::FirstHit, 0.05 * bunny.bounding_box().diagonal()};
+  for (const bool normal_line : {true, false}) {
+    GlMethodOptions gl;
+    gl.views_h = 12, gl.views_v = 6, gl.resolution = 512, gl.normal_line = normal_line;
+    gl.cull_views = false;
+    const DistanceResult whole = measure_distances(*make_method("cooperative", gl), test, samples, options);
+    gl.cull_views = true;
+    const DistanceResult culled = measure_distances(*make_method("cooperative", gl), test, samples, options);
+    EXPECT_EQ(whole.hit, culled.hit);
+    EXPECT_EQ(whole.signed_distance, culled.signed_distance);  // exact equality of doubles
+    EXPECT_EQ(whole.gl->resolved_by, culled.gl->resolved_by);
+    EXPECT_EQ(whole.gl->observations(), culled.gl->observations());
+    EXPECT_GT(std::count(culled.gl->resolved_by.begin(), culled.gl->resolved_by.end(), Resolution::View), 1000);
+  }
 }
 
 }  // namespace

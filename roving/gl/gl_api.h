@@ -15,6 +15,7 @@ namespace roving::gl {
   X(PFNGLGETINTEGERVPROC, GetIntegerv)                         \
   X(PFNGLGETERRORPROC, GetError)                               \
   X(PFNGLVIEWPORTPROC, Viewport)                               \
+  X(PFNGLSCISSORPROC, Scissor)                                 \
   X(PFNGLCLEARDEPTHPROC, ClearDepth)                           \
   X(PFNGLCLEARPROC, Clear)                                     \
   X(PFNGLENABLEPROC, Enable)                                   \

@@ -69,6 +69,7 @@ class GlDepthRenderer final : public DepthRenderer {
     gl_.GenBuffers(1, &model_vertices_);
     gl_.GenBuffers(1, &model_indices_);
     gl_.GenBuffers(1, &tile_vertices_);
+    gl_.GenBuffers(1, &part_buffer_);
     gl_.BindVertexArray(tile_vao_);
     gl_.BindBuffer(GL_ARRAY_BUFFER, tile_vertices_);
     gl_.VertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(TileVertex), nullptr);
@@ -86,6 +87,7 @@ class GlDepthRenderer final : public DepthRenderer {
     gl_.DeleteBuffers(1, &model_vertices_);
     gl_.DeleteBuffers(1, &model_indices_);
     gl_.DeleteBuffers(1, &tile_vertices_);
+    gl_.DeleteBuffers(1, &part_buffer_);
     gl_.DeleteVertexArrays(1, &model_vao_);
     gl_.DeleteVertexArrays(1, &tile_vao_);
     gl_.DeleteProgram(view_program_);
@@ -118,29 +120,58 @@ class GlDepthRenderer final : public DepthRenderer {
     gl_.BufferData(GL_ELEMENT_ARRAY_BUFFER, indices.size() * sizeof(unsigned), indices.data(),
                    GL_STATIC_DRAW);
     model_index_count_ = static_cast<GLsizei>(indices.size());
+    model_triangles_ = std::move(indices);  // for drawing parts of the model
     check("uploading the test model");
   }
 
   void render_view(const OrthoCamera& camera, int resolution, std::vector<float>& depth) override {
-    if (model_index_count_ == 0) throw Error("gl: render_view() before upload_model()");
-    if (resolution < 1 || resolution > max_size_) {
-      throw Error(fmt::format("--resolution: expected 1..{} (this context's largest framebuffer), found {}",
-                              max_size_, resolution));
-    }
+    require_view(resolution);
     bind_framebuffer(resolution, resolution);
-    gl_.UseProgram(view_program_);
-    const Vec3 centre = camera.centre - model_origin_;
-    const Vec3 right = camera.right / camera.half_width, up = camera.up / camera.half_height;
-    const Vec3 forward = camera.forward / (2 * camera.half_depth);
-    uniform3(view_program_, "centre", centre);
-    uniform3(view_program_, "right_scaled", right);
-    uniform3(view_program_, "up_scaled", up);
-    uniform3(view_program_, "forward_scaled", forward);
+    use_view_program(camera);
     gl_.BindVertexArray(model_vao_);
+    gl_.BindBuffer(GL_ELEMENT_ARRAY_BUFFER, model_indices_);
     gl_.DrawElements(GL_TRIANGLES, model_index_count_, GL_UNSIGNED_INT, nullptr);
     read_depth(resolution, resolution, depth);
     check("rendering a view");
   }
+
+  void render_view_part(const OrthoCamera& camera, int resolution, const PixelRect& rect,
+                        const std::vector<std::uint32_t>& triangles, std::vector<float>& depth) override {
+    require_view(resolution);
+    if (rect.x0 < 0 || rect.y0 < 0 || rect.x1 > resolution || rect.y1 > resolution) {
+      throw Error(fmt::format("gl: pixel rectangle [{}, {}) x [{}, {}) outside a {}-pixel view", rect.x0, rect.x1,
+                              rect.y0, rect.y1, resolution));
+    }
+    depth.resize(static_cast<std::size_t>(resolution) * resolution);
+    if (rect.empty()) return;
+    // Only the rectangle is cleared, drawn and read: the scissor box bounds all three.
+    gl_.Enable(GL_SCISSOR_TEST);
+    gl_.Scissor(rect.x0, rect.y0, rect.x1 - rect.x0, rect.y1 - rect.y0);
+    bind_framebuffer(resolution, resolution);
+    if (!triangles.empty()) {
+      part_indices_.clear();
+      part_indices_.reserve(3 * triangles.size());
+      for (std::uint32_t t : triangles) {
+        part_indices_.insert(part_indices_.end(), {model_triangles_[3 * t], model_triangles_[3 * t + 1],
+                                                   model_triangles_[3 * t + 2]});
+      }
+      use_view_program(camera);
+      gl_.BindVertexArray(model_vao_);
+      gl_.BindBuffer(GL_ELEMENT_ARRAY_BUFFER, part_buffer_);
+      gl_.BufferData(GL_ELEMENT_ARRAY_BUFFER, part_indices_.size() * sizeof(unsigned), part_indices_.data(),
+                     GL_STREAM_DRAW);
+      gl_.DrawElements(GL_TRIANGLES, static_cast<GLsizei>(part_indices_.size()), GL_UNSIGNED_INT, nullptr);
+      gl_.BindBuffer(GL_ELEMENT_ARRAY_BUFFER, model_indices_);
+    }
+    // Read the rectangle straight into its place in the full-size image.
+    gl_.PixelStorei(GL_PACK_ROW_LENGTH, resolution);
+    gl_.ReadPixels(rect.x0, rect.y0, rect.x1 - rect.x0, rect.y1 - rect.y0, GL_DEPTH_COMPONENT, GL_FLOAT,
+                   depth.data() + static_cast<std::size_t>(rect.y0) * resolution + rect.x0);
+    gl_.PixelStorei(GL_PACK_ROW_LENGTH, 0);
+    gl_.Disable(GL_SCISSOR_TEST);
+    check("rendering part of a view");
+  }
+
 
   void render_tiles(const std::vector<TileVertex>& vertices, std::size_t tile_count,
                     std::vector<float>& depth) override {
@@ -167,6 +198,25 @@ class GlDepthRenderer final : public DepthRenderer {
   }
 
  private:
+  void require_view(int resolution) const {
+    if (model_index_count_ == 0) throw Error("gl: render_view() before upload_model()");
+    if (resolution < 1 || resolution > max_size_) {
+      throw Error(fmt::format("--resolution: expected 1..{} (this context's largest framebuffer), found {}",
+                              max_size_, resolution));
+    }
+  }
+
+  void use_view_program(const OrthoCamera& camera) {
+    gl_.UseProgram(view_program_);
+    const Vec3 centre = camera.centre - model_origin_;
+    const Vec3 right = camera.right / camera.half_width, up = camera.up / camera.half_height;
+    const Vec3 forward = camera.forward / (2 * camera.half_depth);
+    uniform3(view_program_, "centre", centre);
+    uniform3(view_program_, "right_scaled", right);
+    uniform3(view_program_, "up_scaled", up);
+    uniform3(view_program_, "forward_scaled", forward);
+  }
+
   std::string text(GLenum name) const {
     const auto* s = reinterpret_cast<const char*>(gl_.GetString(name));
     return s ? s : "";
@@ -255,6 +305,8 @@ class GlDepthRenderer final : public DepthRenderer {
   GLuint view_program_ = 0, tile_program_ = 0;
   GLuint model_vao_ = 0, tile_vao_ = 0, model_vertices_ = 0, model_indices_ = 0, tile_vertices_ = 0;
   GLsizei model_index_count_ = 0;
+  std::vector<unsigned> model_triangles_, part_indices_;  // the model's corners; a part's
+  GLuint part_buffer_ = 0;
   Vec3 model_origin_ = Vec3::Zero();
   GLuint framebuffer_ = 0, depth_buffer_ = 0;
   int fb_width_ = 0, fb_height_ = 0;

@@ -25,6 +25,10 @@ struct GlMethodOptions {
   // certainly the line's first crossing of M_C. The default: its error is bounded on every
   // kind of pair (results/gl-accuracy.md), where the cosine correction's is not.
   bool normal_line = true;
+  // Draw each view only where its samples read: the triangles that reach those pixels, scissored
+  // to their rectangle (view_footprint.h). Every pixel read keeps its depth, so results are
+  // identical (tests/gl_methods_test.cpp); off only to show that.
+  bool cull_views = true;
 };
 
 // Parses "HxV" (each 1..720); throws roving::Error naming `--views` otherwise.

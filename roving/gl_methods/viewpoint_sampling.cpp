@@ -8,6 +8,7 @@
 
 #include "gl_passes.h"
 #include "roving/gl_methods/gl_methods.h"
+#include "roving/gl_methods/view_footprint.h"
 
 namespace roving {
 namespace {
@@ -215,7 +216,13 @@ std::vector<std::optional<double>> view_sample(GlScene& scene, const SampleSet& 
     // The camera looks against the direction, at the surfaces facing it.
     const OrthoCamera camera =
         OrthoCamera::looking_along(-directions[d], box.centre(), radius, radius, radius);
-    scene.renderer->render_view(camera, resolution, depth);
+    if (options.cull_views) {
+      const ViewFootprint footprint(camera, resolution, samples, groups[d], options.normal_line ? max_error : 0.0);
+      scene.renderer->render_view_part(camera, resolution, footprint.rect(), footprint.triangles_reaching(*scene.test),
+                                       depth);
+    } else {
+      scene.renderer->render_view(camera, resolution, depth);
+    }
     if (options.normal_line) {
       const ViewLine view(camera, depth, resolution, smooth_span, 2 * radius, report.view_pixel_size,
                           report.view_depth_step);
