@@ -66,6 +66,8 @@ TEST(Cli, BadOptionsGiveOneLineErrors) {
                {"--semantics", "v2v-kdtree"});
   expect_error("measure " + pair + " --histogram-bins 0", {"--histogram-bins"});
   expect_error("measure " + pair + " --method cooperative --views 24", {"--views", "'24'"});
+  expect_error("measure " + pair + " --method cooperative --views auto:7", {"--views", "'auto:7'"});
+  expect_error("measure " + pair + " --method viewpoint --views auto", {"--views auto", "cooperative"});
   expect_error("measure " + pair + " --method roving --backend vulkan", {"--backend", "'vulkan'"});
   expect_error("measure " + pair + " --method viewpoint --resolution 0", {"--resolution"});
   expect_error("measure " + pair + " --method roving --semantics nearest", {"--semantics", "roving"});

@@ -124,6 +124,23 @@ TEST(GlOptions, BadOptionsNameTheOption) {
   EXPECT_EQ(h, 36);
   EXPECT_EQ(v, 18);
   EXPECT_THROW(parse_gl_backend("vulkan"), Error);
+  GlMethodOptions parsed;
+  parse_views("auto:36x18", parsed);
+  EXPECT_TRUE(parsed.auto_views);
+  EXPECT_EQ(parsed.views_h, 36);
+  parse_views("12x6", parsed);
+  EXPECT_FALSE(parsed.auto_views);
+  for (const char* bad : {"auto:", "auto:0x3", "autox", "auto:12", "automatic"}) {
+    try {
+      parse_views(bad, parsed);
+      ADD_FAILURE() << "accepted '" << bad << "'";
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("--views"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find(bad), std::string::npos) << e.what();
+    }
+  }
+  parsed.auto_views = true;
+  EXPECT_THROW(make_method("viewpoint", parsed), Error);  // no cameras to choose instead
   GlMethodOptions gl;
   gl.resolution = 0;
   auto method = make_method("viewpoint", gl);
@@ -192,6 +209,33 @@ TEST_F(BunnyGates, CooperativeAgreesWithRovingAndItsViewsWithEmbree) {
 
 namespace roving {
 namespace {
+
+// --views auto draws a view only where it beats the cameras it saves: whatever it chooses, its
+// answers are those of roving (cameras) or of a view (within the views' tolerance), and its
+// observations are what it did.
+TEST_F(BunnyGates, CooperativeAutoViewsKeepsItsAccuracyAndCountsHonestly) {
+  REQUIRE_GL_CONTEXT(GlBackend::OSMesa);
+  GlMethodOptions gl;
+  parse_views("auto", gl);
+  EXPECT_TRUE(gl.auto_views);
+  EXPECT_EQ(gl.views_h, 24);
+  auto cooperative = make_method("cooperative", gl);
+  auto roving = make_method("roving");
+  const Statistics exact = stats(measure_distances(*roving, *test_, *samples_, {Semantics::FirstHit, h()}));
+  const DistanceResult c = measure_distances(*cooperative, *test_, *samples_, {Semantics::FirstHit, h()});
+  const Statistics s = stats(c);
+  EXPECT_LE(std::abs(s.usiad - exact.usiad), 0.01 * exact.usiad);
+  EXPECT_LE(std::abs(s.siad - exact.siad), 0.01 * exact.usiad);
+  const auto resolved = [&](Resolution how) {
+    return static_cast<std::size_t>(std::count(c.gl->resolved_by.begin(), c.gl->resolved_by.end(), how));
+  };
+  EXPECT_GE(c.gl->views_rendered, 1u);  // the first view is drawn, to measure it
+  EXPECT_EQ(c.gl->sample_cameras + resolved(Resolution::View), samples_->size());
+  EXPECT_EQ(resolved(Resolution::View) + resolved(Resolution::Camera) + resolved(Resolution::Unresolved),
+            samples_->size());
+  const ViewAgreement views = view_agreement(*embree_, c, *samples_, *c.gl);
+  EXPECT_GE(views.within_fraction(), 0.99) << views.resolved << " view-resolved";
+}
 
 // The cooperative method's error is bounded on every kind of pair (the full matrix, 4 shapes x
 // 4 kinds of test x 2 h, is in results/gl-accuracy.md): a CI-sized subset, against Embree.

@@ -119,7 +119,7 @@ int main(int argc, char** argv) {
   measure->add_option("--ref-type", args.reference_type,
                       "mesh, points, voxels or bezier (default: by extension)");
   measure->add_option("--test-type", args.test_type, "mesh, voxels or bezier (default: by extension)");
-  measure->add_option("--views", args.views, "viewpoint sampling: H x V directions")->capture_default_str();
+  measure->add_option("--views", args.views, "viewpoint sampling: H x V directions; for cooperative also auto or auto:HxV (a view only where it costs less than the cameras it saves)")->capture_default_str();
   measure->add_option("--resolution", args.resolution, "viewpoint sampling: view side in pixels")
       ->check(CLI::Range(1, 16384))
       ->capture_default_str();

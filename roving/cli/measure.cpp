@@ -74,7 +74,7 @@ int run_measure(const MeasureArguments& args, std::string& stage) {
   const Stopwatch total;
   // Parse every option before the (slow) loads, so a typo fails at once.
   GlMethodOptions gl;
-  parse_views(args.views, gl.views_h, gl.views_v);
+  parse_views(args.views, gl);
   gl.backend = parse_gl_backend(args.backend);
   gl.resolution = args.resolution;
   const auto method = make_method(args.method, gl);

@@ -1,6 +1,11 @@
 // The cooperative method (paper Section 4.3): viewpoint sampling, then surface roving for the
 // samples no view accepted (occluded, or beyond the threshold).
+#include <algorithm>
+#include <numeric>
+#include <optional>
+
 #include "gl_passes.h"
+#include "roving/core/stopwatch.h"
 #include "roving/gl_methods/gl_methods.h"
 
 namespace roving {
@@ -12,9 +17,14 @@ class Cooperative final : public GlMethod {
   std::string name() const override { return "cooperative"; }
 
   void resolve(const SampleSet& samples, double max_error, GlReport& report, const Record& record) override {
-    const auto viewed = view_sample(scene_, samples, max_error, options_, report, progress_);
+    std::vector<std::uint32_t> candidates(samples.size());
+    std::iota(candidates.begin(), candidates.end(), 0u);
+    std::optional<ViewBudget> budget;
+    if (options_.auto_views) budget = calibrate(samples, max_error, report, record, candidates);
+    const auto viewed =
+        view_sample(scene_, samples, candidates, max_error, options_, report, progress_, budget ? &*budget : nullptr);
     std::vector<std::uint32_t> rejected;
-    for (std::uint32_t k = 0; k < samples.size(); ++k) {
+    for (std::uint32_t k : candidates) {
       if (viewed[k]) {
         record(k, *viewed[k], Resolution::View);
       } else {
@@ -25,6 +35,30 @@ class Cooperative final : public GlMethod {
     for (std::size_t i = 0; i < rejected.size(); ++i) {
       if (roved[i]) record(rejected[i], *roved[i], Resolution::Camera);
     }
+  }
+
+ private:
+  // --views auto: what a camera costs, timed on an even spread of up to 4096 samples, which
+  // are then resolved (and leave `candidates`).
+  ViewBudget calibrate(const SampleSet& samples, double max_error, GlReport& report, const Record& record,
+                       std::vector<std::uint32_t>& candidates) {
+    const std::size_t count = std::min<std::size_t>(samples.size(), 4096);
+    std::vector<std::uint32_t> spread;
+    std::vector<std::uint8_t> taken(samples.size(), 0);
+    for (std::size_t i = 0; i < count; ++i) {
+      const auto k = static_cast<std::uint32_t>(i * samples.size() / count);
+      spread.push_back(k);
+      taken[k] = 1;
+    }
+    const Stopwatch watch;
+    const auto roved = rove(scene_, samples, spread, max_error, report, progress_);
+    const double seconds_per_camera = watch.seconds() / double(count);
+    for (std::size_t i = 0; i < spread.size(); ++i) {
+      if (roved[i]) record(spread[i], *roved[i], Resolution::Camera);
+    }
+    candidates.erase(std::remove_if(candidates.begin(), candidates.end(), [&](std::uint32_t k) { return taken[k]; }),
+                     candidates.end());
+    return ViewBudget(seconds_per_camera);
   }
 };
 

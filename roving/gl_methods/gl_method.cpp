@@ -24,6 +24,18 @@ void parse_views(const std::string& text, int& h, int& v) {
   }
 }
 
+void parse_views(const std::string& text, GlMethodOptions& options) {
+  options.auto_views = text.rfind("auto", 0) == 0;
+  if (text == "auto") return;
+  try {
+    parse_views(options.auto_views && text.size() > 5 && text[4] == ':' ? text.substr(5) : text, options.views_h,
+                options.views_v);
+  } catch (const Error&) {
+    throw Error(fmt::format(
+        "--views: expected HxV with H and V in 1..720 (e.g. 24x12), auto, or auto:HxV, found '{}'", text));
+  }
+}
+
 std::vector<Vec3> view_directions(int h, int v) {
   std::vector<Vec3> directions;
   directions.reserve(static_cast<std::size_t>(h) * v);

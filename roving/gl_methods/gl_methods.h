@@ -29,10 +29,17 @@ struct GlMethodOptions {
   // to their rectangle (view_footprint.h). Every pixel read keeps its depth, so results are
   // identical (tests/gl_methods_test.cpp); off only to show that.
   bool cull_views = true;
+  // `--views auto`: the cooperative method draws a direction's view only while it is expected to
+  // cost less than the per-sample cameras it would save, both timed as the run goes; the other
+  // samples go to cameras. Never slower than exact roving by more than one view and a
+  // calibration; its observations are reported as they happened.
+  bool auto_views = false;
 };
 
 // Parses "HxV" (each 1..720); throws roving::Error naming `--views` otherwise.
 void parse_views(const std::string& text, int& h, int& v);
+// Parses "HxV", "auto" (auto_views over 24x12 directions) or "auto:HxV" into `options`.
+void parse_views(const std::string& text, GlMethodOptions& options);
 
 // The H x V view directions, unit vectors at the centres of a longitude-latitude grid:
 // longitude 360 (i + 0.5) / H, latitude -90 + 180 (j + 0.5) / V degrees; index j * H + i.

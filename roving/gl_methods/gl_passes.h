@@ -30,11 +30,35 @@ std::vector<std::optional<double>> rove(GlScene& scene, const SampleSet& samples
                                         const std::vector<std::uint32_t>& indices, double max_error,
                                         GlReport& report, const ProgressFn& progress);
 
-// Viewpoint sampling of every sample: out[k] is d where a view accepted sample k. Fills the
-// report's view fields; tells `progress` of each view.
-std::vector<std::optional<double>> view_sample(GlScene& scene, const SampleSet& samples, double max_error,
+// `--views auto`: a view is drawn while its expected cost stays below that of the per-sample
+// cameras it would save. A camera's cost is measured by a first batch of cameras; a view's, and
+// the fraction of its samples a view resolves, by the views drawn so far (the first is always
+// drawn, to measure).
+class ViewBudget {
+ public:
+  explicit ViewBudget(double seconds_per_camera) : seconds_per_camera_(seconds_per_camera) {}
+  bool worth_a_view(std::size_t samples) const {
+    if (views_ == 0) return true;
+    const double resolved_fraction = double(resolved_) / double(attempted_);
+    return view_seconds_ / views_ < resolved_fraction * double(samples) * seconds_per_camera_;
+  }
+  void record_view(double seconds, std::size_t samples, std::size_t resolved) {
+    ++views_, view_seconds_ += seconds, attempted_ += samples, resolved_ += resolved;
+  }
+
+ private:
+  double seconds_per_camera_, view_seconds_ = 0;
+  std::size_t views_ = 0, attempted_ = 0, resolved_ = 0;
+};
+
+// Viewpoint sampling of samples[candidates]: out[k] is d where a view accepted sample k. Views
+// go in decreasing number of samples; with a `budget`, the first view not worth drawing ends
+// them (the rest have fewer samples still). Fills the report's view fields; tells `progress` of
+// each view.
+std::vector<std::optional<double>> view_sample(GlScene& scene, const SampleSet& samples,
+                                               const std::vector<std::uint32_t>& candidates, double max_error,
                                                const GlMethodOptions& options, GlReport& report,
-                                               const ProgressFn& progress);
+                                               const ProgressFn& progress, ViewBudget* budget = nullptr);
 
 // What the three GL methods share: checks, timing, and filling in the result and report; each
 // method only says how it resolves samples.

@@ -5,8 +5,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 
 #include "gl_passes.h"
+#include "roving/core/error.h"
+#include "roving/core/stopwatch.h"
 #include "roving/gl_methods/gl_methods.h"
 #include "roving/gl_methods/view_footprint.h"
 
@@ -168,9 +171,10 @@ class ViewLine {
 
 }  // namespace
 
-std::vector<std::optional<double>> view_sample(GlScene& scene, const SampleSet& samples, double max_error,
+std::vector<std::optional<double>> view_sample(GlScene& scene, const SampleSet& samples,
+                                               const std::vector<std::uint32_t>& candidates, double max_error,
                                                const GlMethodOptions& options, GlReport& report,
-                                               const ProgressFn& progress) {
+                                               const ProgressFn& progress, ViewBudget* budget) {
   // Voxel references have only axis normals: then the 6 axis views suffice (Section 4.3).
   const bool axis_normals = std::all_of(samples.normals.begin(), samples.normals.end(), [](const Vec3& n) {
     return n.cwiseAbs().maxCoeff() == 1.0 && n.cwiseAbs().sum() == 1.0;
@@ -179,21 +183,26 @@ std::vector<std::optional<double>> view_sample(GlScene& scene, const SampleSet& 
       axis_normals ? axis_directions() : view_directions(options.views_h, options.views_v);
   report.axis_views = axis_normals;
   // Each sample goes to the direction nearest its normal.
-  std::vector<std::uint32_t> direction_of(samples.size());
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, samples.size(), 1024),
+  std::vector<std::uint32_t> direction_of(candidates.size());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, candidates.size(), 1024),
                     [&](const tbb::blocked_range<std::size_t>& range) {
-                      for (std::size_t k = range.begin(); k != range.end(); ++k) {
+                      for (std::size_t i = range.begin(); i != range.end(); ++i) {
                         std::uint32_t best = 0;
                         double best_dot = -2;
                         for (std::uint32_t d = 0; d < directions.size(); ++d) {
-                          const double dot = directions[d].dot(samples.normals[k]);
+                          const double dot = directions[d].dot(samples.normals[candidates[i]]);
                           if (dot > best_dot) best_dot = dot, best = d;
                         }
-                        direction_of[k] = best;
+                        direction_of[i] = best;
                       }
                     });
   std::vector<std::vector<std::uint32_t>> groups(directions.size());
-  for (std::uint32_t k = 0; k < samples.size(); ++k) groups[direction_of[k]].push_back(k);
+  for (std::size_t i = 0; i < candidates.size(); ++i) groups[direction_of[i]].push_back(candidates[i]);
+  // Fullest views first: with a budget, the views worth drawing come first.
+  std::vector<std::uint32_t> order(directions.size());
+  std::iota(order.begin(), order.end(), 0u);
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::uint32_t a, std::uint32_t b) { return groups[a].size() > groups[b].size(); });
 
   // One view box for all directions: the sphere around M_C and the samples, widened by h.
   BoundingBox box = scene.test->bounding_box();
@@ -209,10 +218,12 @@ std::vector<std::optional<double>> view_sample(GlScene& scene, const SampleSet& 
   std::vector<std::optional<double>> out(samples.size());
   std::vector<float> depth;
   const std::size_t views = std::count_if(groups.begin(), groups.end(), [](const auto& g) { return !g.empty(); });
-  for (std::size_t d = 0; d < directions.size(); ++d) {
-    if (groups[d].empty()) continue;
+  for (const std::uint32_t d : order) {
+    if (groups[d].empty()) break;
+    if (budget && !budget->worth_a_view(groups[d].size())) break;
     if (progress) progress("views", report.views_rendered, views);
     ++report.views_rendered;
+    const Stopwatch watch;
     // The camera looks against the direction, at the surfaces facing it.
     const OrthoCamera camera =
         OrthoCamera::looking_along(-directions[d], box.centre(), radius, radius, radius);
@@ -233,19 +244,24 @@ std::vector<std::optional<double>> view_sample(GlScene& scene, const SampleSet& 
                             out[k] = view.first_crossing(samples.positions[k], samples.normals[k], max_error);
                           }
                         });
-      continue;
+    } else {
+      // The paper's reading: the view at the sample's own pixel, within h of its depth.
+      for (std::uint32_t k : groups[d]) {
+        const Vec3 q = camera.to_normalised(samples.positions[k]);
+        const std::optional<double> seen =
+            read_depth(depth, resolution, 0.5 * q.x() + 0.5, 0.5 * q.y() + 0.5, options.bilinear, smooth_span);
+        if (!seen) continue;  // nothing drawn there
+        // Along the view direction: positive where M_C is nearer the camera than the sample.
+        const double along_view = (q.z() - *seen) * 2 * radius;
+        // The occlusion test: another part of M_C in front shows as a difference beyond h.
+        if (std::abs(along_view) > max_error) continue;
+        // To the normal: a surface parallel to M_R's at distance d meets the view line at d / cos.
+        out[k] = options.cosine_correction ? along_view * directions[d].dot(samples.normals[k]) : along_view;
+      }
     }
-    for (std::uint32_t k : groups[d]) {
-      const Vec3 q = camera.to_normalised(samples.positions[k]);
-      const std::optional<double> seen =
-          read_depth(depth, resolution, 0.5 * q.x() + 0.5, 0.5 * q.y() + 0.5, options.bilinear, smooth_span);
-      if (!seen) continue;  // nothing drawn there
-      // Along the view direction: positive where M_C is nearer the camera than the sample.
-      const double along_view = (q.z() - *seen) * 2 * radius;
-      // The occlusion test: another part of M_C in front shows as a difference beyond h.
-      if (std::abs(along_view) > max_error) continue;
-      // To the normal: a surface parallel to M_R's at distance d meets the view line at d / cos.
-      out[k] = options.cosine_correction ? along_view * directions[d].dot(samples.normals[k]) : along_view;
+    if (budget) {
+      const auto resolved = std::count_if(groups[d].begin(), groups[d].end(), [&](std::uint32_t k) { return out[k]; });
+      budget->record_view(watch.seconds(), groups[d].size(), resolved);
     }
   }
   return out;
@@ -259,7 +275,9 @@ class ViewpointSampling final : public GlMethod {
   std::string name() const override { return "viewpoint"; }
 
   void resolve(const SampleSet& samples, double max_error, GlReport& report, const Record& record) override {
-    const auto d = view_sample(scene_, samples, max_error, options_, report, progress_);
+    std::vector<std::uint32_t> all(samples.size());
+    std::iota(all.begin(), all.end(), 0u);
+    const auto d = view_sample(scene_, samples, all, max_error, options_, report, progress_);
     for (std::uint32_t k = 0; k < samples.size(); ++k) {
       if (d[k]) record(k, *d[k], Resolution::View);
     }
@@ -269,6 +287,11 @@ class ViewpointSampling final : public GlMethod {
 }  // namespace
 
 std::unique_ptr<DistanceMethod> make_viewpoint_sampling(const GlMethodOptions& options) {
+  if (options.auto_views) {
+    throw Error(
+        "--views auto: only the cooperative method has per-sample cameras to choose instead of a view; found "
+        "--method viewpoint (give HxV)");
+  }
   return std::make_unique<ViewpointSampling>(options);
 }
 
