@@ -8,6 +8,8 @@
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 #include <algorithm>
 #include <cctype>
+#include <cstdint>
+#include <cstring>
 #include <fstream>
 #include <iostream>
 #include <mutex>
@@ -108,9 +110,40 @@ LoadedMesh load_mesh(const std::string& path) {
   return loaded;
 }
 
+namespace {
+
+// Binary little-endian PLY, float coordinates: written directly, as OpenMesh would need a
+// half-edge mesh (gigabytes at 10 million triangles) to write the same bytes.
+void write_binary_ply(const TriangleMesh& mesh, const std::string& path) {
+  AtomicFile out(path);
+  std::FILE* file = out.stream();
+  fmt::print(file,
+             "ply\nformat binary_little_endian 1.0\nelement vertex {}\nproperty float x\nproperty float y\n"
+             "property float z\nelement face {}\nproperty list uchar int vertex_indices\nend_header\n",
+             mesh.vertex_count(), mesh.triangle_count());
+  static_assert(sizeof(float) == 4 && sizeof(std::int32_t) == 4);
+  for (const Vec3& p : mesh.positions()) {
+    const float xyz[3] = {float(p.x()), float(p.y()), float(p.z())};
+    std::fwrite(xyz, sizeof xyz, 1, file);
+  }
+  for (const Triangle& t : mesh.triangles()) {
+    unsigned char record[13] = {3};
+    const std::int32_t corners[3] = {t[0], t[1], t[2]};
+    std::memcpy(record + 1, corners, sizeof corners);  // x86 and ARM: little-endian already
+    std::fwrite(record, sizeof record, 1, file);
+  }
+  out.commit();
+}
+
+}  // namespace
+
 void save_mesh(const TriangleMesh& mesh, const std::string& path, bool binary) {
   const std::string ext = lower_extension(path);
   require_known_format(path, ext);
+  if (binary && ext == "ply") {
+    write_binary_ply(mesh, path);
+    return;
+  }
   OpenMeshTriangles om;
   for (const Vec3& p : mesh.positions()) om.add_vertex(OpenMesh::Vec3d(p.x(), p.y(), p.z()));
   // Built face by face without the manifold check: a soup writes out as it came in.
