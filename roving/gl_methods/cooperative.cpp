@@ -38,27 +38,31 @@ class Cooperative final : public GlMethod {
   }
 
  private:
-  // --views auto: what a camera costs, timed on an even spread of up to 4096 samples, which
-  // are then resolved (and leave `candidates`).
+  // --views auto: what a camera costs, timed on an even spread of 1/16 of the samples (4,096 to
+  // 65,536), which are then resolved (and leave `candidates`). Roved in two halves, the first
+  // to warm up (per-thread buffers sized to M_C, the driver's first batch), the second timed.
   ViewBudget calibrate(const SampleSet& samples, double max_error, GlReport& report, const Record& record,
                        std::vector<std::uint32_t>& candidates) {
-    const std::size_t count = std::min<std::size_t>(samples.size(), 4096);
-    std::vector<std::uint32_t> spread;
+    const std::size_t count = std::min(samples.size(), std::clamp<std::size_t>(samples.size() / 16, 4096, 65536));
+    std::vector<std::uint32_t> spread[2];
     std::vector<std::uint8_t> taken(samples.size(), 0);
     for (std::size_t i = 0; i < count; ++i) {
       const auto k = static_cast<std::uint32_t>(i * samples.size() / count);
-      spread.push_back(k);
+      spread[i % 2].push_back(k);
       taken[k] = 1;
     }
-    const Stopwatch watch;
-    const auto roved = rove(scene_, samples, spread, max_error, report, progress_);
-    const double seconds_per_camera = watch.seconds() / double(count);
-    for (std::size_t i = 0; i < spread.size(); ++i) {
-      if (roved[i]) record(spread[i], *roved[i], Resolution::Camera);
+    double seconds_per_camera = 0;
+    for (const auto& half : spread) {
+      const Stopwatch watch;
+      const auto roved = rove(scene_, samples, half, max_error, report, progress_);
+      seconds_per_camera = watch.seconds() / double(std::max<std::size_t>(half.size(), 1));
+      for (std::size_t i = 0; i < half.size(); ++i) {
+        if (roved[i]) record(half[i], *roved[i], Resolution::Camera);
+      }
     }
     candidates.erase(std::remove_if(candidates.begin(), candidates.end(), [&](std::uint32_t k) { return taken[k]; }),
                      candidates.end());
-    return ViewBudget(seconds_per_camera);
+    return ViewBudget(seconds_per_camera);  // the second, warm half's
   }
 };
 
