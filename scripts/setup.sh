@@ -8,7 +8,7 @@ packages=(
   libosmesa6-dev libegl-dev libegl-mesa0 libgles-dev libgl-dev
   libbenchmark-dev libgtest-dev libgmock-dev
   libcli11-dev nlohmann-json3-dev libfmt-dev libssl-dev
-  python3 python3-matplotlib
+  python3 python3-dev python3-matplotlib python3-numpy python3-pytest pybind11-dev
 )
 if [ "${1:-}" = fuzz ]; then packages+=(clang libclang-rt-14-dev); fi
 missing=()
