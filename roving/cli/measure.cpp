@@ -70,107 +70,140 @@ std::vector<MetricValue> gate_values(const MeasureReport& report) {
 
 }  // namespace
 
-int run_measure(const MeasureArguments& args, std::string& stage) {
-  const Stopwatch total;
-  // Parse every option before the (slow) loads, so a typo fails at once.
-  GlMethodOptions gl;
-  parse_views(args.views, gl);
-  gl.backend = parse_gl_backend(args.backend);
-  gl.resolution = args.resolution;
-  const auto method = make_method(args.method, gl);
-  SampleSpec sample_spec = parse_sample_spec(args.samples);
+MeasurePlan plan_measurement(const MeasureArguments& args) {
+  MeasurePlan plan;
+  parse_views(args.views, plan.gl);
+  plan.gl.backend = parse_gl_backend(args.backend);
+  plan.gl.resolution = args.resolution;
+  plan.method = make_method(args.method, plan.gl);
+  plan.sample_spec = parse_sample_spec(args.samples);
   if (args.seed) {
-    if (sample_spec.kind != SampleSpec::Kind::Area) {
+    if (plan.sample_spec.kind != SampleSpec::Kind::Area) {
       throw Error(fmt::format("--seed: only --samples area:N is random; found --samples {}", args.samples));
     }
-    sample_spec.seed = *args.seed;
+    plan.sample_spec.seed = *args.seed;
   }
-  const MaxErrorSpec max_error = parse_max_error(args.max_error);
-  DistanceOptions options;
+  plan.max_error = parse_max_error(args.max_error);
+  plan.max_error_text = args.max_error;
   if (!args.semantics.empty()) {
-    options.semantics = parse_semantics(args.semantics);
+    plan.options.semantics = parse_semantics(args.semantics);
   } else {
     // Metro's two-sided figures are closest-point ones: the default wherever the method has it.
-    options.semantics = args.symmetric && method->supports(Semantics::Closest) ? Semantics::Closest
-                                                                               : method->supported_semantics().front();
+    plan.options.semantics = args.symmetric && plan.method->supports(Semantics::Closest)
+                                 ? Semantics::Closest
+                                 : plan.method->supported_semantics().front();
   }
-  options.max_error = 1;  // placeholder until the diagonal is known; checked for support now
-  validate_options(*method, options);
-  std::vector<Gate> gates;
+  plan.options.max_error = 1;  // placeholder until the diagonal is known; checked for support now
+  validate_options(*plan.method, plan.options);
   for (const std::string& text : args.gates) {
-    gates.push_back(parse_gate(text, args.symmetric));
-    if (gates.back().metric == "hausdorff" && options.semantics != Semantics::Closest) {
+    plan.gates.push_back(parse_gate(text, args.symmetric));
+    if (plan.gates.back().metric == "hausdorff" && plan.options.semantics != Semantics::Closest) {
       throw Error(fmt::format("--fail-above {}: the Hausdorff distance needs --semantics closest, found {}", text,
-                              to_string(options.semantics)));
+                              to_string(plan.options.semantics)));
     }
   }
   if (args.symmetric && !args.heatmap_path.empty()) {
     throw Error("--heatmap: a heat map shows one direction; found --symmetric (run REF TEST without it)");
   }
-  require_writable_paths(args);
-
   const auto type = [](const std::string& text, const char* option) {
     return text.empty() ? std::nullopt : std::optional<ModelType>(parse_model_type(text, option));
   };
-  const auto reference_type = type(args.reference_type, "--ref-type");
-  const auto test_type = type(args.test_type, "--test-type");
-  if (test_type == ModelType::Points) {
+  plan.reference_type = type(args.reference_type, "--ref-type");
+  plan.test_type = type(args.test_type, "--test-type");
+  if (plan.test_type == ModelType::Points) {
     throw Error(
         "--test-type: a point cloud cannot be the test model: it has holes and records no surface to draw or "
         "intersect (the paper's limit); expected mesh or voxels, found 'points'");
   }
+  plan.symmetric = args.symmetric;
+  plan.histogram_bins = args.histogram_bins;
+  return plan;
+}
+
+void describe_pair(const Model& a, const Model& b, MeasurePlan& plan, MeasureReport& report) {
+  test_surface(b);  // a point cloud cannot be measured against
+  if (plan.symmetric && a.type == ModelType::Points) {
+    throw Error(fmt::format("--symmetric: {} is a point cloud, which has no surface to measure {} against",
+                            a.path(), b.path()));
+  }
+  report.method = plan.method->name();
+  report.semantics = plan.options.semantics;
+  report.max_error_text = plan.max_error.to_string();
+  report.seed = plan.sample_spec.seed;
+  BoundingBox both = a.bounding_box();
+  both.extend(b.bounding_box().min);
+  both.extend(b.bounding_box().max);
+  report.diagonal_of_both = plan.symmetric;
+  report.diagonal = plan.symmetric ? both.diagonal() : a.bounding_box().diagonal();
+  plan.options.max_error = plan.max_error.resolve(report.diagonal);
+  report.max_error = plan.options.max_error;
+  require_representable(plan.options.max_error, both, plan.max_error_text);
+}
+
+void measure_models(const Model& a, const Model& b, MeasurePlan& plan, MeasureReport& report, Progress& progress,
+                    std::string& stage, const WarnFn& warn, const SampleSet* samples_of_a) {
+  warn(alignment_warnings(a, b, plan.options.max_error));
+  warn(orientation_warnings(a));
+  if (plan.symmetric) warn(orientation_warnings(b));
+
+  plan.method->set_progress(progress.callback());
+  const std::vector<std::pair<const Model*, const Model*>> pairs =
+      plan.symmetric ? std::vector<std::pair<const Model*, const Model*>>{{&a, &b}, {&b, &a}}
+                     : std::vector<std::pair<const Model*, const Model*>>{{&a, &b}};
+  for (const auto& [reference, test] : pairs) {
+    DirectionReport& d = report.directions.emplace_back();
+    d.reference = reference;
+    d.test = test;
+    if (plan.symmetric) d.label = reference == &a ? "A -> B" : "B -> A";
+    stage = fmt::format("sampling {} ({})", reference->path(), plan.sample_spec.to_string());
+    progress.stage(fmt::format("{}sampling", d.label.empty() ? "" : d.label + ": "));
+    d.samples = reference == &a && samples_of_a ? *samples_of_a : reference_samples(*reference, plan.sample_spec);
+    const TriangleMesh& test_mesh = test_surface(*test);
+    stage = fmt::format("measuring {} samples against {} triangles with {}", d.samples.size(),
+                        test_mesh.triangle_count(), plan.method->name());
+    progress.stage(fmt::format("{}measuring", d.label.empty() ? "" : d.label + ": "));
+    d.result = measure_distances(*plan.method, test_mesh, d.samples, plan.options);
+    d.statistics = compute_statistics(d.result.signed_distance, d.result.hit, d.samples.weights,
+                                      plan.options.max_error, plan.histogram_bins);
+    std::vector<std::string> found = result_warnings(d.statistics, plan.options.semantics);
+    for (std::string& line : found) line = (d.label.empty() ? "" : d.label + ": ") + line;
+    warn(found);
+  }
+  progress.clear();
+}
+
+nlohmann::json input_json(const std::string& role, const std::string& path, const std::string& sha256) {
+  return {{"role", role}, {"path", path}, {"bytes", std::filesystem::file_size(path)}, {"sha256", sha256}};
+}
+
+int run_measure(const MeasureArguments& args, std::string& stage) {
+  const Stopwatch total;
+  // Parse every option before the (slow) loads, so a typo fails at once.
+  MeasurePlan plan = plan_measurement(args);
+  require_writable_paths(args);
 
   Progress progress(args.quiet);
   MeasureReport report;
-  report.method = method->name();
-  report.semantics = options.semantics;
-  report.max_error_text = max_error.to_string();
-  report.seed = sample_spec.seed;
   // The inputs' hashes on another core while they load.
   auto reference_hash = std::async(std::launch::async, file_sha256, args.reference_path);
   auto test_hash = std::async(std::launch::async, file_sha256, args.test_path);
   Stopwatch watch;
   stage = fmt::format("loading the reference {}", args.reference_path);
   progress.stage("loading " + file_name(args.reference_path));
-  const Model a = load_model(args.reference_path, reference_type);
+  const Model a = load_model(args.reference_path, plan.reference_type);
   report.load_seconds[0] = watch.seconds();
   watch = Stopwatch();
   stage = fmt::format("loading the test {}", args.test_path);
   progress.stage("loading " + file_name(args.test_path));
-  const Model b = load_model(args.test_path, test_type);
+  const Model b = load_model(args.test_path, plan.test_type);
   report.load_seconds[1] = watch.seconds();
-  test_surface(b);  // a point cloud cannot be measured against
-  if (args.symmetric && a.type == ModelType::Points) {
-    throw Error(fmt::format("--symmetric: {} is a point cloud, which has no surface to measure {} against",
-                            a.path(), b.path()));
-  }
-  report.provenance = {
-      {"tool", tool_json()},
-      {"command_line", args.command_line},
-      {"inputs",
-       {{{"role", args.symmetric ? "A" : "reference"},
-         {"path", a.path()},
-         {"bytes", std::filesystem::file_size(a.path())},
-         {"sha256", reference_hash.get()}},
-        {{"role", args.symmetric ? "B" : "test"},
-         {"path", b.path()},
-         {"bytes", std::filesystem::file_size(b.path())},
-         {"sha256", test_hash.get()}}}}};
-
-  BoundingBox both = a.bounding_box();
-  both.extend(b.bounding_box().min);
-  both.extend(b.bounding_box().max);
-  report.diagonal_of_both = args.symmetric;
-  report.diagonal = args.symmetric ? both.diagonal() : a.bounding_box().diagonal();
-  options.max_error = max_error.resolve(report.diagonal);
-  report.max_error = options.max_error;
-  require_representable(options.max_error, both, args.max_error);
+  report.provenance = {{"tool", tool_json()},
+                       {"command_line", args.command_line},
+                       {"inputs",
+                        {input_json(args.symmetric ? "A" : "reference", a.path(), reference_hash.get()),
+                         input_json(args.symmetric ? "B" : "test", b.path(), test_hash.get())}}};
 
   const bool text_to_stdout = args.json_path != "-";
-  if (text_to_stdout) {
-    progress.clear();
-    write_stdout(format_header(a, b, report));
-  }
   const auto warn = [&](const std::vector<std::string>& lines) {
     if (lines.empty()) return;
     progress.clear();
@@ -179,34 +212,12 @@ int run_measure(const MeasureArguments& args, std::string& stage) {
       report.warnings.push_back(line);
     }
   };
-  warn(alignment_warnings(a, b, options.max_error));
-  warn(orientation_warnings(a));
-  if (args.symmetric) warn(orientation_warnings(b));
-
-  method->set_progress(progress.callback());
-  const std::vector<std::pair<const Model*, const Model*>> pairs =
-      args.symmetric ? std::vector<std::pair<const Model*, const Model*>>{{&a, &b}, {&b, &a}}
-                     : std::vector<std::pair<const Model*, const Model*>>{{&a, &b}};
-  for (const auto& [reference, test] : pairs) {
-    DirectionReport& d = report.directions.emplace_back();
-    d.reference = reference;
-    d.test = test;
-    if (args.symmetric) d.label = reference == &a ? "A -> B" : "B -> A";
-    stage = fmt::format("sampling {} ({})", reference->path(), sample_spec.to_string());
-    progress.stage(fmt::format("{}sampling", d.label.empty() ? "" : d.label + ": "));
-    d.samples = reference_samples(*reference, sample_spec);
-    const TriangleMesh& test_mesh = test_surface(*test);
-    stage = fmt::format("measuring {} samples against {} triangles with {}", d.samples.size(),
-                        test_mesh.triangle_count(), method->name());
-    progress.stage(fmt::format("{}measuring", d.label.empty() ? "" : d.label + ": "));
-    d.result = measure_distances(*method, test_mesh, d.samples, options);
-    d.statistics = compute_statistics(d.result.signed_distance, d.result.hit, d.samples.weights,
-                                      options.max_error, args.histogram_bins);
-    std::vector<std::string> found = result_warnings(d.statistics, options.semantics);
-    for (std::string& line : found) line = (d.label.empty() ? "" : d.label + ": ") + line;
-    warn(found);
+  describe_pair(a, b, plan, report);
+  if (text_to_stdout) {  // the header as soon as the models are known
+    progress.clear();
+    write_stdout(format_header(a, b, report));
   }
-  progress.clear();
+  measure_models(a, b, plan, report, progress, stage, warn, nullptr);
 
   // Every output file is written whole to a temporary file first; only when all succeeded are
   // they moved into place, so a failed run changes none of them.
@@ -223,7 +234,7 @@ int run_measure(const MeasureArguments& args, std::string& stage) {
     const DirectionReport& d = report.directions.front();
     outputs.push_back(std::make_unique<AtomicFile>(args.heatmap_path));
     const double range = std::max(d.statistics.max_abs, 1e-300);
-    write_heatmap_ply(outputs.back()->stream(), d.samples, d.result, std::min(range, options.max_error));
+    write_heatmap_ply(outputs.back()->stream(), d.samples, d.result, std::min(range, plan.options.max_error));
     outputs.back()->close_stream();
   }
   report.total_seconds = total.seconds();
@@ -236,7 +247,7 @@ int run_measure(const MeasureArguments& args, std::string& stage) {
   for (const auto& output : outputs) output->commit();
   write_stdout(text_to_stdout ? format_body(report) : json);
 
-  const std::vector<std::string> breached = breached_gates(gates, gate_values(report));
+  const std::vector<std::string> breached = breached_gates(plan.gates, gate_values(report));
   for (const std::string& line : breached) std::fprintf(stderr, "roving: %s\n", line.c_str());
   return breached.empty() ? 0 : kGateExitCode;
 }

@@ -2,9 +2,16 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
+
+#include "gates.h"
+#include "progress.h"
+#include "report.h"
+#include "roving/gl_methods/gl_methods.h"
 
 namespace roving {
 
@@ -25,6 +32,38 @@ struct MeasureArguments {
   std::vector<std::string> gates;  // --fail-above METRIC=LIMIT
   std::string command_line;
 };
+
+// Everything the options decide, parsed and checked before any file is read.
+struct MeasurePlan {
+  GlMethodOptions gl;
+  std::unique_ptr<DistanceMethod> method;
+  SampleSpec sample_spec;
+  MaxErrorSpec max_error;
+  std::string max_error_text;  // as given, for messages
+  DistanceOptions options;     // max_error resolved per pair
+  std::vector<Gate> gates;
+  std::optional<ModelType> reference_type, test_type;
+  bool symmetric = false;
+  std::size_t histogram_bins = 64;
+};
+
+// Throws roving::Error naming the option on any bad value.
+MeasurePlan plan_measurement(const MeasureArguments& args);
+
+using WarnFn = std::function<void(const std::vector<std::string>&)>;
+
+// Fills the report's method, semantics, diagonal and h for the loaded pair; throws on a pair the
+// plan cannot measure (a point-cloud test, h beyond both models).
+void describe_pair(const Model& a, const Model& b, MeasurePlan& plan, MeasureReport& report);
+
+// After describe_pair, measures: a's samples against b (and b's against a when symmetric), filling
+// `report` but for its provenance and load times; warnings go to `warn` as found. `samples_of_a`,
+// when given, are a's samples already made (a batch reuses them across pairs).
+void measure_models(const Model& a, const Model& b, MeasurePlan& plan, MeasureReport& report, Progress& progress,
+                    std::string& stage, const WarnFn& warn, const SampleSet* samples_of_a);
+
+// An entry of the report's `inputs`.
+nlohmann::json input_json(const std::string& role, const std::string& path, const std::string& sha256);
 
 // Runs the measurement and writes its outputs; returns the exit code (0, or kGateExitCode when a
 // gate is breached). Throws roving::Error (bad input) and std::bad_alloc, after `stage` was set
