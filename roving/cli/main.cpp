@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <new>
 
+#include "batch.h"
 #include "gates.h"
 #include "measure.h"
 #include "provenance.h"
@@ -45,20 +46,22 @@ std::string suggestion(const std::string& given, const std::vector<std::string>&
   return best.empty() ? "" : fmt::format(" (did you mean '{}'?)", best);
 }
 
-// The first argument that names no subcommand or no option of `measure`, with a suggestion;
-// empty when every one is known (the parse error is then about something else).
-std::string unknown_argument(int argc, char** argv, const CLI::App& app, const CLI::App& measure) {
+// The first argument that names no subcommand or no option of the subcommand given, with a
+// suggestion; empty when every one is known (the parse error is then about something else).
+std::string unknown_argument(int argc, char** argv, const CLI::App& app) {
   std::vector<std::string> subcommands, options;
   for (const CLI::App* sub : app.get_subcommands({})) subcommands.push_back(sub->get_name());
-  for (const CLI::Option* option : measure.get_options()) {
-    for (const std::string& name : option->get_lnames()) options.push_back("--" + name);
-  }
   if (argc > 1 && argv[1][0] != '-' &&
       std::find(subcommands.begin(), subcommands.end(), argv[1]) == subcommands.end()) {
     return fmt::format("unknown command '{}'{}; expected one of: {}", argv[1], suggestion(argv[1], subcommands),
                        fmt::join(subcommands, ", "));
   }
-  for (int i = 2; i < argc; ++i) {
+  if (argc < 2) return "";
+  const CLI::App& given = argv[1][0] == '-' ? app : *app.get_subcommand(argv[1]);
+  for (const CLI::Option* option : given.get_options()) {
+    for (const std::string& name : option->get_lnames()) options.push_back("--" + name);
+  }
+  for (int i = argv[1][0] == '-' ? 1 : 2; i < argc; ++i) {
     const std::string argument = argv[i];
     if (argument == "--") break;
     if (argument.rfind("--", 0) != 0) continue;
@@ -68,6 +71,36 @@ std::string unknown_argument(int argc, char** argv, const CLI::App& app, const C
     }
   }
   return "";
+}
+
+// The options that say how to measure, shared by `measure` and `batch`.
+void add_measurement_options(CLI::App& app, roving::MeasureArguments& args) {
+  app.add_option("--method", args.method, fmt::format("distance method: {}", fmt::join(roving::method_names(), ", ")))
+      ->capture_default_str();
+  app.add_option("--semantics", args.semantics,
+                 "first-hit (paper), nearest (on the normal line) or closest (Metro); "
+                 "default: the method's own, closest with --symmetric where the method has it");
+  app.add_flag("--symmetric", args.symmetric,
+               "measure REF -> TEST and TEST -> REF, with Metro's two-sided summary (Hausdorff, mean, RMS) "
+               "relative to the diagonal of both models' box");
+  app.add_option("--samples", args.samples, "faces, vertices or area:N")->capture_default_str();
+  app.add_option("--seed", args.seed, "seed of area:N sampling (default 12345; reported either way)");
+  app.add_option("--max-error", args.max_error, "h, the view volume's half-height: a length or P% of the diagonal")
+      ->capture_default_str();
+  app.add_option("--ref-type", args.reference_type, "mesh, points, voxels or bezier (default: by extension)");
+  app.add_option("--test-type", args.test_type, "mesh, voxels or bezier (default: by extension)");
+  app.add_option("--views", args.views,
+                 "viewpoint sampling: H x V directions; for cooperative also auto or auto:HxV (a view only where "
+                 "it costs less than the cameras it saves)")
+      ->capture_default_str();
+  app.add_option("--resolution", args.resolution, "viewpoint sampling: view side in pixels")
+      ->check(CLI::Range(1, 16384))
+      ->capture_default_str();
+  app.add_option("--backend", args.backend, "GL backend: osmesa or egl")->capture_default_str();
+  app.add_option("--histogram-bins", args.histogram_bins, "bins of the signed-d histogram")
+      ->check(CLI::Range(1, 100000))
+      ->capture_default_str();
+  app.add_flag("--quiet", args.quiet, "no progress on stderr (it is shown only on a terminal anyway)");
 }
 
 }  // namespace
@@ -92,22 +125,7 @@ int main(int argc, char** argv) {
       ->required();
   measure->add_option("TEST", args.test_path, "test model M_C: mesh (.obj .ply .off .stl), .bpt or .binvox")
       ->required();
-  measure
-      ->add_option("--method", args.method,
-                   fmt::format("distance method: {}", fmt::join(roving::method_names(), ", ")))
-      ->capture_default_str();
-  measure->add_option("--semantics", args.semantics,
-                      "first-hit (paper), nearest (on the normal line) or closest (Metro); "
-                      "default: the method's own, closest with --symmetric where the method has it");
-  measure->add_flag("--symmetric", args.symmetric,
-                    "measure REF -> TEST and TEST -> REF, with Metro's two-sided summary (Hausdorff, mean, RMS) "
-                    "relative to the diagonal of both models' box");
-  measure->add_option("--samples", args.samples, "faces, vertices or area:N")->capture_default_str();
-  measure->add_option("--seed", args.seed, "seed of area:N sampling (default 12345; reported either way)");
-  measure
-      ->add_option("--max-error", args.max_error,
-                   "h, the view volume's half-height: a length or P% of the diagonal")
-      ->capture_default_str();
+  add_measurement_options(*measure, args);
   measure->add_option("--fail-above", args.gates,
                       fmt::format("METRIC=LIMIT (a length, or P% of the diagonal; no_hits: a count or P% of "
                                   "the samples): exit 3 if METRIC's magnitude exceeds LIMIT; repeatable. "
@@ -116,18 +134,24 @@ int main(int argc, char** argv) {
   measure->add_option("--json", args.json_path, "write the report as JSON to FILE, or - for stdout");
   measure->add_option("--samples-out", args.samples_csv_path, "write one CSV row per sample");
   measure->add_option("--heatmap", args.heatmap_path, "write the samples coloured by d as PLY");
-  measure->add_option("--ref-type", args.reference_type,
-                      "mesh, points, voxels or bezier (default: by extension)");
-  measure->add_option("--test-type", args.test_type, "mesh, voxels or bezier (default: by extension)");
-  measure->add_option("--views", args.views, "viewpoint sampling: H x V directions; for cooperative also auto or auto:HxV (a view only where it costs less than the cameras it saves)")->capture_default_str();
-  measure->add_option("--resolution", args.resolution, "viewpoint sampling: view side in pixels")
-      ->check(CLI::Range(1, 16384))
+
+  roving::BatchArguments batch_args;
+  batch_args.defaults.command_line = args.command_line;
+  CLI::App* batch = app.add_subcommand(
+      "batch",
+      "measure many pairs: one JSON report per pair in --out, and --out/summary.csv (exit 0; 4 when some pair "
+      "failed, each recorded with its error)");
+  batch->add_option("PAIRS", batch_args.inputs,
+                    "a manifest (.csv with a header naming reference, test and optional per-pair columns "
+                    "method, semantics, samples, seed, max_error, views, resolution, backend; or .jsonl with those "
+                    "keys), or REF_FOLDER TEST_FOLDER paired by file name");
+  batch->add_option("--out", batch_args.out, "folder of the per-pair reports and summary.csv")
       ->capture_default_str();
-  measure->add_option("--backend", args.backend, "GL backend: osmesa or egl")->capture_default_str();
-  measure->add_option("--histogram-bins", args.histogram_bins, "bins of the signed-d histogram")
-      ->check(CLI::Range(1, 100000))
-      ->capture_default_str();
-  measure->add_flag("--quiet", args.quiet, "no progress on stderr (it is shown only on a terminal anyway)");
+  batch->add_option("--shard", batch_args.shard,
+                    "I/N: only the I-th (0-based) of N contiguous slices of the pairs, e.g. "
+                    "$SLURM_ARRAY_TASK_ID/$SLURM_ARRAY_TASK_COUNT; pairs already in --out are skipped");
+  batch->add_flag("--merge", batch_args.merge_only, "only rebuild --out/summary.csv from the reports there");
+  add_measurement_options(*batch, batch_args.defaults);
 
   try {
     app.parse(argc, argv);
@@ -135,20 +159,21 @@ int main(int argc, char** argv) {
       std::printf("%s\n", roving::version_line().c_str());
       return 0;
     }
-    if (!measure->parsed()) throw CLI::RequiredError("a subcommand (measure)");
+    if (!measure->parsed() && !batch->parsed()) throw CLI::RequiredError("a subcommand (measure or batch)");
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
   } catch (const CLI::CallForAllHelp& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    const std::string unknown = unknown_argument(argc, argv, app, *measure);
+    const std::string unknown = unknown_argument(argc, argv, app);
+    const bool subcommand = argc > 1 && (std::string(argv[1]) == "measure" || std::string(argv[1]) == "batch");
     std::fprintf(stderr, "roving: error: %s (see roving %s--help)\n", unknown.empty() ? e.what() : unknown.c_str(),
-                 measure->parsed() || (argc > 1 && std::string(argv[1]) == "measure") ? "measure " : "");
+                 subcommand ? (std::string(argv[1]) + " ").c_str() : "");
     return 2;
   }
   std::string stage = "starting";  // what the run is doing, for the message when memory runs out
   try {
-    return roving::run_measure(args, stage);
+    return batch->parsed() ? roving::run_batch(batch_args, stage) : roving::run_measure(args, stage);
   } catch (const std::bad_alloc&) {
     std::fprintf(stderr, "roving: error: out of memory while %s (available: %.3g GiB)\n", stage.c_str(),
                  roving::available_memory() / (1024.0 * 1024 * 1024));

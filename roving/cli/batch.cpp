@@ -1,0 +1,416 @@
+// `roving batch`: reading the pairs, slicing them into shards, measuring each (models and samples
+// reused while consecutive pairs share them), one report per pair, and the merged summary.
+#include "batch.h"
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+#include <openssl/evp.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <memory>
+
+#include "roving/core/error.h"
+#include "roving/core/stopwatch.h"
+#include "roving/formats/atomic_file.h"
+#include "roving/formats/file_bytes.h"
+#include "roving/formats/file_hash.h"
+#include "provenance.h"
+
+namespace roving {
+namespace {
+
+namespace fs = std::filesystem;
+
+// The manifest columns a pair may set, and the option each stands for.
+const std::vector<std::string> kPairColumns = {"method", "semantics", "samples", "seed",
+                                               "max_error", "views", "resolution", "backend"};
+
+struct Pair {
+  std::size_t index = 0;  // in the list, 0-based
+  std::string reference, test;
+  std::map<std::string, std::string> options;  // column -> value, as given
+};
+
+// One CSV line into fields: commas separate, double quotes enclose fields holding commas.
+std::vector<std::string> csv_fields(const std::string& line) {
+  std::vector<std::string> fields(1);
+  bool quoted = false;
+  for (std::size_t i = 0; i < line.size(); ++i) {
+    const char c = line[i];
+    if (c == '"' && quoted && i + 1 < line.size() && line[i + 1] == '"') {
+      fields.back() += '"', ++i;
+    } else if (c == '"') {
+      quoted = !quoted;
+    } else if (c == ',' && !quoted) {
+      fields.emplace_back();
+    } else if (c != '\r') {
+      fields.back() += c;
+    }
+  }
+  return fields;
+}
+
+std::string csv_field(const std::string& text) {
+  if (text.find_first_of(",\"\n") == std::string::npos) return text;
+  std::string quoted = "\"";
+  for (char c : text) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return quoted + "\"";
+}
+
+// Relative paths in a manifest are relative to the manifest's folder.
+std::string resolve(const fs::path& folder, const std::string& path) {
+  return fs::path(path).is_absolute() ? path : (folder / path).lexically_normal().string();
+}
+
+void check_columns(const std::string& where, const std::map<std::string, std::string>& row) {
+  for (const auto& [column, value] : row) {
+    if (column == "reference" || column == "test") continue;
+    if (std::find(kPairColumns.begin(), kPairColumns.end(), column) == kPairColumns.end()) {
+      throw Error(fmt::format("{}: unknown column '{}'; expected reference, test and any of {}", where, column,
+                              fmt::join(kPairColumns, ", ")));
+    }
+  }
+  for (const char* needed : {"reference", "test"}) {
+    const auto it = row.find(needed);
+    if (it == row.end() || it->second.empty()) {
+      throw Error(fmt::format("{}: expected a '{}' path, found none", where, needed));
+    }
+  }
+}
+
+std::vector<Pair> read_manifest(const std::string& path) {
+  std::ifstream file(path);
+  if (!file) throw Error(fmt::format("{}: cannot open the batch manifest", path));
+  const fs::path folder = fs::path(path).parent_path();
+  const bool json_lines = fs::path(path).extension() == ".jsonl" || fs::path(path).extension() == ".json";
+  std::vector<Pair> pairs;
+  std::vector<std::string> header;
+  std::string line;
+  for (std::size_t number = 1; std::getline(file, line); ++number) {
+    if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+    const std::string where = fmt::format("{}:{}", path, number);
+    std::map<std::string, std::string> row;
+    if (json_lines) {
+      nlohmann::json object;
+      try {
+        object = nlohmann::json::parse(line);
+      } catch (const nlohmann::json::exception& e) {
+        throw Error(fmt::format("{}: expected a JSON object per line, found malformed JSON ({})", where, e.what()));
+      }
+      if (!object.is_object()) throw Error(fmt::format("{}: expected a JSON object per line", where));
+      for (const auto& [key, value] : object.items()) {
+        row[key] = value.is_string() ? value.get<std::string>() : value.dump();
+      }
+    } else if (header.empty()) {
+      header = csv_fields(line);
+      continue;
+    } else {
+      const std::vector<std::string> fields = csv_fields(line);
+      if (fields.size() != header.size()) {
+        throw Error(fmt::format("{}: expected {} fields as the header has, found {}", where, header.size(),
+                                fields.size()));
+      }
+      for (std::size_t i = 0; i < fields.size(); ++i) row[header[i]] = fields[i];
+    }
+    check_columns(where, row);
+    Pair pair{pairs.size(), resolve(folder, row["reference"]), resolve(folder, row["test"]), {}};
+    for (const auto& [column, value] : row) {
+      if (column != "reference" && column != "test" && !value.empty()) pair.options[column] = value;
+    }
+    pairs.push_back(std::move(pair));
+  }
+  if (pairs.empty()) throw Error(fmt::format("{}: expected at least one pair, found none", path));
+  return pairs;
+}
+
+// Files of `references` paired with the files of the same name in `tests`, by name.
+std::vector<Pair> pair_folders(const std::string& references, const std::string& tests) {
+  std::vector<std::string> names;
+  for (const auto& entry : fs::directory_iterator(references)) {
+    if (entry.is_regular_file() && fs::exists(fs::path(tests) / entry.path().filename())) {
+      names.push_back(entry.path().filename().string());
+    }
+  }
+  std::sort(names.begin(), names.end());
+  if (names.empty()) {
+    throw Error(fmt::format("{} and {}: expected files of the same name in both folders, found none", references,
+                            tests));
+  }
+  std::vector<Pair> pairs;
+  for (const std::string& name : names) {
+    pairs.push_back({pairs.size(), (fs::path(references) / name).string(), (fs::path(tests) / name).string(), {}});
+  }
+  return pairs;
+}
+
+// [first, last) of the I-th of N contiguous slices.
+std::pair<std::size_t, std::size_t> shard_range(const std::string& shard, std::size_t count) {
+  if (shard.empty()) return {0, count};
+  long long i = -1, n = 0;
+  const std::size_t slash = shard.find('/');
+  if (slash == std::string::npos || !parse_number(std::string_view(shard).substr(0, slash), i) ||
+      !parse_number(std::string_view(shard).substr(slash + 1), n) || n < 1 || i < 0 || i >= n) {
+    throw Error(fmt::format("--shard: expected I/N with 0 <= I < N (e.g. 0/4, as Slurm's "
+                            "$SLURM_ARRAY_TASK_ID/$SLURM_ARRAY_TASK_COUNT), found '{}'",
+                            shard));
+  }
+  return {count * i / n, count * (i + 1) / n};
+}
+
+MeasureArguments arguments_for(const Pair& pair, const MeasureArguments& defaults) {
+  MeasureArguments a = defaults;
+  a.reference_path = pair.reference;
+  a.test_path = pair.test;
+  for (const auto& [column, value] : pair.options) {
+    if (column == "method") a.method = value;
+    if (column == "semantics") a.semantics = value;
+    if (column == "samples") a.samples = value;
+    if (column == "max_error") a.max_error = value;
+    if (column == "views") a.views = value;
+    if (column == "backend") a.backend = value;
+    if (column == "resolution" || column == "seed") {
+      long long number = 0;
+      if (!parse_number(value, number) || number < 0) {
+        throw Error(fmt::format("{}: expected a whole number >= 0, found '{}'", column, value));
+      }
+      if (column == "resolution") a.resolution = static_cast<int>(std::min<long long>(number, 1 << 30));
+      if (column == "seed") a.seed = static_cast<std::uint64_t>(number);
+    }
+  }
+  return a;
+}
+
+// What decides a pair's result: its inputs' bytes and every option. Two runs, or two shards,
+// with the same key would write the same report.
+std::string pair_key(const MeasureArguments& a, const std::string& reference_sha, const std::string& test_sha) {
+  const std::string identity = fmt::format(
+      "{}|{}|method={}|semantics={}|samples={}|seed={}|max_error={}|views={}|resolution={}|backend={}|"
+      "symmetric={}|ref_type={}|test_type={}|bins={}",
+      reference_sha, test_sha, a.method, a.semantics, a.samples, a.seed ? std::to_string(*a.seed) : "", a.max_error,
+      a.views, a.resolution, a.backend, a.symmetric, a.reference_type, a.test_type, a.histogram_bins);
+  unsigned char digest[EVP_MAX_MD_SIZE];
+  unsigned int length = 0;
+  EVP_Digest(identity.data(), identity.size(), digest, &length, EVP_sha256(), nullptr);
+  std::string hex;
+  for (unsigned int i = 0; i < 8; ++i) hex += fmt::format("{:02x}", digest[i]);
+  return hex;
+}
+
+void write_json(const fs::path& path, const nlohmann::json& json) {
+  AtomicFile file(path.string());
+  std::fputs((json.dump(2) + "\n").c_str(), file.stream());
+  file.close_stream();
+  file.commit();
+}
+
+// The summary's columns: where the pair is, how it went, then the report's figures.
+std::vector<std::string> summary_row(const nlohmann::json& report) {
+  const nlohmann::json& batch = report["batch"];
+  const bool ok = batch["status"] == "ok";
+  const nlohmann::json& direction = !ok ? nlohmann::json() : report.contains("directions") ? report["directions"][0]
+                                                                                           : report;
+  const auto number = [](const nlohmann::json& value) {
+    return value.is_number() ? fmt::format("{}", value.get<double>()) : std::string();
+  };
+  std::vector<std::string> row = {std::to_string(batch["index"].get<std::size_t>()), batch["reference"],
+                                  batch["test"], batch["status"], batch.value("error", "")};
+  row.push_back(ok ? report["method"].get<std::string>() : "");
+  row.push_back(ok ? report["semantics"].get<std::string>() : "");
+  row.push_back(ok ? number(direction["samples"]["count"]) : "");
+  row.push_back(ok ? number(direction["no_hits"]) : "");
+  row.push_back(ok ? number(report["diagonal"]) : "");
+  row.push_back(ok ? number(report["max_error"]["value"]) : "");
+  const nlohmann::json statistics = statistics_json(Statistics());
+  for (const auto& item : statistics.items()) row.push_back(ok ? number(direction["statistics"][item.key()]) : "");
+  for (const char* key : {"hausdorff", "mean_both", "rms_both"}) {
+    row.push_back(ok && report.contains("two_sided") ? number(report["two_sided"][key]) : "");
+  }
+  row.push_back(ok ? number(report["seconds"]["total"]) : "");
+  std::string warnings;
+  if (ok) {
+    for (const auto& w : report["warnings"]) warnings += (warnings.empty() ? "" : " | ") + w.get<std::string>();
+  }
+  row.push_back(warnings);
+  return row;
+}
+
+// summary.csv from every report in `folder`, in list order; returns (ok, failed) counts.
+std::pair<std::size_t, std::size_t> merge(const std::string& folder) {
+  std::vector<nlohmann::json> reports;
+  if (!fs::is_directory(folder)) throw Error(fmt::format("--merge: expected a batch folder, found '{}'", folder));
+  for (const auto& entry : fs::directory_iterator(folder)) {
+    if (entry.path().extension() != ".json") continue;
+    std::ifstream file(entry.path());
+    try {
+      nlohmann::json report = nlohmann::json::parse(file);
+      if (report.contains("batch")) reports.push_back(std::move(report));
+    } catch (const nlohmann::json::exception&) {
+      throw Error(fmt::format("{}: not a JSON report (a file of another kind in the batch folder?)",
+                              entry.path().string()));
+    }
+  }
+  std::sort(reports.begin(), reports.end(), [](const nlohmann::json& a, const nlohmann::json& b) {
+    return a["batch"]["index"].get<std::size_t>() < b["batch"]["index"].get<std::size_t>();
+  });
+  std::vector<std::string> header = {"index", "reference", "test", "status", "error", "method", "semantics",
+                                     "samples", "no_hits", "diagonal", "max_error"};
+  const nlohmann::json statistics = statistics_json(Statistics());
+  for (const auto& item : statistics.items()) header.push_back(item.key());
+  header.insert(header.end(), {"hausdorff", "mean_both", "rms_both", "seconds", "warnings"});
+  AtomicFile summary((fs::path(folder) / "summary.csv").string());
+  fmt::print(summary.stream(), "{}\n", fmt::join(header, ","));
+  std::size_t ok = 0;
+  for (const nlohmann::json& report : reports) {
+    std::vector<std::string> row = summary_row(report);
+    for (std::string& field : row) field = csv_field(field);
+    fmt::print(summary.stream(), "{}\n", fmt::join(row, ","));
+    ok += report["batch"]["status"] == "ok";
+  }
+  summary.close_stream();
+  summary.commit();
+  return {ok, reports.size() - ok};
+}
+
+// A model and the reference samples made from it, kept while consecutive pairs share them.
+struct LoadedModel {
+  std::string path, type;
+  std::unique_ptr<Model> model;
+  std::string samples_spec;
+  std::unique_ptr<SampleSet> samples;
+};
+
+const Model& cached_model(LoadedModel& cache, const std::string& path, const std::string& type_text,
+                          std::optional<ModelType> type) {
+  if (!cache.model || cache.path != path || cache.type != type_text) {
+    cache.model.reset();
+    cache.samples.reset();
+    cache.samples_spec.clear();
+    cache.model = std::make_unique<Model>(load_model(path, type));
+    cache.path = path, cache.type = type_text;
+  }
+  return *cache.model;
+}
+
+}  // namespace
+
+int run_batch(const BatchArguments& args, std::string& stage) {
+  if (args.merge_only) {
+    const auto [ok, failed] = merge(args.out);
+    std::printf("batch: %s/summary.csv: %zu pairs measured, %zu failed\n", args.out.c_str(), ok, failed);
+    return failed ? kSomePairsFailedExitCode : 0;
+  }
+  std::vector<Pair> pairs;
+  if (args.inputs.size() == 1) {
+    pairs = read_manifest(args.inputs[0]);
+  } else if (args.inputs.size() == 2 && fs::is_directory(args.inputs[0]) && fs::is_directory(args.inputs[1])) {
+    pairs = pair_folders(args.inputs[0], args.inputs[1]);
+  } else {
+    throw Error(fmt::format("batch: expected a manifest (.csv or .jsonl) or two folders, found {} argument(s)",
+                            args.inputs.size()));
+  }
+  const auto [first, last] = shard_range(args.shard, pairs.size());
+  // Every pair's options are checked before any is measured: a typo fails the batch at once.
+  std::vector<MeasureArguments> arguments;
+  for (std::size_t i = first; i < last; ++i) {
+    try {
+      arguments.push_back(arguments_for(pairs[i], args.defaults));
+      plan_measurement(arguments.back());
+    } catch (const Error& e) {
+      throw Error(fmt::format("pair {} ({} vs {}): {}", i, pairs[i].reference, pairs[i].test, e.what()));
+    }
+  }
+  fs::create_directories(args.out);
+
+  Progress progress(args.defaults.quiet);
+  const Stopwatch watch;
+  std::map<std::string, std::string> hashes;  // path -> sha256
+  const auto sha256 = [&](const std::string& path) {
+    auto it = hashes.find(path);
+    if (it == hashes.end()) it = hashes.emplace(path, file_sha256(path)).first;
+    return it->second;
+  };
+  LoadedModel reference_cache, test_cache;
+  std::size_t measured = 0, skipped = 0, failed = 0;
+  for (std::size_t i = first; i < last; ++i) {
+    const Pair& pair = pairs[i];
+    const MeasureArguments& a = arguments[i - first];
+    const std::size_t done = i - first;
+    const double eta = done ? watch.seconds() / done * (last - i) : 0;
+    progress.stage(fmt::format("pair {}/{}: {} vs {}{}", done + 1, last - first, fs::path(pair.reference).filename().string(),
+                               fs::path(pair.test).filename().string(),
+                               done ? fmt::format(", about {:.0f} s left", eta) : ""));
+    nlohmann::json batch = {{"index", pair.index}, {"reference", pair.reference}, {"test", pair.test}};
+    std::string key;
+    try {
+      key = pair_key(a, sha256(pair.reference), sha256(pair.test));
+    } catch (const Error&) {
+      // Unreadable input: keyed by the paths, so that its failure is recorded all the same.
+      key = pair_key(a, pair.reference, pair.test);
+    }
+    // Named by its place in the list too: two pairs of identical files still get a row each.
+    const std::string name = fmt::format("{:06}-{}", pair.index, key);
+    const fs::path done_path = fs::path(args.out) / (name + ".json");
+    const fs::path failed_path = fs::path(args.out) / (name + ".failed.json");
+    if (fs::exists(done_path)) {  // finished by an earlier run or another shard
+      ++skipped;
+      continue;
+    }
+    try {
+      MeasurePlan plan = plan_measurement(a);
+      MeasureReport report;
+      Stopwatch load;
+      stage = fmt::format("loading {}", pair.reference);
+      const Model& reference = cached_model(reference_cache, pair.reference, a.reference_type, plan.reference_type);
+      report.load_seconds[0] = load.seconds();
+      load = Stopwatch();
+      stage = fmt::format("loading {}", pair.test);
+      const Model& test = cached_model(test_cache, pair.test, a.test_type, plan.test_type);
+      report.load_seconds[1] = load.seconds();
+      report.provenance = {{"tool", tool_json()},
+                           {"command_line", a.command_line},
+                           {"inputs",
+                            {input_json(a.symmetric ? "A" : "reference", pair.reference, sha256(pair.reference)),
+                             input_json(a.symmetric ? "B" : "test", pair.test, sha256(pair.test))}}};
+      describe_pair(reference, test, plan, report);
+      // The reference's samples, made once while consecutive pairs share it and the sampling.
+      if (reference_cache.samples_spec != plan.sample_spec.to_string() + std::to_string(plan.sample_spec.seed)) {
+        reference_cache.samples = std::make_unique<SampleSet>(reference_samples(reference, plan.sample_spec));
+        reference_cache.samples_spec = plan.sample_spec.to_string() + std::to_string(plan.sample_spec.seed);
+      }
+      const Stopwatch pair_watch;
+      measure_models(reference, test, plan, report, progress, stage,
+                     [&](const std::vector<std::string>& lines) {
+                       report.warnings.insert(report.warnings.end(), lines.begin(), lines.end());
+                     },
+                     reference_cache.samples.get());
+      report.total_seconds = report.load_seconds[0] + report.load_seconds[1] + pair_watch.seconds();
+      nlohmann::json json = to_json(report);
+      batch["status"] = "ok";
+      json["batch"] = batch;
+      write_json(done_path, json);
+      fs::remove(failed_path);
+      ++measured;
+    } catch (const std::exception& e) {
+      // Recorded, and tried again by the next run; the batch goes on.
+      batch["status"] = "failed";
+      batch["error"] = e.what();
+      write_json(failed_path, {{"schema_version", kReportSchemaVersion}, {"tool", tool_json()}, {"batch", batch}});
+      progress.clear();
+      std::fprintf(stderr, "roving: pair %zu (%s vs %s) failed: %s\n", pair.index, pair.reference.c_str(),
+                   pair.test.c_str(), e.what());
+      ++failed;
+    }
+  }
+  progress.clear();
+  merge(args.out);
+  std::printf("batch: pairs %zu..%zu of %zu: %zu measured, %zu already done, %zu failed in %.1f s; %s/summary.csv\n",
+              first, last ? last - 1 : 0, pairs.size(), measured, skipped, failed, watch.seconds(), args.out.c_str());
+  return failed ? kSomePairsFailedExitCode : 0;
+}
+
+}  // namespace roving

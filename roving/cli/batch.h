@@ -1,0 +1,31 @@
+// `roving batch`: many pairs in one run. Each pair gets one JSON report (the `measure --json`
+// schema plus a `batch` object) in the output folder, named by its place in the list and a key
+// of its inputs' sha256 and its options, so an interrupted run resumes (and recomputes a pair
+// whose files or options changed) and shards of one list never collide; then a merged CSV
+// summary. A failing pair is recorded with its error and the others go on.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "measure.h"
+
+namespace roving {
+
+// Exit code when the batch ran but some pair failed.
+constexpr int kSomePairsFailedExitCode = 4;
+
+struct BatchArguments {
+  // A manifest (.csv with a header naming `reference`, `test` and optional per-pair columns
+  // method, semantics, samples, seed, max_error, views, resolution, backend; or .jsonl with
+  // those keys), or two folders whose files are paired by name.
+  std::vector<std::string> inputs;
+  std::string out = "batch-results";
+  std::string shard;  // "I/N": the I-th (0-based) of N contiguous slices of the pairs
+  bool merge_only = false;
+  MeasureArguments defaults;  // options for every pair, overridden by the manifest's columns
+};
+
+int run_batch(const BatchArguments& args, std::string& stage);
+
+}  // namespace roving

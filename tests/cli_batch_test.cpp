@@ -1,0 +1,176 @@
+// `roving batch`: many pairs from a manifest or two folders, one report per pair, a merged
+// summary, failures recorded without stopping the others, shards that add up to one run, and a
+// restarted run that recomputes nothing it had finished.
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "cli_support.h"
+
+namespace {
+
+using namespace roving::testing::cli;
+
+std::string cube_obj(double s) {
+  std::string obj;
+  for (int i = 0; i < 8; ++i) obj += fmt::format("v {} {} {}\n", i & 1 ? s : -s, i & 2 ? s : -s, i & 4 ? s : -s);
+  for (const char* f : {"1 3 2", "2 3 4", "5 6 7", "6 8 7", "1 2 5", "2 6 5", "3 7 4", "4 7 8", "1 5 3", "3 5 7",
+                        "2 4 6", "4 8 6"}) {
+    obj += fmt::format("f {}\n", f);
+  }
+  return obj;
+}
+
+// Five cubes of half-sides 0.50 .. 0.54 and a manifest pairing the first with each of the
+// others, plus one pair whose test does not exist.
+struct Dataset {
+  Folder folder;
+  std::vector<std::string> cubes;
+  std::string manifest;
+  Dataset() {
+    for (int k = 0; k < 5; ++k) cubes.push_back(folder.file(fmt::format("cube{}.obj", k), cube_obj(0.5 + 0.01 * k)));
+    std::string csv = "reference,test,method\n";
+    for (int k = 1; k < 5; ++k) csv += fmt::format("{},{},{}\n", cubes[0], cubes[k], k == 2 ? "cgal" : "");
+    csv += fmt::format("{},{}/missing.obj,\n", cubes[0], folder.path.string());
+    manifest = folder.file("pairs.csv", csv);
+  }
+  std::string out(const std::string& name) const { return (folder.path / name).string(); }
+};
+
+std::vector<std::vector<std::string>> read_csv(const std::string& path) {
+  std::ifstream file(path);
+  std::vector<std::vector<std::string>> rows;
+  std::string line;
+  while (std::getline(file, line)) {
+    std::vector<std::string> fields;
+    std::stringstream stream(line);
+    std::string field;
+    while (std::getline(stream, field, ',')) fields.push_back(field);
+    rows.push_back(fields);
+  }
+  return rows;
+}
+
+// The summary without its timing column, which differs between runs.
+std::vector<std::vector<std::string>> summary_without_seconds(const std::string& folder) {
+  auto rows = read_csv(folder + "/summary.csv");
+  const auto seconds = std::find(rows.at(0).begin(), rows.at(0).end(), "seconds") - rows[0].begin();
+  for (auto& row : rows) {
+    if (static_cast<std::size_t>(seconds) < row.size()) row.erase(row.begin() + seconds);
+  }
+  return rows;
+}
+
+TEST(CliBatch, EveryPairGetsAReportAndAFailureDoesNotStopTheOthers) {
+  const Dataset data;
+  const CliRun run = run_cli("batch " + data.manifest + " --out " + data.out("results"));
+  EXPECT_EQ(run.exit_code, 4) << run.err;  // some pair failed
+  EXPECT_NE(run.err.find("pair 4"), std::string::npos) << run.err;
+  EXPECT_NE(run.err.find("missing.obj"), std::string::npos) << run.err;
+  EXPECT_NE(run.out.find("4 measured, 0 already done, 1 failed"), std::string::npos) << run.out;
+  const auto rows = read_csv(data.out("results") + "/summary.csv");
+  ASSERT_EQ(rows.size(), 6u);  // header + 5 pairs in manifest order
+  const auto column = [&](const std::string& name) {
+    return std::find(rows[0].begin(), rows[0].end(), name) - rows[0].begin();
+  };
+  for (int k = 1; k <= 4; ++k) {
+    EXPECT_EQ(rows[k][column("index")], std::to_string(k - 1));
+    EXPECT_EQ(rows[k][column("status")], "ok");
+    // First-hit from the small cube to one 0.01 k larger: every sample 0.01 k away.
+    EXPECT_NEAR(std::stod(rows[k][column("usiad")]), 0.01 * k, 1e-6) << k;
+  }
+  EXPECT_EQ(rows[2][column("method")], "cgal");  // the manifest's column overrides the default
+  EXPECT_EQ(rows[5][column("status")], "failed");
+  EXPECT_NE(rows[5][column("error")].find("cannot open"), std::string::npos);
+  // Each report is a full `measure --json` report plus where it came from.
+  std::size_t reports = 0;
+  for (const auto& entry : fs::directory_iterator(data.out("results"))) {
+    if (entry.path().extension() != ".json" || entry.path().string().find(".failed.") != std::string::npos) continue;
+    std::ifstream file(entry.path());
+    const auto json = nlohmann::json::parse(file);
+    EXPECT_EQ(json["schema_version"], 2);
+    EXPECT_EQ(json["batch"]["status"], "ok");
+    EXPECT_EQ(json["inputs"][0]["path"], data.cubes[0]);
+    ++reports;
+  }
+  EXPECT_EQ(reports, 4u);
+}
+
+TEST(CliBatch, TwoShardsTogetherEqualOneRun) {
+  const Dataset data;
+  EXPECT_EQ(run_cli("batch " + data.manifest + " --out " + data.out("whole")).exit_code, 4);
+  const CliRun first = run_cli("batch " + data.manifest + " --shard 0/2 --out " + data.out("sharded"));
+  const CliRun second = run_cli("batch " + data.manifest + " --shard 1/2 --out " + data.out("sharded"));
+  EXPECT_NE(first.out.find("2 measured"), std::string::npos) << first.out;   // pairs 0, 1
+  EXPECT_NE(second.out.find("2 measured"), std::string::npos) << second.out;  // pairs 2, 3 (and 4 failed)
+  const CliRun merged = run_cli("batch --merge --out " + data.out("sharded"));
+  EXPECT_EQ(merged.exit_code, 4) << merged.err;
+  EXPECT_NE(merged.out.find("4 pairs measured, 1 failed"), std::string::npos) << merged.out;
+  EXPECT_EQ(summary_without_seconds(data.out("sharded")), summary_without_seconds(data.out("whole")));
+}
+
+TEST(CliBatch, ARestartedRunRecomputesNothingItHadFinished) {
+  const Dataset data;
+  const std::string out = data.out("results");
+  run_cli("batch " + data.manifest + " --out " + out);
+  const auto before = summary_without_seconds(out);
+  // As if killed after the others: one report and the summary never written.
+  std::vector<fs::path> reports;
+  for (const auto& entry : fs::directory_iterator(out)) {
+    if (entry.path().extension() == ".json" && entry.path().string().find(".failed.") == std::string::npos)
+      reports.push_back(entry.path());
+  }
+  ASSERT_EQ(reports.size(), 4u);
+  fs::remove(reports[0]);
+  fs::remove(out + "/summary.csv");
+  const auto untouched = fs::last_write_time(reports[1]);
+  const CliRun again = run_cli("batch " + data.manifest + " --out " + out);
+  EXPECT_NE(again.out.find("1 measured, 3 already done, 1 failed"), std::string::npos) << again.out;
+  EXPECT_EQ(fs::last_write_time(reports[1]), untouched);
+  EXPECT_EQ(summary_without_seconds(out), before);
+}
+
+TEST(CliBatch, JsonLinesAndFoldersMatchedByName) {
+  const Dataset data;
+  const std::string jsonl = data.folder.file(
+      "pairs.jsonl", fmt::format("{{\"reference\": \"{}\", \"test\": \"{}\", \"method\": \"cgal\"}}\n\n"
+                                 "{{\"reference\": \"{}\", \"test\": \"{}\", \"resolution\": 256}}\n",
+                                 data.cubes[0], data.cubes[3], data.cubes[0], data.cubes[4]));
+  const CliRun lines = run_cli("batch " + jsonl + " --out " + data.out("lines"));
+  EXPECT_EQ(lines.exit_code, 0) << lines.err;
+  EXPECT_EQ(read_csv(data.out("lines") + "/summary.csv").size(), 3u);
+
+  const Folder refs, tests;
+  for (const char* name : {"a.obj", "b.obj", "only-here.obj"}) refs.file(name, cube_obj(0.5));
+  for (const char* name : {"a.obj", "b.obj", "not-there.obj"}) tests.file(name, cube_obj(0.52));
+  const CliRun folders = run_cli("batch " + refs.path.string() + " " + tests.path.string() + " --out " +
+                                 data.out("folders") + " --semantics closest");
+  EXPECT_EQ(folders.exit_code, 0) << folders.err;
+  const auto rows = read_csv(data.out("folders") + "/summary.csv");
+  ASSERT_EQ(rows.size(), 3u);  // a.obj and b.obj
+  EXPECT_NE(rows[1][1].find("a.obj"), std::string::npos);
+  EXPECT_NE(rows[2][2].find("b.obj"), std::string::npos);
+}
+
+TEST(CliBatch, BadManifestsAndShardsAreOneLineErrors) {
+  const Dataset data;
+  const std::string out = " --out " + data.out("x");
+  expect_error("batch " + data.folder.file("no-test.csv", "reference\na.obj\n") + out, {"no-test.csv:2", "'test'"});
+  expect_error("batch " + data.folder.file("extra.csv", "reference,test,colour\na,b,red\n") + out,
+               {"extra.csv:2", "unknown column 'colour'"});
+  expect_error("batch " + data.folder.file("fields.csv", "reference,test\na,b,c\n") + out,
+               {"fields.csv:2", "expected 2 fields", "found 3"});
+  expect_error("batch " + data.folder.file("empty.csv", "reference,test\n") + out, {"empty.csv", "at least one pair"});
+  expect_error("batch " + data.folder.file("bad.jsonl", "{\"reference\": \"a\",\n") + out, {"bad.jsonl:1", "JSON"});
+  expect_error("batch " + data.folder.file("magic.csv", "reference,test,method\na,b,magic\n") + out,
+               {"pair 0", "--method", "'magic'"});
+  for (const char* shard : {"2/2", "x", "1/0", "-1/3"}) {
+    expect_error("batch " + data.manifest + " --shard " + shard + out, {"--shard", shard});
+  }
+  expect_error("batch /nonexistent/pairs.csv" + out, {"/nonexistent/pairs.csv"});
+  expect_error("batch --merge --out /nonexistent/folder", {"--merge", "/nonexistent/folder"});
+}
+
+}  // namespace
