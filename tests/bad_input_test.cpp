@@ -2,10 +2,14 @@
 // roving::Error that names the file and says what was expected and what was found.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <utility>
+#include <vector>
 
 #include "roving/core/error.h"
 #include "roving/formats/mesh_io.h"
@@ -299,6 +303,115 @@ TEST_F(BadFiles, SaveAndLoadRoundTripKeepsTheGeometry) {
     EXPECT_EQ(loaded.triangle_count(), 12u) << name;
     EXPECT_NEAR(loaded.total_area(), 24.0, 1e-9) << name;
   }
+}
+
+// glTF 2.0 through assimp: a triangle (3 float positions, 3 ushort indices) in one buffer,
+// placed by a node's translation and by another node's scale.
+std::string base64(const std::string& bytes) {
+  static const char* digits = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  for (std::size_t i = 0; i < bytes.size(); i += 3) {
+    const std::uint32_t n = (std::uint8_t(bytes[i]) << 16) | (i + 1 < bytes.size() ? std::uint8_t(bytes[i + 1]) << 8 : 0) |
+                            (i + 2 < bytes.size() ? std::uint8_t(bytes[i + 2]) : 0);
+    out += digits[n >> 18], out += digits[(n >> 12) & 63];
+    out += i + 1 < bytes.size() ? digits[(n >> 6) & 63] : '=';
+    out += i + 2 < bytes.size() ? digits[n & 63] : '=';
+  }
+  return out;
+}
+
+std::string triangle_buffer(float x = 0, std::uint16_t last_index = 2) {
+  const float positions[9] = {x, 0, 0, 1, 0, 0, 0, 1, 0};
+  const std::uint16_t indices[4] = {0, 1, last_index, 0};
+  return std::string(reinterpret_cast<const char*>(positions), sizeof positions) +
+         std::string(reinterpret_cast<const char*>(indices), sizeof indices);
+}
+
+// The glTF JSON; `buffer_uri` empty for a GLB's own binary chunk. `mode` 4 is triangles, 0 points.
+std::string gltf_json(const std::string& buffer_uri, int mode = 4) {
+  return R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0, 1]}],
+  "nodes": [{"mesh": 0, "translation": [10, 0, 0]}, {"mesh": 0, "scale": [2, 2, 2]}],
+  "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1, "mode": )" + std::to_string(mode) + R"(}]}],
+  "buffers": [{"byteLength": 44)" + (buffer_uri.empty() ? "" : R"(, "uri": ")" + buffer_uri + "\"") + R"(}],
+  "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 36}, {"buffer": 0, "byteOffset": 36, "byteLength": 6}],
+  "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]},
+                {"bufferView": 1, "componentType": 5123, "count": 3, "type": "SCALAR"}]})";
+}
+
+std::string glb(std::string json, const std::string& binary) {
+  while (json.size() % 4) json += ' ';
+  const auto u32 = [](std::uint32_t v) { return std::string(reinterpret_cast<const char*>(&v), 4); };
+  const std::string chunks = u32(json.size()) + "JSON" + json + u32(binary.size()) + std::string("BIN\0", 4) + binary;
+  return "glTF" + u32(2) + u32(12 + chunks.size()) + chunks;
+}
+
+TEST_F(BadFiles, GltfAndGlbApplyNodeTransforms) {
+  const std::string data_uri = "data:application/octet-stream;base64," + base64(triangle_buffer());
+  for (const std::string& path : {write("scene.gltf", gltf_json(data_uri)), write("scene.glb", glb(gltf_json(""), triangle_buffer()))}) {
+    const LoadedMesh loaded = load_mesh(path);
+    ASSERT_EQ(loaded.mesh.triangle_count(), 2u) << path;  // the mesh, placed by both nodes
+    const BoundingBox box = loaded.mesh.bounding_box();
+    EXPECT_EQ(box.min, Vec3(0, 0, 0)) << path;
+    EXPECT_EQ(box.max, Vec3(11, 2, 0)) << path;  // translated to x in [10, 11]; scaled 2 to [0, 2]^2
+    EXPECT_NEAR(loaded.mesh.total_area(), 0.5 + 2.0, 1e-12) << path;
+  }
+  // A .gltf whose buffer is a file beside it.
+  write("scene.bin", triangle_buffer());
+  EXPECT_EQ(load_mesh(write("external.gltf", gltf_json("scene.bin"))).mesh.triangle_count(), 2u);
+}
+
+// A zip archive of stored (uncompressed) entries, as a 3MF package may be.
+std::string stored_zip(const std::vector<std::pair<std::string, std::string>>& entries) {
+  const auto u16 = [](std::uint16_t v) { return std::string(reinterpret_cast<const char*>(&v), 2); };
+  const auto u32 = [](std::uint32_t v) { return std::string(reinterpret_cast<const char*>(&v), 4); };
+  const auto crc32 = [](const std::string& data) {
+    std::uint32_t crc = 0xFFFFFFFFu;
+    for (unsigned char c : data) {
+      crc ^= c;
+      for (int k = 0; k < 8; ++k) crc = (crc >> 1) ^ (0xEDB88320u & (0u - (crc & 1u)));
+    }
+    return ~crc;
+  };
+  std::string local, central;
+  for (const auto& [name, data] : entries) {
+    const std::string common = u16(20) + u16(0) + u16(0) + u16(0) + u16(0) + u32(crc32(data)) + u32(data.size()) +
+                               u32(data.size()) + u16(name.size()) + u16(0);
+    central += u32(0x02014b50) + u16(20) + common + u16(0) + u16(0) + u16(0) + u32(0) + u32(local.size()) + name;
+    local += u32(0x04034b50) + common + name + data;
+  }
+  return local + central + u32(0x06054b50) + u16(0) + u16(0) + u16(entries.size()) + u16(entries.size()) +
+         u32(central.size()) + u32(local.size()) + u16(0);
+}
+
+TEST_F(BadFiles, ThreeMfMeshWithItsBuildTransform) {
+  const std::string model = R"(<?xml version="1.0" encoding="UTF-8"?>
+<model unit="millimeter" xmlns="http://schemas.microsoft.com/3dmanufacturing/core/2015/02">
+ <resources><object id="1" type="model"><mesh>
+  <vertices><vertex x="0" y="0" z="0"/><vertex x="1" y="0" z="0"/><vertex x="0" y="1" z="0"/><vertex x="0" y="0" z="1"/></vertices>
+  <triangles><triangle v1="0" v2="2" v3="1"/><triangle v1="0" v2="1" v3="3"/><triangle v1="0" v2="3" v3="2"/><triangle v1="1" v2="2" v3="3"/></triangles>
+ </mesh></object></resources>
+ <build><item objectid="1" transform="1 0 0 0 1 0 0 0 1 5 0 0"/></build>
+</model>)";
+  const std::string path = write("tetra.3mf", stored_zip({
+      {"[Content_Types].xml", R"(<?xml version="1.0" encoding="UTF-8"?><Types xmlns="http://schemas.openxmlformats.org/package/2006/content-types"><Default Extension="rels" ContentType="application/vnd.openxmlformats-package.relationships+xml"/><Default Extension="model" ContentType="application/vnd.ms-package.3dmanufacturing-3dmodel+xml"/></Types>)"},
+      {"_rels/.rels", R"(<?xml version="1.0" encoding="UTF-8"?><Relationships xmlns="http://schemas.openxmlformats.org/package/2006/relationships"><Relationship Target="/3D/3dmodel.model" Id="rel0" Type="http://schemas.microsoft.com/3dmanufacturing/2013/01/3dmodel"/></Relationships>)"},
+      {"3D/3dmodel.model", model}}));
+  const LoadedMesh loaded = load_mesh(path);
+  EXPECT_EQ(loaded.mesh.triangle_count(), 4u);
+  EXPECT_EQ(loaded.mesh.bounding_box().min, Vec3(5, 0, 0));  // the build item's translation
+  EXPECT_EQ(loaded.mesh.bounding_box().max, Vec3(6, 1, 1));
+}
+
+TEST_F(BadFiles, GltfBadFilesNameTheFile) {
+  expect_error(write("empty.gltf", ""), {"empty"});
+  expect_error(write("broken.gltf", "{\"asset\": {\"version\": \"2.0\"}, \"meshes\": ["), {"cannot read it as .gltf"});
+  expect_error(write("missing-buffer.gltf", gltf_json("absent.bin")), {"cannot read it as .gltf"});
+  expect_error(write("truncated.glb", glb(gltf_json(""), triangle_buffer()).substr(0, 100)), {"cannot read it as .glb"});
+  expect_error(write("garbage.3mf", "PK\x03\x04 not really a zip"), {"cannot read it as .3mf"});
+  const auto uri = [](const std::string& buffer) { return "data:application/octet-stream;base64," + base64(buffer); };
+  expect_error(write("nan.gltf", gltf_json(uri(triangle_buffer(std::nanf(""))))), {"non-finite"});
+  expect_error(write("points.gltf", gltf_json(uri(triangle_buffer()), 0)), {"no faces found"});
+  expect_error(write("index.gltf", gltf_json(uri(triangle_buffer(0, 7)))), {"cannot read it as .gltf"});
 }
 
 }  // namespace

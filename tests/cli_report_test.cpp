@@ -223,7 +223,7 @@ TEST(CliReport, TyposGetSuggestionsAndHelpListsEveryFormat) {
   expect_error("measure " + cubes.pair + " --symetric", {"'--symmetric'"});
   const CliRun help = run_cli("measure --help");
   EXPECT_EQ(help.exit_code, 0);
-  for (const char* listed : {".obj", ".ply", ".off", ".stl", ".bpt", ".xyz", ".binvox", "bezier", "--fail-above",
+  for (const char* listed : {".obj", ".ply", ".off", ".stl", ".gltf", ".glb", ".3mf", ".bpt", ".xyz", ".binvox", "bezier", "--fail-above",
                              "--symmetric", "--seed", "--quiet"}) {
     EXPECT_NE(help.out.find(listed), std::string::npos) << listed;
   }

@@ -120,10 +120,10 @@ int main(int argc, char** argv) {
       "--fail-above gate is breached)");
   measure
       ->add_option("REF", args.reference_path,
-                   "reference model M_R: mesh (.obj .ply .off .stl), Bezier patches (.bpt), point cloud "
+                   "reference model M_R: mesh (.obj .ply .off .stl .gltf .glb .3mf), Bezier patches (.bpt), point cloud "
                    "(.ply without faces, .xyz) or voxels (.binvox)")
       ->required();
-  measure->add_option("TEST", args.test_path, "test model M_C: mesh (.obj .ply .off .stl), .bpt or .binvox")
+  measure->add_option("TEST", args.test_path, "test model M_C: mesh (.obj .ply .off .stl .gltf .glb .3mf), .bpt or .binvox")
       ->required();
   add_measurement_options(*measure, args);
   measure->add_option("--fail-above", args.gates,

@@ -17,6 +17,7 @@
 #include <sstream>
 
 #include "obj_reader.h"
+#include "roving/formats/assimp_reader.h"
 #include "off_reader.h"
 #include "ply_reader.h"
 #include "roving/core/error.h"
@@ -80,11 +81,13 @@ std::string lower_extension(const std::string& path) {
   return ext;
 }
 
-void require_known_format(const std::string& path, const std::string& ext) {
+// `reading`: the formats read (also glTF and 3MF), else those written.
+void require_known_format(const std::string& path, const std::string& ext, bool reading = false) {
   static const char* const known[] = {"obj", "ply", "off", "stl"};
   if (std::find(std::begin(known), std::end(known), ext) == std::end(known)) {
-    throw Error(fmt::format("{}: unknown mesh format '{}'; expected .obj, .ply, .off or .stl", path,
-                            ext.empty() ? "(no extension)" : "." + ext));
+    throw Error(fmt::format("{}: unknown mesh format '{}'; expected .obj, .ply, .off{}", path,
+                            ext.empty() ? "(no extension)" : "." + ext,
+                            reading ? ", .stl, .gltf, .glb or .3mf" : " or .stl"));
   }
 }
 
@@ -92,12 +95,13 @@ void require_known_format(const std::string& path, const std::string& ext) {
 
 LoadedMesh load_mesh(const std::string& path) {
   const std::string ext = lower_extension(path);
-  require_known_format(path, ext);
+  if (ext != "gltf" && ext != "glb" && ext != "3mf") require_known_format(path, ext, true);
   LoadedMesh loaded;
   if (ext == "obj") loaded = read_obj(path);
   if (ext == "ply") loaded = std::move(read_ply(path).mesh);
   if (ext == "off") loaded = read_off(path);
   if (ext == "stl") loaded = read_stl(path);
+  if (ext == "gltf" || ext == "glb" || ext == "3mf") loaded = read_with_assimp(path);
   const TriangleMesh& mesh = loaded.mesh;
   if (mesh.triangle_count() == 0) {
     throw Error(
