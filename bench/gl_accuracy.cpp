@@ -161,7 +161,7 @@ int main(int argc, char** argv) {
             exact.same_flag_fraction() >= 0.999 && exact.close_fraction() >= 0.995 && usiad_error <= 0.002;
 
       fmt::print(
-          "| cooperative 24x12, 1024 px | SiAD | USiAD | STD | |dSiAD| / USiAD_roving | |dUSiAD| / "
+          "| cooperative 24x12, 1024 px | SiAD | USiAD | STD | \\|dSiAD\\| / USiAD_roving | \\|dUSiAD\\| / "
           "USiAD_roving | view-resolved within view tol. of Embree | observations (views + cameras) | "
           "query s |\n|---|---|---|---|---|---|---|---|---|\n");
       fmt::print("| exact roving | {:.5f} | {:.5f} | {:.5f} | | | | {} | {:.3f} |\n", roving.stats.siad,

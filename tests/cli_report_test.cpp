@@ -216,6 +216,40 @@ TEST(CliReport, SamplesTableNamesElementWeightAndResolution) {
   EXPECT_NE(text.find(",B -> A\n"), std::string::npos);
 }
 
+TEST(CliReport, HeatMapColoursTheReferencesOwnSurface) {
+  const Cubes cubes;
+  const auto read = [](const std::string& path) {
+    std::ifstream file(path);
+    return std::string(std::istreambuf_iterator<char>(file), {});
+  };
+  // Face samples: the reference's 12 triangles, each with its colour and d (0.05: red side).
+  const std::string faces = cubes.folder.file("faces.ply");
+  ASSERT_EQ(run_cli("measure " + cubes.pair + " --heatmap " + faces + " --heatmap-range 0.25").exit_code, 0);
+  const std::string text = read(faces);
+  for (const char* line : {"element vertex 8\n", "element face 12\n", "property float quality\n",
+                           "d = -0.25 blue", "(per face)"}) {
+    EXPECT_NE(text.find(line), std::string::npos) << line << " in " << text.substr(0, 600);
+  }
+  // d / range = 0.2: ColorBrewer's RdBu's first stop after white, (253, 219, 199), and d itself.
+  EXPECT_NE(text.find("3 0 2 1 253 219 199 0.05"), std::string::npos) << text;
+  // No hit within h = 0.03: grey and NaN quality, never 0.
+  const std::string misses = cubes.folder.file("misses.ply");
+  ASSERT_EQ(run_cli("measure " + cubes.pair + " --max-error 0.03 --heatmap " + misses).exit_code, 0);
+  EXPECT_NE(read(misses).find("128 128 128 nan"), std::string::npos);
+  // Vertex samples colour the vertices; area samples stay points.
+  const std::string vertices = cubes.folder.file("vertices.ply");
+  ASSERT_EQ(run_cli("measure " + cubes.pair + " --samples vertices --heatmap " + vertices).exit_code, 0);
+  EXPECT_NE(read(vertices).find("(per vertex)"), std::string::npos);
+  const std::string points = cubes.folder.file("points.ply");
+  ASSERT_EQ(run_cli("measure " + cubes.pair + " --samples area:30 --heatmap " + points).exit_code, 0);
+  EXPECT_NE(read(points).find("element vertex 30\n"), std::string::npos);
+  EXPECT_EQ(read(points).find("element face"), std::string::npos);
+  for (const char* bad : {"0", "-1", "abc", "150%"}) {
+    expect_error("measure " + cubes.pair + " --heatmap " + faces + " --heatmap-range " + bad,
+                 {"--heatmap-range", bad});
+  }
+}
+
 TEST(CliReport, TyposGetSuggestionsAndHelpListsEveryFormat) {
   const Cubes cubes;
   expect_error("mesure " + cubes.pair, {"unknown command 'mesure'", "did you mean 'measure'"});

@@ -133,7 +133,11 @@ int main(int argc, char** argv) {
                                   fmt::join(roving::gate_metrics(true), ", ")));
   measure->add_option("--json", args.json_path, "write the report as JSON to FILE, or - for stdout");
   measure->add_option("--samples-out", args.samples_csv_path, "write one CSV row per sample");
-  measure->add_option("--heatmap", args.heatmap_path, "write the samples coloured by d as PLY");
+  measure->add_option("--heatmap", args.heatmap_path,
+                      "write REF coloured by d as PLY (per face or vertex on a mesh or voxels; points otherwise)");
+  measure->add_option("--heatmap-range", args.heatmap_range,
+                      "the colour map's half-range: a length or P% of the diagonal (default: the 99th percentile of "
+                      "|d| over the hits)");
 
   roving::BatchArguments batch_args;
   batch_args.defaults.command_line = args.command_line;

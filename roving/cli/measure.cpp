@@ -16,6 +16,7 @@
 #include "roving/core/error.h"
 #include "roving/formats/atomic_file.h"
 #include "roving/formats/file_hash.h"
+#include "roving/formats/heatmap.h"
 #include "roving/formats/sample_output.h"
 #include "roving/registry/method_registry.h"
 
@@ -32,6 +33,16 @@ void require_representable(double max_error, const BoundingBox& both, const std:
         fmt::format("--max-error: expected at most the diagonal of both models' bounding box ({:.6g}), found "
                     "{} ({:.6g}); a view volume reaches nothing farther",
                     extent, given, max_error));
+  }
+}
+
+// A length or P% of the diagonal, for `option`: --max-error's rules under another name.
+MaxErrorSpec parse_length(const std::string& option, const std::string& text) {
+  try {
+    return parse_max_error(text);
+  } catch (const Error& e) {
+    const std::string message = e.what();
+    throw Error(option + message.substr(message.find(':')));
   }
 }
 
@@ -68,6 +79,28 @@ std::vector<MetricValue> gate_values(const MeasureReport& report) {
   return values;
 }
 
+// Which element of the reference's surface carries each sample's value in the heat map.
+HeatmapLayout heatmap_layout(const Model& reference, const SampleSet& samples) {
+  if (reference.type == ModelType::Mesh && samples.kind == "faces") return {HeatmapElement::Faces, 1};
+  if (reference.type == ModelType::Mesh && samples.kind == "vertices") return {HeatmapElement::Vertices, 1};
+  if (reference.type == ModelType::Voxels && samples.kind == "voxel faces") return {HeatmapElement::Faces, 2};
+  return {HeatmapElement::Points, 1};  // area:N, Bezier parameter cells, point clouds
+}
+
+// --heatmap-range as given (a length or P% of the diagonal), else the 99th percentile of |d|
+// over the hits: the colours then show the data, not h.
+double heatmap_range(const std::string& given, const DirectionReport& d, const MeasureReport& report) {
+  if (!given.empty()) return parse_length("--heatmap-range", given).resolve(report.diagonal);
+  std::vector<double> magnitudes;
+  for (std::size_t k = 0; k < d.samples.size(); ++k) {
+    if (d.result.hit[k]) magnitudes.push_back(std::abs(d.result.signed_distance[k]));
+  }
+  if (magnitudes.empty()) return report.max_error;
+  const auto at = magnitudes.begin() + static_cast<std::ptrdiff_t>(0.99 * (magnitudes.size() - 1));
+  std::nth_element(magnitudes.begin(), at, magnitudes.end());
+  return *at > 0 ? *at : report.max_error;
+}
+
 }  // namespace
 
 MeasurePlan plan_measurement(const MeasureArguments& args) {
@@ -84,6 +117,7 @@ MeasurePlan plan_measurement(const MeasureArguments& args) {
     plan.sample_spec.seed = *args.seed;
   }
   plan.max_error = parse_max_error(args.max_error);
+  if (!args.heatmap_range.empty()) parse_length("--heatmap-range", args.heatmap_range);
   plan.max_error_text = args.max_error;
   if (!args.semantics.empty()) {
     plan.options.semantics = parse_semantics(args.semantics);
@@ -233,8 +267,8 @@ int run_measure(const MeasureArguments& args, std::string& stage) {
   if (!args.heatmap_path.empty()) {
     const DirectionReport& d = report.directions.front();
     outputs.push_back(std::make_unique<AtomicFile>(args.heatmap_path));
-    const double range = std::max(d.statistics.max_abs, 1e-300);
-    write_heatmap_ply(outputs.back()->stream(), d.samples, d.result, std::min(range, plan.options.max_error));
+    write_heatmap_ply(outputs.back()->stream(), a.type == ModelType::Points ? nullptr : &a.mesh.mesh,
+                      heatmap_layout(a, d.samples), d.samples, d.result, heatmap_range(args.heatmap_range, d, report));
     outputs.back()->close_stream();
   }
   report.total_seconds = total.seconds();

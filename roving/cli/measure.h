@@ -23,6 +23,7 @@ struct MeasureArguments {
   std::optional<std::uint64_t> seed;  // area:N only
   std::string max_error = "5%";
   std::string json_path, samples_csv_path, heatmap_path;
+  std::string heatmap_range;  // empty: the 99th percentile of |d| over the hits
   std::size_t histogram_bins = 64;
   std::string views = "24x12", backend = "osmesa";
   std::string reference_type, test_type;  // empty: by extension

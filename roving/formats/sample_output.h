@@ -1,4 +1,4 @@
-// Per-sample outputs of a measurement: a CSV table and a colour-coded PLY "heat map".
+// Per-sample output of a measurement: a CSV table (the heat map is heatmap.h).
 #pragma once
 
 #include <cstdio>
@@ -18,11 +18,5 @@ namespace roving {
 // on `out` for its owner (an AtomicFile) to report.
 void write_samples_csv(std::FILE* out, const SampleSet& samples, const DistanceResult& result,
                        const std::string& direction = {}, bool header = true);
-
-// The samples as a PLY point cloud with normals, coloured by signed d on a diverging map
-// (blue: M_C inside M_R, white: 0, red: outside) over the symmetric legend range [-range, range];
-// no-hits are grey. Each vertex also carries d as a scalar property (`quality`), read by
-// MeshLab and CloudCompare; the legend range is written in a header comment.
-void write_heatmap_ply(std::FILE* out, const SampleSet& samples, const DistanceResult& result, double range);
 
 }  // namespace roving

@@ -1,0 +1,91 @@
+// PLY heat maps: a binary-free ASCII PLY, so the legend comments and NaN read as text.
+#include "roving/formats/heatmap.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace roving {
+
+std::array<unsigned char, 3> diverging_colour(double s) {
+  // RdBu, 11 classes, from blue to red (Brewer 2002).
+  static constexpr unsigned char stops[11][3] = {{5, 48, 97},    {33, 102, 172}, {67, 147, 195}, {146, 197, 222},
+                                                 {209, 229, 240}, {247, 247, 247}, {253, 219, 199}, {244, 165, 130},
+                                                 {214, 96, 77},   {178, 24, 43},  {103, 0, 31}};
+  const double position = (std::clamp(std::isnan(s) ? 0.0 : s, -1.0, 1.0) + 1) * 5;  // 0..10
+  const int low = std::min(static_cast<int>(position), 9);
+  const double t = position - low;
+  std::array<unsigned char, 3> colour;
+  for (int c = 0; c < 3; ++c) {
+    colour[c] = static_cast<unsigned char>(std::lround((1 - t) * stops[low][c] + t * stops[low + 1][c]));
+  }
+  return colour;
+}
+
+void write_heatmap_ply(std::FILE* out, const TriangleMesh* surface, const HeatmapLayout& layout,
+                       const SampleSet& samples, const DistanceResult& result, double range) {
+  if (!(range > 0)) range = 1;
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const auto colour_of = [&](float d) { return std::isnan(d) ? kNoHitColour : diverging_colour(d / range); };
+  const HeatmapElement element = surface ? layout.element : HeatmapElement::Points;
+  // One value per element: d of its sample, NaN without one or without a hit.
+  std::vector<float> value;
+  if (element != HeatmapElement::Points) {
+    const std::size_t per = element == HeatmapElement::Faces ? static_cast<std::size_t>(layout.triangles_per_element) : 1;
+    value.assign(element == HeatmapElement::Faces ? surface->triangle_count() : surface->vertex_count(), nan);
+    for (std::size_t k = 0; k < samples.size() && k < samples.elements.size(); ++k) {
+      for (std::size_t j = 0; j < per; ++j) {
+        const std::size_t e = samples.elements[k] * per + j;
+        if (e < value.size()) value[e] = result.hit[k] ? static_cast<float>(result.signed_distance[k]) : nan;
+      }
+    }
+  }
+  fmt::print(out,
+             "ply\nformat ascii 1.0\ncomment surface roving heat map of signed distance d ({})\n"
+             "comment legend: d = -{} blue (TEST inside REF), 0 white, +{} red (outside); grey = no hit "
+             "(quality nan)\n",
+             element == HeatmapElement::Faces ? "per face" : element == HeatmapElement::Vertices ? "per vertex"
+                                                                                                  : "per sample point",
+             range, range);
+  const bool per_vertex = element != HeatmapElement::Faces;
+  const std::size_t vertices = element == HeatmapElement::Points ? samples.size() : surface->vertex_count();
+  fmt::print(out, "element vertex {}\nproperty float x\nproperty float y\nproperty float z\n", vertices);
+  if (element == HeatmapElement::Points) fmt::print(out, "property float nx\nproperty float ny\nproperty float nz\n");
+  if (per_vertex) {
+    fmt::print(out, "property uchar red\nproperty uchar green\nproperty uchar blue\nproperty float quality\n");
+  }
+  if (element != HeatmapElement::Points) {
+    fmt::print(out, "element face {}\nproperty list uchar int vertex_indices\n", surface->triangle_count());
+    if (!per_vertex) {
+      fmt::print(out, "property uchar red\nproperty uchar green\nproperty uchar blue\nproperty float quality\n");
+    }
+  }
+  fmt::print(out, "end_header\n");
+  const auto coloured = [&](float d) {
+    const auto c = colour_of(d);
+    return fmt::format("{} {} {} {}", c[0], c[1], c[2], d);  // fmt writes NaN as "nan"
+  };
+  if (element == HeatmapElement::Points) {
+    for (std::size_t k = 0; k < samples.size(); ++k) {
+      const Vec3& p = samples.positions[k];
+      const Vec3& n = samples.normals[k];
+      const float d = result.hit[k] ? static_cast<float>(result.signed_distance[k]) : nan;
+      fmt::print(out, "{} {} {} {} {} {} {}\n", float(p.x()), float(p.y()), float(p.z()), float(n.x()), float(n.y()),
+                 float(n.z()), coloured(d));
+    }
+    return;
+  }
+  for (std::size_t v = 0; v < surface->vertex_count(); ++v) {
+    const Vec3& p = surface->positions()[v];
+    fmt::print(out, "{} {} {}{}\n", float(p.x()), float(p.y()), float(p.z()),
+               per_vertex ? " " + coloured(value[v]) : std::string());
+  }
+  for (std::size_t f = 0; f < surface->triangle_count(); ++f) {
+    const Triangle& t = surface->triangles()[f];
+    fmt::print(out, "3 {} {} {}{}\n", t[0], t[1], t[2], per_vertex ? std::string() : " " + coloured(value[f]));
+  }
+}
+
+}  // namespace roving
