@@ -191,7 +191,11 @@ void measure_models(const Model& a, const Model& b, MeasurePlan& plan, MeasureRe
     if (plan.symmetric) d.label = reference == &a ? "A -> B" : "B -> A";
     stage = fmt::format("sampling {} ({})", reference->path(), plan.sample_spec.to_string());
     progress.stage(fmt::format("{}sampling", d.label.empty() ? "" : d.label + ": "));
-    d.samples = reference == &a && samples_of_a ? *samples_of_a : reference_samples(*reference, plan.sample_spec);
+    if (reference == &a && samples_of_a) {
+      d.samples = *samples_of_a;
+    } else {
+      d.samples = reference_samples(*reference, plan.sample_spec);
+    }
     const TriangleMesh& test_mesh = test_surface(*test);
     stage = fmt::format("measuring {} samples against {} triangles with {}", d.samples.size(),
                         test_mesh.triangle_count(), plan.method->name());
