@@ -12,8 +12,9 @@ cmake --build "$prefix/consumer-build" >/dev/null
 pc_folder="$(dirname "$(find "$prefix" -name roving.pc)")"
 g++ -std=c++17 tests/consumer/main.cpp -o "$prefix/consumer-pc" \
   $(PKG_CONFIG_PATH="$pc_folder" pkg-config --cflags --libs roving) -Wl,-rpath,"$pc_folder/.."
-ref=build/datasets/bunny.ply
-test=build/datasets/bunny-800.ply
+./build/datasets_gen/roving-datasets --data "${ROVING_DATA:-../shared/data}" --out "$prefix/data" --quick 2>/dev/null
+ref="$prefix/data/bunny.ply"
+test="$prefix/data/bunny-800.ply"
 expected=$(./build/roving/roving measure "$ref" "$test" --json - | /usr/bin/python3 -c \
   'import json, sys; j = json.load(sys.stdin); print("USiAD %.9g over %d samples" % (j["statistics"]["usiad"], j["samples"]["count"]))')
 for consumer in "$prefix/consumer-build/consumer" "$prefix/consumer-pc"; do
