@@ -1,7 +1,7 @@
 // `roving-bench`: regenerates the paper's Tables 1-3, Figure 6 and the H x V view-spacing study
-// into results/ (Markdown, CSV, SVG), side by side with the paper's figures; `--check`
-// recomputes every accuracy figure (never timings) and fails if it moved from the committed
-// results or if the GL methods and the references disagree beyond the accuracy gates.
+// into results/ (Markdown, and CSV that bench/charts.py draws), side by side with the paper's
+// figures; `--check` recomputes every accuracy figure (never timings) and fails if it moved from
+// the committed results or if the GL methods and the references disagree beyond the accuracy gates.
 #include <fmt/format.h>
 
 #include <CLI/CLI.hpp>
@@ -25,7 +25,6 @@
 #include "roving/gl_methods/agreement.h"
 #include "roving/registry/method_registry.h"
 #include "roving/representations/voxel_surface.h"
-#include "svg_chart.h"
 #include "voxelize.h"
 
 namespace fs = std::filesystem;
@@ -102,7 +101,7 @@ class Bench {
   std::map<std::string, double> figures;  // accuracy figures, what --check compares
   std::vector<std::string> failures;
   std::vector<ReportTable> tables;
-  std::map<std::string, std::string> svgs;
+  std::map<std::string, std::string> chart_data;  // CSV files bench/charts.py draws from
 
  private:
   Options options_;
@@ -184,26 +183,22 @@ struct TestPair {
   bool voxel;
 };
 
-// Figure 6: histograms of the bunny-vs-low-mesh errors by Embree, exact roving, cooperative.
-std::string figure6(const std::map<std::string, Run>& runs, const SampleSet& samples) {
-  std::vector<ChartSeries> series;
+// Figure 6: histograms of the bunny-vs-low-mesh errors by Embree, exact roving and cooperative,
+// as integer counts per bin of signed d over [-4, 4] paper units (bench/charts.py draws them).
+std::string figure6_data(const std::map<std::string, Run>& runs, const SampleSet& samples) {
   const double range = 4.0;
   const std::size_t bins = 80;
-  for (const auto& [method, colour, name] :
-       {std::tuple{"embree", "#888888", "Embree (reference)"},
-        std::tuple{"roving", "#d62728", "exact roving (GL)"},
-        std::tuple{"cooperative", "#1f77b4", "cooperative 24x12 (GL)"}}) {
+  std::vector<Histogram> histograms;
+  for (const char* method : {"embree", "roving", "cooperative"}) {
     const DistanceResult& r = runs.at(method).result;
-    const Statistics s = compute_statistics(r.signed_distance, r.hit, samples.weights, range, bins);
-    ChartSeries c{name, colour, {}, {}};
-    for (std::size_t b = 0; b < bins; ++b) {
-      c.x.push_back(-range + (b + 0.5) * 2 * range / bins);
-      c.y.push_back(double(s.histogram.counts[b]));
-    }
-    series.push_back(c);
+    histograms.push_back(compute_statistics(r.signed_distance, r.hit, samples.weights, range, bins).histogram);
   }
-  return line_chart_svg("Figure 6: error histograms, bunny vs its 800-triangle mesh",
-                        "signed distance d (paper units)", "samples per bin", series);
+  std::string csv = "bin_low,bin_high,embree,roving,cooperative\n";
+  for (std::size_t b = 0; b < bins; ++b) {
+    csv += fmt::format("{},{},{},{},{}\n", -range + b * 2 * range / bins, -range + (b + 1) * 2 * range / bins,
+                       histograms[0].counts[b], histograms[1].counts[b], histograms[2].counts[b]);
+  }
+  return csv;
 }
 
 // Tables 2 and 3, and Figure 6: the bunny against its low and middle meshes and its sparse and
@@ -275,7 +270,7 @@ void tables23(Bench& bench) {
       t2.rows.push_back({pair.label, "**paper (cooperative)**", figure(pair.paper->siad),
                          figure(pair.paper->usiad), figure(pair.paper->std), ""});
     }
-    if (pair.label.rfind("low mesh", 0) == 0) bench.svgs["figure6.svg"] = figure6(runs, samples);
+    if (pair.label.rfind("low mesh", 0) == 0) bench.chart_data["figure6.csv"] = figure6_data(runs, samples);
   }
   bench.tables.push_back(t2);
   bench.tables.push_back(t3);
@@ -297,7 +292,7 @@ void hv_study(Bench& bench) {
   std::vector<std::pair<int, int>> spacings = {{6, 3}, {12, 6}, {24, 12}, {36, 18}, {48, 24}, {72, 36}};
   std::vector<int> resolutions = {512, 2048, 4096};
   if (bench.options().quick) spacings = {{12, 6}, {24, 12}}, resolutions = {512};
-  ChartSeries error{"|USiAD error|", "#d62728", {}, {}}, seconds{"query seconds", "#1f77b4", {}, {}};
+  std::string csv = "views_h,views_v,resolution,views_rendered,cameras,observations,query_s,usiad,embree_usiad\n";
   const auto measure = [&](int vh, int vv, int resolution) {
     bench.progress.step(fmt::format("H x V study: {}x{} at {} px", vh, vv, resolution));
     GlMethodOptions gl;
@@ -310,23 +305,14 @@ void hv_study(Bench& bench) {
                       std::to_string(g.observations()), figure(r.result.query_seconds, 3),
                       figure(r.stats.usiad, 5), figure(err, 5),
                       fmt::format("{:.3f}%", 100 * err / embree.stats.usiad)});
+    csv += fmt::format("{},{},{},{},{},{},{},{},{}\n", vh, vv, resolution, g.views_rendered, g.sample_cameras,
+                       g.observations(), r.result.query_seconds, r.stats.usiad, embree.stats.usiad);
     bench.figures[fmt::format("hv/{}x{}/{}/usiad", vh, vv, resolution)] = r.stats.usiad;
-    return std::pair{err, r.result.query_seconds};
   };
-  for (const auto& [vh, vv] : spacings) {
-    const auto [err, s] = measure(vh, vv, 1024);
-    error.x.push_back(double(vh) * vv);
-    error.y.push_back(err);
-    seconds.x.push_back(double(vh) * vv);
-    seconds.y.push_back(s);
-  }
+  for (const auto& [vh, vv] : spacings) measure(vh, vv, 1024);
   for (int resolution : resolutions) measure(24, 12, resolution);
   bench.tables.push_back(t);
-  bench.svgs["hv-error.svg"] =
-      line_chart_svg("H x V: USiAD error against Embree (1024 px views)", "view directions (H x V)",
-                     "|USiAD - USiAD_Embree|, paper units", {error}, true);
-  bench.svgs["hv-time.svg"] = line_chart_svg("H x V: cooperative query time (1024 px views)",
-                                             "view directions (H x V)", "seconds", {seconds});
+  bench.chart_data["h-x-v.csv"] = csv;
 }
 
 // The accuracy gates on a test model 1.5% of the diagonal away (the middle mesh, smoothly
@@ -488,11 +474,13 @@ void write_results(Bench& bench, const fs::path& out) {
       "and brute force over a voxel model's exposed faces says nothing the AABB rows do not. Each view of "
       "the cooperative method is culled and scissored to where its samples read (the same result as the "
       "whole view).\n\n";
-  markdown += "## Figures\n\n";
-  for (const auto& [name, svg] : bench.svgs) {
-    std::ofstream(out / name) << svg;
-    markdown += fmt::format("![{0}]({0})\n\n", name);
-  }
+  // The charts: bench/charts.py (matplotlib, run by scripts/main.sh) draws them from these CSVs.
+  fs::create_directories(out / "charts");
+  for (const auto& [name, csv] : bench.chart_data) std::ofstream(out / "charts" / name) << csv;
+  markdown +=
+      "## Figures\n\n"
+      "Drawn by `bench/charts.py` from the CSVs in [charts/](charts/) (also as SVG there).\n\n"
+      "![Figure 6](charts/figure6.png)\n\n![H x V study](charts/h-x-v.png)\n\n";
   std::ofstream(out / "README.md") << markdown + machine_section(bench);
   std::ofstream csv(out / "accuracy.csv");
   csv << "figure,value\n";

@@ -10,9 +10,13 @@ data="${ROVING_DATA:-../shared/data}"
 ./build/datasets_gen/roving-datasets --data "$data" --out build/datasets
 ./build/bench/roving-bench --data "$data"          # results/: Tables 1-3, Figure 6, H x V study
 ./build/bench/roving-bench --data "$data" --quick  # results/quick/: what `--check` compares in CI
+if /usr/bin/python3 -c 'import matplotlib' 2>/dev/null; then  # the charts, from roving-bench's CSVs
+  for results in results results/quick; do /usr/bin/python3 bench/charts.py "$results"; done
+else
+  echo "matplotlib is not installed: charts not drawn (their data is in results/charts/*.csv)" >&2
+fi
 ./build/bench/gl-accuracy --data "$data" > results/gl-accuracy.md
 bash scripts/examples.sh
 ./build/bench/reference_benchmarks --benchmark_repetitions=3 --benchmark_report_aggregates_only=true \
   --benchmark_out=results/reference-benchmarks.json --benchmark_out_format=json > results/reference-benchmarks.txt
-rm -f results/measure-bunny.md results/measure-end-to-end.md  # superseded by results/examples/
 echo "results written to results/"
