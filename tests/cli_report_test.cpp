@@ -250,6 +250,42 @@ TEST(CliReport, HeatMapColoursTheReferencesOwnSurface) {
   }
 }
 
+// The PNG's size from its IHDR chunk (big-endian width and height after the 8-byte signature
+// and the chunk's length and type), or {0, 0} when the file is not a PNG.
+std::pair<int, int> png_size(const std::string& path) {
+  std::ifstream file(path, std::ios::binary);
+  std::string head(24, '\0');
+  file.read(head.data(), 24);
+  if (head.compare(0, 8, "\x89PNG\r\n\x1a\n") != 0 || head.compare(12, 4, "IHDR") != 0) return {0, 0};
+  const auto word = [&](int at) {
+    int value = 0;
+    for (int k = 0; k < 4; ++k) value = value << 8 | static_cast<unsigned char>(head[at + k]);
+    return value;
+  };
+  return {word(16), word(20)};
+}
+
+TEST(CliReport, HeatMapPictureIsAPngOfThreeViewsAndALegend) {
+  const Cubes cubes;
+  // Three 400-px views with 16-px margins and the 250-px legend; the title, labels and views.
+  const std::string faces = cubes.folder.file("faces.png");
+  ASSERT_EQ(run_cli("measure " + cubes.pair + " --heatmap-png " + faces).exit_code, 0);
+  EXPECT_EQ(png_size(faces), std::pair(16 + 3 * 416 + 250, 64 + 24 + 400 + 16));
+  // A point-cloud reference is drawn as points; a GL method measures before the picture's own
+  // context and after it.
+  const std::string xyz = cubes.folder.file("points.xyz", "0 0 0.5 0 0 1\n0.1 0 0.5 0 0 1\n0 0.1 0.5 0 0 1\n");
+  const std::string points = cubes.folder.file("points.png");
+  ASSERT_EQ(run_cli("measure " + xyz + " " + cubes.large + " --method roving --heatmap-png " + points).exit_code, 0);
+  EXPECT_EQ(png_size(points).first, 16 + 3 * 416 + 250);
+  expect_error("measure " + cubes.pair + " --symmetric --heatmap-png " + faces, {"--heatmap-png", "--symmetric"});
+  expect_error("measure " + cubes.pair + " --heatmap-png " + cubes.folder.path.string(), {"--heatmap-png", "directory"});
+  // A picture that cannot be written fails the run, and the other outputs are not written either.
+  const std::string json = cubes.folder.file("never.json");
+  const std::string unwritable = cubes.folder.file("no-such-folder/h.png");
+  expect_error("measure " + cubes.pair + " --json " + json + " --heatmap-png " + unwritable, {unwritable.c_str()});
+  EXPECT_FALSE(std::filesystem::exists(json));
+}
+
 TEST(CliReport, TyposGetSuggestionsAndHelpListsEveryFormat) {
   const Cubes cubes;
   expect_error("mesure " + cubes.pair, {"unknown command 'mesure'", "did you mean 'measure'"});

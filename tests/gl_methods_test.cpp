@@ -14,6 +14,7 @@
 #include "roving/core/normalise.h"
 #include "roving/core/statistics.h"
 #include "roving/gl_methods/agreement.h"
+#include "roving/gl/shaded_renderer.h"
 #include "roving/gl_methods/view_footprint.h"
 #include "roving/registry/method_registry.h"
 #include "test_support.h"
@@ -82,6 +83,44 @@ TEST_P(EachBackend, EmptyViewVolumeIsANoHit) {
         measure_distances(*method, testing::box(0.5), samples, {Semantics::FirstHit, 0.2});
     EXPECT_EQ(result.hit_count(), 0u) << name;
   }
+}
+
+// A picture of the box's +z face in one colour, lit from over the viewer's shoulder: the face
+// fills the middle of the image in its shaded colour, rows run from the top (only the upper half
+// is drawn), the rest is white. A depth renderer used before keeps working after (each makes
+// its own context current again).
+TEST_P(EachBackend, ShadedPictureDrawsColourOnWhiteTopRowFirst) {
+  REQUIRE_GL_CONTEXT(GetParam());
+  auto depth_renderer = make_depth_renderer(GetParam());
+  depth_renderer->upload_model(testing::box(1.0));
+  const OrthoCamera along_z = OrthoCamera::looking_along(-Vec3::UnitZ(), Vec3::Zero(), 2, 2, 2);
+  std::vector<float> before, after;
+  depth_renderer->render_view(along_z, 8, before);
+
+  ColouredSurface face;
+  for (const Vec3& p : {Vec3(-1, 0, 1), Vec3(1, 0, 1), Vec3(1, 1, 1), Vec3(-1, 0, 1), Vec3(1, 1, 1), Vec3(-1, 1, 1)}) {
+    face.positions.push_back(p);
+    face.normals.push_back(Vec3::UnitZ());
+    face.colours.push_back({200, 100, 50});
+  }
+  OrthoCamera camera;
+  camera.right = Vec3::UnitX(), camera.up = Vec3::UnitY(), camera.forward = -Vec3::UnitZ();
+  camera.centre = Vec3::Zero(), camera.half_width = camera.half_height = 2, camera.half_depth = 2;
+  const std::vector<RgbImage> images = render_shaded(GetParam(), face, {camera}, 40, 40);
+  ASSERT_EQ(images.size(), 1u);
+  const RgbImage& image = images[0];
+  ASSERT_EQ(image.rgb.size(), 3u * 40 * 40);
+  const auto pixel = [&](int x, int y) { return &image.rgb[3 * (y * 40 + x)]; };
+  const Vec3 light = (Vec3::UnitZ() + 0.5 * Vec3::UnitY() - 0.4 * Vec3::UnitX()).normalized();
+  const double shade = 0.35 + 0.65 * light.z();
+  for (int c = 0; c < 3; ++c) {
+    const double expected = shade * std::array{200, 100, 50}[c];
+    EXPECT_NEAR(pixel(20, 15)[c], expected, 1.5) << "upper half, channel " << c;
+    EXPECT_EQ(pixel(20, 25)[c], 255) << "lower half is background";
+    EXPECT_EQ(pixel(2, 2)[c], 255) << "corner is background";
+  }
+  depth_renderer->render_view(along_z, 8, after);
+  EXPECT_EQ(before, after);
 }
 
 INSTANTIATE_TEST_SUITE_P(Backends, EachBackend, ::testing::Values(GlBackend::OSMesa, GlBackend::Egl),

@@ -135,6 +135,8 @@ int main(int argc, char** argv) {
   measure->add_option("--samples-out", args.samples_csv_path, "write one CSV row per sample");
   measure->add_option("--heatmap", args.heatmap_path,
                       "write REF coloured by d as PLY (per face or vertex on a mesh or voxels; points otherwise)");
+  measure->add_option("--heatmap-png", args.heatmap_png_path,
+                      "render REF coloured by d from the front, side and top, with a colour bar, as PNG");
   measure->add_option("--heatmap-range", args.heatmap_range,
                       "the colour map's half-range: a length or P% of the diagonal (default: the 99th percentile of "
                       "|d| over the hits)");

@@ -18,6 +18,7 @@
 #include "roving/formats/file_hash.h"
 #include "roving/formats/heatmap.h"
 #include "roving/formats/sample_output.h"
+#include "roving/pictures/heatmap_picture.h"
 #include "roving/registry/method_registry.h"
 
 namespace roving {
@@ -46,12 +47,14 @@ MaxErrorSpec parse_length(const std::string& option, const std::string& text) {
   }
 }
 
-std::string file_name(const std::string& path) { return std::filesystem::path(path).filename().string(); }
+std::string file_name(const std::string& path) {
+  return std::filesystem::path(path).filename().string();
+}
 
 void require_writable_paths(const MeasureArguments& args) {
   for (const auto& [option, path] :
        {std::pair{"--json", args.json_path}, std::pair{"--samples-out", args.samples_csv_path},
-        std::pair{"--heatmap", args.heatmap_path}}) {
+        std::pair{"--heatmap", args.heatmap_path}, std::pair{"--heatmap-png", args.heatmap_png_path}}) {
     std::error_code error;
     if (!path.empty() && path != "-" && std::filesystem::is_directory(path, error)) {
       throw Error(fmt::format("{}: expected a file to write, found the directory '{}'", option, path));
@@ -68,7 +71,8 @@ std::vector<MetricValue> gate_values(const MeasureReport& report) {
     for (const auto& [name, value] : statistics.items()) {
       values.push_back({name, d.label, value.get<double>(), report.diagonal});
     }
-    values.push_back({"no_hits", d.label, static_cast<double>(s.no_hit_count), static_cast<double>(s.sample_count)});
+    values.push_back(
+        {"no_hits", d.label, static_cast<double>(s.no_hit_count), static_cast<double>(s.sample_count)});
   }
   if (report.symmetric()) {
     const TwoSided t = report.two_sided();
@@ -132,12 +136,16 @@ MeasurePlan plan_measurement(const MeasureArguments& args) {
   for (const std::string& text : args.gates) {
     plan.gates.push_back(parse_gate(text, args.symmetric));
     if (plan.gates.back().metric == "hausdorff" && plan.options.semantics != Semantics::Closest) {
-      throw Error(fmt::format("--fail-above {}: the Hausdorff distance needs --semantics closest, found {}", text,
-                              to_string(plan.options.semantics)));
+      throw Error(fmt::format("--fail-above {}: the Hausdorff distance needs --semantics closest, found {}",
+                              text, to_string(plan.options.semantics)));
     }
   }
-  if (args.symmetric && !args.heatmap_path.empty()) {
-    throw Error("--heatmap: a heat map shows one direction; found --symmetric (run REF TEST without it)");
+  for (const auto& [option, path] :
+       {std::pair{"--heatmap", args.heatmap_path}, {"--heatmap-png", args.heatmap_png_path}}) {
+    if (args.symmetric && !path.empty()) {
+      throw Error(fmt::format(
+          "{}: a heat map shows one direction; found --symmetric (run REF TEST without it)", option));
+    }
   }
   const auto type = [](const std::string& text, const char* option) {
     return text.empty() ? std::nullopt : std::optional<ModelType>(parse_model_type(text, option));
@@ -174,8 +182,9 @@ void describe_pair(const Model& a, const Model& b, MeasurePlan& plan, MeasureRep
   require_representable(plan.options.max_error, both, plan.max_error_text);
 }
 
-void measure_models(const Model& a, const Model& b, MeasurePlan& plan, MeasureReport& report, Progress& progress,
-                    std::string& stage, const WarnFn& warn, const SampleSet* samples_of_a) {
+void measure_models(const Model& a, const Model& b, MeasurePlan& plan, MeasureReport& report,
+                    Progress& progress, std::string& stage, const WarnFn& warn,
+                    const SampleSet* samples_of_a) {
   warn(alignment_warnings(a, b, plan.options.max_error));
   warn(orientation_warnings(a));
   if (plan.symmetric) warn(orientation_warnings(b));
@@ -264,16 +273,39 @@ int run_measure(const MeasureArguments& args, std::string& stage) {
   if (!args.samples_csv_path.empty()) {
     outputs.push_back(std::make_unique<AtomicFile>(args.samples_csv_path));
     for (const DirectionReport& d : report.directions) {
-      write_samples_csv(outputs.back()->stream(), d.samples, d.result, d.label, &d == &report.directions.front());
+      write_samples_csv(outputs.back()->stream(), d.samples, d.result, d.label,
+                        &d == &report.directions.front());
     }
     outputs.back()->close_stream();
   }
-  if (!args.heatmap_path.empty()) {
+  if (!args.heatmap_path.empty() || !args.heatmap_png_path.empty()) {
     const DirectionReport& d = report.directions.front();
-    outputs.push_back(std::make_unique<AtomicFile>(args.heatmap_path));
-    write_heatmap_ply(outputs.back()->stream(), a.type == ModelType::Points ? nullptr : &a.mesh.mesh,
-                      heatmap_layout(a, d.samples), d.samples, d.result, heatmap_range(args.heatmap_range, d, report));
-    outputs.back()->close_stream();
+    const TriangleMesh* surface = a.type == ModelType::Points ? nullptr : &a.mesh.mesh;
+    const HeatmapLayout layout = heatmap_layout(a, d.samples);
+    const double range = heatmap_range(args.heatmap_range, d, report);
+    if (!args.heatmap_path.empty()) {
+      outputs.push_back(std::make_unique<AtomicFile>(args.heatmap_path));
+      write_heatmap_ply(outputs.back()->stream(), surface, layout, d.samples, d.result, range);
+      outputs.back()->close_stream();
+    }
+    if (!args.heatmap_png_path.empty()) {
+      stage = "rendering the heat-map picture";
+      Picture picture;
+      picture.title = fmt::format("{} (REF) against {} (TEST)", file_name(a.path()), file_name(b.path()));
+      picture.subtitle = fmt::format(
+          "d by {}, {} semantics, {} samples ({}); USiAD {:.4g} ({:.3g}% of the diagonal), {} no-hits",
+          report.method, to_string(report.semantics), d.samples.size(), d.samples.kind, d.statistics.usiad,
+          100 * d.statistics.usiad / report.diagonal, d.statistics.no_hit_count);
+      picture.legend.range = range;
+      picture.legend.diagonal = report.diagonal;
+      const std::vector<float> values =
+          heatmap_values(surface, layout, d.samples, distances_or_nan(d.result));
+      outputs.push_back(std::make_unique<AtomicFile>(args.heatmap_png_path));
+      write_picture_png(outputs.back()->stream(), plan.gl.backend,
+                        coloured_surface(surface, layout, d.samples, distance_colours(values, range)),
+                        picture);
+      outputs.back()->close_stream();
+    }
   }
   report.total_seconds = total.seconds();
   const std::string json = args.json_path.empty() ? "" : to_json(report).dump(2) + "\n";

@@ -22,7 +22,7 @@ struct MeasureArguments {
   std::string samples = "faces";
   std::optional<std::uint64_t> seed;  // area:N only
   std::string max_error = "5%";
-  std::string json_path, samples_csv_path, heatmap_path;
+  std::string json_path, samples_csv_path, heatmap_path, heatmap_png_path;
   std::string heatmap_range;  // empty: the 99th percentile of |d| over the hits
   std::size_t histogram_bins = 64;
   std::string views = "24x12", backend = "osmesa";

@@ -24,24 +24,37 @@ std::array<unsigned char, 3> diverging_colour(double s) {
   return colour;
 }
 
+std::vector<float> heatmap_values(const TriangleMesh* surface, const HeatmapLayout& layout, const SampleSet& samples,
+                                  const std::vector<float>& per_sample) {
+  if (!surface || layout.element == HeatmapElement::Points) return per_sample;
+  const bool faces = layout.element == HeatmapElement::Faces;
+  const std::size_t per = faces ? static_cast<std::size_t>(layout.triangles_per_element) : 1;
+  std::vector<float> value(faces ? surface->triangle_count() : surface->vertex_count(),
+                           std::numeric_limits<float>::quiet_NaN());
+  for (std::size_t k = 0; k < samples.size() && k < samples.elements.size(); ++k) {
+    for (std::size_t j = 0; j < per; ++j) {
+      const std::size_t e = samples.elements[k] * per + j;
+      if (e < value.size()) value[e] = per_sample[k];
+    }
+  }
+  return value;
+}
+
+std::vector<float> distances_or_nan(const DistanceResult& result) {
+  std::vector<float> d(result.hit.size(), std::numeric_limits<float>::quiet_NaN());
+  for (std::size_t k = 0; k < d.size(); ++k) {
+    if (result.hit[k]) d[k] = static_cast<float>(result.signed_distance[k]);
+  }
+  return d;
+}
+
 void write_heatmap_ply(std::FILE* out, const TriangleMesh* surface, const HeatmapLayout& layout,
                        const SampleSet& samples, const DistanceResult& result, double range) {
   if (!(range > 0)) range = 1;
-  const float nan = std::numeric_limits<float>::quiet_NaN();
   const auto colour_of = [&](float d) { return std::isnan(d) ? kNoHitColour : diverging_colour(d / range); };
   const HeatmapElement element = surface ? layout.element : HeatmapElement::Points;
-  // One value per element: d of its sample, NaN without one or without a hit.
-  std::vector<float> value;
-  if (element != HeatmapElement::Points) {
-    const std::size_t per = element == HeatmapElement::Faces ? static_cast<std::size_t>(layout.triangles_per_element) : 1;
-    value.assign(element == HeatmapElement::Faces ? surface->triangle_count() : surface->vertex_count(), nan);
-    for (std::size_t k = 0; k < samples.size() && k < samples.elements.size(); ++k) {
-      for (std::size_t j = 0; j < per; ++j) {
-        const std::size_t e = samples.elements[k] * per + j;
-        if (e < value.size()) value[e] = result.hit[k] ? static_cast<float>(result.signed_distance[k]) : nan;
-      }
-    }
-  }
+  const std::vector<float> d = distances_or_nan(result);
+  const std::vector<float> value = heatmap_values(surface, layout, samples, d);
   fmt::print(out,
              "ply\nformat ascii 1.0\ncomment surface roving heat map of signed distance d ({})\n"
              "comment legend: d = -{} blue (TEST inside REF), 0 white, +{} red (outside); grey = no hit "
@@ -71,9 +84,8 @@ void write_heatmap_ply(std::FILE* out, const TriangleMesh* surface, const Heatma
     for (std::size_t k = 0; k < samples.size(); ++k) {
       const Vec3& p = samples.positions[k];
       const Vec3& n = samples.normals[k];
-      const float d = result.hit[k] ? static_cast<float>(result.signed_distance[k]) : nan;
       fmt::print(out, "{} {} {} {} {} {} {}\n", float(p.x()), float(p.y()), float(p.z()), float(n.x()), float(n.y()),
-                 float(n.z()), coloured(d));
+                 float(n.z()), coloured(value[k]));
     }
     return;
   }

@@ -27,6 +27,13 @@ struct HeatmapLayout {
   int triangles_per_element = 1;  // faces: 2 for a voxel's exposed face
 };
 
+// One value per element of the surface (faces or vertices as `layout` says; samples for
+// Points or a null surface): its sample's `per_sample` value, NaN where no sample lands.
+std::vector<float> heatmap_values(const TriangleMesh* surface, const HeatmapLayout& layout, const SampleSet& samples,
+                                  const std::vector<float>& per_sample);
+// d where a sample hit, NaN where it did not.
+std::vector<float> distances_or_nan(const DistanceResult& result);
+
 // Writes the heat map over [-range, range] (range > 0). `surface` may be null for points. The
 // header's comments give the legend; a no-hit has NaN quality and kNoHitColour, an element
 // without a sample (a zero-area face) NaN and no-hit grey too.

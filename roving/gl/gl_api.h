@@ -17,6 +17,7 @@ namespace roving::gl {
   X(PFNGLVIEWPORTPROC, Viewport)                               \
   X(PFNGLSCISSORPROC, Scissor)                                 \
   X(PFNGLCLEARDEPTHPROC, ClearDepth)                           \
+  X(PFNGLCLEARCOLORPROC, ClearColor)                           \
   X(PFNGLCLEARPROC, Clear)                                     \
   X(PFNGLENABLEPROC, Enable)                                   \
   X(PFNGLDISABLEPROC, Disable)                                 \
@@ -48,6 +49,7 @@ namespace roving::gl {
   X(PFNGLUSEPROGRAMPROC, UseProgram)                           \
   X(PFNGLDELETEPROGRAMPROC, DeleteProgram)                     \
   X(PFNGLGETUNIFORMLOCATIONPROC, GetUniformLocation)           \
+  X(PFNGLUNIFORM1FPROC, Uniform1f)                             \
   X(PFNGLUNIFORM2IPROC, Uniform2i)                             \
   X(PFNGLUNIFORM3FPROC, Uniform3f)                             \
   X(PFNGLGENVERTEXARRAYSPROC, GenVertexArrays)                 \

@@ -43,6 +43,12 @@ class OsMesaContext final : public Context {
     return reinterpret_cast<void*>(OSMesaGetProcAddress(name));
   }
   std::string platform() const override { return "osmesa"; }
+  void make_current() override {
+    if (OSMesaGetCurrentContext() != context_ &&
+        !OSMesaMakeCurrent(context_, pixel_, GL_UNSIGNED_BYTE, 1, 1)) {
+      throw Error("osmesa: cannot make the context current again");
+    }
+  }
 
  private:
   OSMesaContext context_ = nullptr;
@@ -87,15 +93,24 @@ class EglContext final : public Context {
                 (failures.empty() ? "no device or surfaceless platform" : failures) + ")");
   }
   ~EglContext() override {
-    eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+    if (eglGetCurrentContext() == context_)
+      eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
     eglDestroyContext(display_, context_);
-    eglTerminate(display_);
+    // Not eglTerminate: a display is one per device and process, shared by every context on it
+    // (a picture's beside a method's), and terminating it would invalidate theirs.
   }
 
   void* proc_address(const char* name) const override {
     return reinterpret_cast<void*>(eglGetProcAddress(name));
   }
   std::string platform() const override { return platform_; }
+  void make_current() override {
+    if (eglGetCurrentContext() != context_ &&
+        !eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, context_)) {
+      throw Error(
+          fmt::format("{}: cannot make the context current again (0x{:x})", platform_, eglGetError()));
+    }
+  }
 
  private:
   bool try_display(EGLDisplay display, const char* platform, std::string& failures) {

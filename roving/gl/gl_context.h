@@ -14,6 +14,8 @@ class Context {
   // Address of a GL entry point in this context's GL.
   virtual void* proc_address(const char* name) const = 0;
   virtual std::string platform() const = 0;  // e.g. "osmesa", "egl-device", "egl-surfaceless"
+  // Makes this context current again if another one (a picture's, say) was made current since.
+  virtual void make_current() = 0;
 };
 
 // Creates the context and makes it current on the calling thread; throws roving::Error with the

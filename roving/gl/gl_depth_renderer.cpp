@@ -7,6 +7,7 @@
 
 #include "gl_api.h"
 #include "gl_context.h"
+#include "gl_program.h"
 #include "roving/core/error.h"
 #include "roving/gl/depth_renderer.h"
 
@@ -84,6 +85,11 @@ class GlDepthRenderer final : public DepthRenderer {
   }
 
   ~GlDepthRenderer() override {
+    try {
+      context_->make_current();
+    } catch (const Error&) {
+      return;  // nothing can be freed without the context; destroying it frees all
+    }
     gl_.DeleteBuffers(1, &model_vertices_);
     gl_.DeleteBuffers(1, &model_indices_);
     gl_.DeleteBuffers(1, &tile_vertices_);
@@ -100,6 +106,7 @@ class GlDepthRenderer final : public DepthRenderer {
   int max_framebuffer_size() const override { return max_size_; }
 
   void upload_model(const TriangleMesh& mesh) override {
+    context_->make_current();
     model_origin_ = mesh.bounding_box().centre();
     std::vector<float> positions;
     positions.reserve(3 * mesh.vertex_count());
@@ -125,6 +132,7 @@ class GlDepthRenderer final : public DepthRenderer {
   }
 
   void render_view(const OrthoCamera& camera, int resolution, std::vector<float>& depth) override {
+    context_->make_current();
     require_view(resolution);
     bind_framebuffer(resolution, resolution);
     use_view_program(camera);
@@ -137,6 +145,7 @@ class GlDepthRenderer final : public DepthRenderer {
 
   void render_view_part(const OrthoCamera& camera, int resolution, const PixelRect& rect,
                         const std::vector<std::uint32_t>& triangles, std::vector<float>& depth) override {
+    context_->make_current();
     require_view(resolution);
     if (rect.x0 < 0 || rect.y0 < 0 || rect.x1 > resolution || rect.y1 > resolution) {
       throw Error(fmt::format("gl: pixel rectangle [{}, {}) x [{}, {}) outside a {}-pixel view", rect.x0, rect.x1,
@@ -175,6 +184,7 @@ class GlDepthRenderer final : public DepthRenderer {
 
   void render_tiles(const std::vector<TileVertex>& vertices, std::size_t tile_count,
                     std::vector<float>& depth) override {
+    context_->make_current();
     const std::size_t max_tiles = static_cast<std::size_t>(max_size_) * max_size_;
     if (tile_count == 0 || tile_count > max_tiles) {
       throw Error(fmt::format("gl: a tile batch must hold 1..{} tiles, found {}", max_tiles, tile_count));
@@ -222,43 +232,10 @@ class GlDepthRenderer final : public DepthRenderer {
     return s ? s : "";
   }
 
-  void check(const char* what) const {
-    const GLenum code = gl_.GetError();
-    if (code != GL_NO_ERROR)
-      throw Error(fmt::format("gl ({}): {} failed with GL error 0x{:x}", info_.backend, what, code));
-  }
-
-  GLuint compile(GLenum type, const char* source, const char* name) const {
-    const GLuint shader = gl_.CreateShader(type);
-    gl_.ShaderSource(shader, 1, &source, nullptr);
-    gl_.CompileShader(shader);
-    GLint ok = 0;
-    gl_.GetShaderiv(shader, GL_COMPILE_STATUS, &ok);
-    if (!ok) {
-      char log[2048] = {};
-      gl_.GetShaderInfoLog(shader, sizeof log, nullptr, log);
-      throw Error(fmt::format("gl ({}): the {} shader does not compile: {}", info_.backend, name, log));
-    }
-    return shader;
-  }
+  void check(const char* what) const { gl::check_error(gl_, info_.backend, what); }
 
   GLuint link(const char* vertex_source, const char* name) const {
-    const GLuint vertex = compile(GL_VERTEX_SHADER, vertex_source, name);
-    const GLuint fragment = compile(GL_FRAGMENT_SHADER, kDepthOnlyFragmentShader, "depth-only fragment");
-    const GLuint program = gl_.CreateProgram();
-    gl_.AttachShader(program, vertex);
-    gl_.AttachShader(program, fragment);
-    gl_.LinkProgram(program);
-    gl_.DeleteShader(vertex);
-    gl_.DeleteShader(fragment);
-    GLint ok = 0;
-    gl_.GetProgramiv(program, GL_LINK_STATUS, &ok);
-    if (!ok) {
-      char log[2048] = {};
-      gl_.GetProgramInfoLog(program, sizeof log, nullptr, log);
-      throw Error(fmt::format("gl ({}): the {} program does not link: {}", info_.backend, name, log));
-    }
-    return program;
+    return gl::link_program(gl_, info_.backend, name, vertex_source, kDepthOnlyFragmentShader);
   }
 
   void uniform3(GLuint program, const char* name, const Vec3& v) const {
