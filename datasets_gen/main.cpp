@@ -11,6 +11,7 @@
 
 #include "analytic.h"
 #include "decimate.h"
+#include "paper_models.h"
 #include "roving/core/error.h"
 #include "roving/core/normalise.h"
 #include "roving/core/sample_set.h"
@@ -204,6 +205,13 @@ int main(int argc, char** argv) {
           write.mesh(decimate_quadric(model, target), fmt::format("{}-{}.ply", stem, target),
                      decimation(stem + ".ply", target));
         }
+      }
+    }
+    if (!quick) {
+      for (const PaperCountModel& m : kPaperCountModels) {
+        const std::string source = (fs::path(data) / m.source).string();
+        write.mesh(decimate_quadric(normalised(load_mesh(source).mesh), m.triangles), m.file,
+                   decimation(std::string(m.source) + ", normalised", m.triangles));
       }
     }
     write.finish();

@@ -40,6 +40,17 @@ std::vector<float> heatmap_values(const TriangleMesh* surface, const HeatmapLayo
   return value;
 }
 
+double default_heatmap_range(const DistanceResult& result, double fallback) {
+  std::vector<double> magnitudes;
+  for (std::size_t k = 0; k < result.hit.size(); ++k) {
+    if (result.hit[k]) magnitudes.push_back(std::abs(result.signed_distance[k]));
+  }
+  if (magnitudes.empty()) return fallback;
+  const auto at = magnitudes.begin() + static_cast<std::ptrdiff_t>(0.99 * (magnitudes.size() - 1));
+  std::nth_element(magnitudes.begin(), at, magnitudes.end());
+  return *at > 0 ? *at : fallback;
+}
+
 std::vector<float> distances_or_nan(const DistanceResult& result) {
   std::vector<float> d(result.hit.size(), std::numeric_limits<float>::quiet_NaN());
   for (std::size_t k = 0; k < d.size(); ++k) {

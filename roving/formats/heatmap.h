@@ -31,6 +31,9 @@ struct HeatmapLayout {
 // Points or a null surface): its sample's `per_sample` value, NaN where no sample lands.
 std::vector<float> heatmap_values(const TriangleMesh* surface, const HeatmapLayout& layout, const SampleSet& samples,
                                   const std::vector<float>& per_sample);
+// The colour map's default half-range: the 99th percentile of |d| over the hits, so the
+// colours show the data rather than h; `fallback` when nothing hit or all of it is 0.
+double default_heatmap_range(const DistanceResult& result, double fallback);
 // d where a sample hit, NaN where it did not.
 std::vector<float> distances_or_nan(const DistanceResult& result);
 
