@@ -16,6 +16,7 @@ from pathlib import Path
 import matplotlib
 
 matplotlib.use("Agg")
+matplotlib.rcParams["svg.hashsalt"] = "roving"  # the same SVG for the same data, run after run
 import matplotlib.pyplot as plt  # noqa: E402
 from matplotlib.ticker import FuncFormatter, MaxNLocator  # noqa: E402
 
@@ -30,7 +31,7 @@ def read(path):
 
 def save(figure, stem):
     for suffix in (".svg", ".png"):
-        figure.savefig(stem.with_suffix(suffix), dpi=120)
+        figure.savefig(stem.with_suffix(suffix), dpi=120, metadata={"Date": None} if suffix == ".svg" else {"Software": None})
     plt.close(figure)
 
 
@@ -100,7 +101,7 @@ def h_x_v(rows, stem):
         counts.set_ylim(bottom=0)
         counts.yaxis.set_major_formatter(thousands)
         handles = bottom.get_legend_handles_labels()[0] + counts.get_legend_handles_labels()[0]
-        bottom.legend(handles, [h.get_label() for h in handles], loc="best", framealpha=0.9)
+        bottom.legend(handles, [h.get_label() for h in handles], loc="center left", framealpha=0.9)
         bottom.set_xlabel(xlabel)
         for axis in (top, bottom):
             axis.set_xscale("log")

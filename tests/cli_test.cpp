@@ -106,8 +106,24 @@ TEST(Cli, PointCloudsAreReferencesNotTests) {
   EXPECT_EQ(json["reference"]["type"], "points");
   EXPECT_EQ(json["samples"]["count"], 200);
   EXPECT_LT(json["statistics"]["usiad"].get<double>(), 1e-6);  // the points lie on the bunny
-  expect_error("measure " + bunny() + " " + xyz.string(), {xyz.string().c_str(), "cannot be the test model"});
-  expect_error("measure " + bunny() + " " + bunny() + " --test-type points", {"cannot be the test model"});
+  // As the test model the points are drawn as surfels: 200 points over the whole bunny cover
+  // little of it, and the rest is reported as no-hits, never as distances.
+  const CliRun as_test = run_cli("measure " + bunny() + " " + xyz.string() + " --json -");
+  ASSERT_EQ(as_test.exit_code, 0) << as_test.err;
+  const auto test_json = nlohmann::json::parse(as_test.out);
+  EXPECT_EQ(test_json["test"]["points"]["surfels"]["neighbours"], 8);
+  EXPECT_EQ(test_json["test"]["points"]["surfels"]["triangles"], 200 * 8);
+  EXPECT_GT(test_json["no_hits"].get<int>(), 0);
+  EXPECT_GT(test_json["hits"].get<int>(), 0);
+  // What cannot be drawn as surfels is refused with the file named, exit 1.
+  const fs::path twins = fs::temp_directory_path() / "roving-cli-twins.xyz";
+  {
+    std::ofstream file(twins);
+    for (int i = 0; i < 12; ++i) file << i % 4 << ' ' << i / 4 << " 0 0 0 1\n";
+    file << "1 0 0 0 0 1\n";  // point 12 repeats point 1
+  }
+  expect_error("measure " + bunny() + " " + twins.string(), {twins.string().c_str(), "points 1 and 12", "distinct"});
+  fs::remove(twins);
   expect_error("measure " + bunny() + " " + bunny() + " --ref-type surfels", {"--ref-type", "'surfels'"});
   expect_error("measure " + xyz.string() + " " + bunny() + " --samples area:10",
                {"--samples", "point-cloud"});

@@ -17,6 +17,7 @@
 #include "roving/gl/shaded_renderer.h"
 #include "roving/gl_methods/view_footprint.h"
 #include "roving/registry/method_registry.h"
+#include "roving/representations/surfels.h"
 #include "test_support.h"
 
 namespace roving {
@@ -225,6 +226,29 @@ TEST_F(BunnyGates, ExactRovingAgreesWithEmbree) {
   const double usiad = stats(*embree_).usiad;
   EXPECT_LE(std::abs(stats(r).usiad - usiad), 0.002 * usiad);
   EXPECT_EQ(r.gl->sample_cameras, samples_->size());
+}
+
+// A point cloud as the test model: the bunny's vertices with their normals, drawn as surfels,
+// measured from the bunny's face samples. Exact roving meets Embree's gates on the same disks.
+TEST_F(BunnyGates, ExactRovingAgreesWithEmbreeOnSurfels) {
+  REQUIRE_GL_CONTEXT(GlBackend::OSMesa);
+  const TriangleMesh bunny = normalised(testing::bunny());
+  PointCloud cloud;
+  for (std::size_t v = 0; v < bunny.vertex_count(); ++v) {
+    if (!bunny.vertex_referenced()[v]) continue;
+    cloud.positions.push_back(bunny.positions()[v]);
+    cloud.normals.push_back(bunny.vertex_normals()[v]);
+  }
+  const TriangleMesh surfels = make_surfels(cloud, "bunny vertices").mesh;
+  auto embree = make_method("embree"), roving = make_method("roving");
+  const DistanceResult e = measure_distances(*embree, surfels, *samples_, {Semantics::FirstHit, h()});
+  const DistanceResult r = measure_distances(*roving, surfels, *samples_, {Semantics::FirstHit, h()});
+  const Agreement a = agreement(e, r, roving_tolerance(*r.gl));
+  EXPECT_GE(a.same_flag_fraction(), 0.999);
+  EXPECT_GE(a.close_fraction(), 0.995) << "tolerance " << roving_tolerance(*r.gl);
+  const double usiad = stats(e).usiad;
+  EXPECT_LE(std::abs(stats(r).usiad - usiad), 0.002 * usiad);
+  EXPECT_GE(e.hit_count(), 0.99 * samples_->size()) << "the vertices' disks leave few holes";
 }
 
 TEST_F(BunnyGates, CooperativeAgreesWithRovingAndItsViewsWithEmbree) {

@@ -67,9 +67,9 @@ foreach(file IN LISTS sources)
     if(line MATCHES "<embree[0-9]*/" AND NOT file MATCHES "^reference_embree/.*\\.cpp$")
       violation("${file}" "${line}" "Embree headers stay in reference_embree's sources")
     endif()
-    # CGAL: the reference, the dataset generator's voxeliser, and point-cloud normal estimation
+    # CGAL: the reference, the dataset generator's voxeliser, point-cloud normals and surfel radii
     # (PCA and MST orientation, which the loader needs below the references).
-    if(line MATCHES "<CGAL/" AND NOT file MATCHES "^(reference_cgal/.*|datasets_gen/voxelize|roving/representations/point_normals)\\.cpp$")
+    if(line MATCHES "<CGAL/" AND NOT file MATCHES "^(reference_cgal/.*|datasets_gen/voxelize|roving/representations/point_normals|roving/representations/surfels)\\.cpp$")
       violation("${file}" "${line}" "CGAL headers stay in reference_cgal's sources")
     endif()
   endforeach()

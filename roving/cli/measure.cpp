@@ -91,18 +91,10 @@ HeatmapLayout heatmap_layout(const Model& reference, const SampleSet& samples) {
   return {HeatmapElement::Points, 1};  // area:N, Bezier parameter cells, point clouds
 }
 
-// --heatmap-range as given (a length or P% of the diagonal), else the 99th percentile of |d|
-// over the hits: the colours then show the data, not h.
+// --heatmap-range as given (a length or P% of the diagonal), else the 99th percentile of |d|.
 double heatmap_range(const std::string& given, const DirectionReport& d, const MeasureReport& report) {
   if (!given.empty()) return parse_length("--heatmap-range", given).resolve(report.diagonal);
-  std::vector<double> magnitudes;
-  for (std::size_t k = 0; k < d.samples.size(); ++k) {
-    if (d.result.hit[k]) magnitudes.push_back(std::abs(d.result.signed_distance[k]));
-  }
-  if (magnitudes.empty()) return report.max_error;
-  const auto at = magnitudes.begin() + static_cast<std::ptrdiff_t>(0.99 * (magnitudes.size() - 1));
-  std::nth_element(magnitudes.begin(), at, magnitudes.end());
-  return *at > 0 ? *at : report.max_error;
+  return default_heatmap_range(d.result, report.max_error);
 }
 
 }  // namespace
@@ -152,22 +144,15 @@ MeasurePlan plan_measurement(const MeasureArguments& args) {
   };
   plan.reference_type = type(args.reference_type, "--ref-type");
   plan.test_type = type(args.test_type, "--test-type");
-  if (plan.test_type == ModelType::Points) {
-    throw Error(
-        "--test-type: a point cloud cannot be the test model: it has holes and records no surface to draw or "
-        "intersect (the paper's limit); expected mesh or voxels, found 'points'");
-  }
   plan.symmetric = args.symmetric;
   plan.histogram_bins = args.histogram_bins;
   return plan;
 }
 
 void describe_pair(const Model& a, const Model& b, MeasurePlan& plan, MeasureReport& report) {
-  test_surface(b);  // a point cloud cannot be measured against
-  if (plan.symmetric && a.type == ModelType::Points) {
-    throw Error(fmt::format("--symmetric: {} is a point cloud, which has no surface to measure {} against",
-                            a.path(), b.path()));
-  }
+  // A point cloud's surfels are made (and its points checked) before the long work.
+  test_surface(b);
+  if (plan.symmetric) test_surface(a);
   report.method = plan.method->name();
   report.semantics = plan.options.semantics;
   report.max_error_text = plan.max_error.to_string();

@@ -42,6 +42,15 @@ nlohmann::json model_json(const Model& model) {
   if (model.type == ModelType::Points) {
     json["points"] = {{"count", model.points.positions.size()},
                       {"normals_estimated", model.normals_estimated}};
+    if (model.surfels) {
+      const SurfelSurface& surfels = *model.surfels;
+      json["points"]["surfels"] = {{"neighbours", surfels.rule.neighbours},
+                                   {"fan_sides", surfels.rule.fan_sides},
+                                   {"triangles", surfels.mesh.triangle_count()},
+                                   {"radius_min", surfels.min_radius},
+                                   {"radius_median", surfels.median_radius},
+                                   {"radius_max", surfels.max_radius}};
+    }
   }
   return json;
 }
@@ -54,9 +63,17 @@ std::string model_line(const std::string& role, const Model& model) {
   const LoadedMesh& loaded = model.mesh;
   const TriangleMesh& m = loaded.mesh;
   if (model.type == ModelType::Points) {
-    return fmt::format("{:<10} {}: point cloud, {} points, normals {}\n", role, loaded.path,
-                       model.points.positions.size(),
-                       model.normals_estimated ? "estimated (PCA, k = 12)" : "from the file");
+    std::string line = fmt::format("{:<10} {}: point cloud, {} points, normals {}\n", role, loaded.path,
+                                   model.points.positions.size(),
+                                   model.normals_estimated ? "estimated (PCA, k = 12)" : "from the file");
+    if (model.surfels) {
+      const SurfelSurface& s = *model.surfels;
+      line += fmt::format(
+          "{:<10} drawn as surfels: disks reaching each point's {}th nearest neighbour, radius {:.4g} median "
+          "({:.4g} to {:.4g}), {} triangles\n",
+          "", s.rule.neighbours, s.median_radius, s.min_radius, s.max_radius, s.mesh.triangle_count());
+    }
+    return line;
   }
   std::string line = fmt::format("{:<10} {}: {} vertices, {} triangles", role, loaded.path, m.vertex_count(),
                                  m.triangle_count());

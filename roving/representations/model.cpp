@@ -172,13 +172,9 @@ SampleSet samples_of(const Model& reference, const SampleSpec& spec) {
 }  // namespace
 
 const TriangleMesh& test_surface(const Model& test) {
-  if (test.type == ModelType::Points) {
-    throw Error(
-        fmt::format("{}: a point cloud cannot be the test model: it has holes and records no surface to draw "
-                    "or intersect (the paper's limit); use it as the reference, or reconstruct a mesh first",
-                    test.path()));
-  }
-  return test.mesh.mesh;
+  if (test.type != ModelType::Points) return test.mesh.mesh;
+  if (!test.surfels) test.surfels = make_surfels(test.points, test.path());
+  return test.surfels->mesh;
 }
 
 }  // namespace roving

@@ -10,6 +10,7 @@
 #include "roving/core/sample_set.h"
 #include "roving/core/voxel_grid.h"
 #include "roving/formats/mesh_io.h"
+#include "roving/representations/surfels.h"
 
 namespace roving {
 
@@ -30,6 +31,8 @@ struct Model {
   double chordal_error_bound = 0;   // of that tessellation, model units
   PointCloud points;
   bool normals_estimated = false;  // point cloud without normals in its file
+  // A point cloud's surfels, made the first time it is the test model (test_surface).
+  mutable std::optional<SurfelSurface> surfels;
 
   const std::string& path() const { return mesh.path; }
   BoundingBox bounding_box() const;
@@ -50,8 +53,8 @@ Model load_model(const std::string& path, std::optional<ModelType> type = std::n
 // for a kind the representation does not have.
 SampleSet reference_samples(const Model& reference, const SampleSpec& spec);
 
-// The surface a test model offers; throws roving::Error for a point cloud (the paper's limit:
-// a point cloud has holes and records no surface to draw).
+// The surface a test model offers: a point cloud's surfels (made on the first call, which
+// throws roving::Error for what make_surfels refuses), or the model's own triangles.
 const TriangleMesh& test_surface(const Model& test);
 
 }  // namespace roving
