@@ -1,5 +1,6 @@
 // Bad input: every malformed, truncated, empty or absurd file the loaders see gets a
 // roving::Error that names the file and says what was expected and what was found.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -402,6 +403,20 @@ TEST_F(BadFiles, ThreeMfMeshWithItsBuildTransform) {
   EXPECT_EQ(loaded.mesh.bounding_box().max, Vec3(6, 1, 1));
 }
 
+// A package whose model entry no longer matches its CRC: Debian's assimp aborts on it (an
+// ai_assert in its zip reader). It runs in a child process, so this is an error, not a crash.
+TEST_F(BadFiles, ThreeMfThatAbortsAssimpIsAnError) {
+  std::string package;
+  {
+    std::ifstream file(std::string(ROVING_SOURCE_DIR) + "/tests/fuzz/corpus/3mf/tetra.3mf", std::ios::binary);
+    package.assign(std::istreambuf_iterator<char>(file), {});
+  }
+  ASSERT_FALSE(package.empty());
+  EXPECT_EQ(load_mesh(write("good.3mf", package)).mesh.triangle_count(), 4u);
+  package[package.find("vertex x=\"1\"") + 9] = '2';  // still XML, no longer its CRC
+  expect_error(write("corrupt.3mf", package), {"cannot read it as .3mf"});
+}
+
 TEST_F(BadFiles, GltfBadFilesNameTheFile) {
   expect_error(write("empty.gltf", ""), {"empty"});
   expect_error(write("broken.gltf", "{\"asset\": {\"version\": \"2.0\"}, \"meshes\": ["), {"cannot read it as .gltf"});
@@ -411,7 +426,40 @@ TEST_F(BadFiles, GltfBadFilesNameTheFile) {
   const auto uri = [](const std::string& buffer) { return "data:application/octet-stream;base64," + base64(buffer); };
   expect_error(write("nan.gltf", gltf_json(uri(triangle_buffer(std::nanf(""))))), {"non-finite"});
   expect_error(write("points.gltf", gltf_json(uri(triangle_buffer()), 0)), {"no faces found"});
-  expect_error(write("index.gltf", gltf_json(uri(triangle_buffer(0, 7)))), {"cannot read it as .gltf"});
+  expect_error(write("index.gltf", gltf_json(uri(triangle_buffer(0, 7)))), {"cannot read it as .gltf", "index 2 is 7"});
+  // What the file declares is checked against what it holds.
+  const std::string good = gltf_json(uri(triangle_buffer()));
+  const auto edited = [&](const std::string& from, const std::string& to) {
+    std::string text = good;
+    text.replace(text.find(from), from.size(), to);
+    return text;
+  };
+  expect_error(write("count.gltf", edited("\"count\": 3, \"type\": \"VEC3\"", "\"count\": 4000000000, \"type\": \"VEC3\"")),
+               {"accessors[0]", "do not fit"});
+  expect_error(write("view.gltf", edited("\"byteOffset\": 36, \"byteLength\": 6", "\"byteOffset\": 36, \"byteLength\": 60")),
+               {"bufferViews[1]", "44-byte buffer"});
+  expect_error(write("length.gltf", edited("\"byteLength\": 44", "\"byteLength\": 4400")), {"buffers[0] declares 4400 bytes, 44 exist"});
+  expect_error(write("base64.gltf", edited("base64,", "base64,@")), {"base64"});
+  expect_error(write("url.gltf", gltf_json("http://example.com/scene.bin")), {"expected a data URI or a file beside"});
+  expect_error(write("draco.gltf", edited("{\"asset\"", "{\"extensionsRequired\": [\"KHR_draco_mesh_compression\"], \"asset\"")),
+               {"KHR_draco_mesh_compression"});
+  expect_error(write("sparse.gltf", edited("\"type\": \"SCALAR\"}", "\"type\": \"SCALAR\", \"sparse\": {}}")), {"sparse"});
+  expect_error(write("loop.gltf", edited("{\"mesh\": 0, \"translation\"", "{\"mesh\": 0, \"children\": [0], \"translation\"")),
+               {"node 0", "tree"});
+  expect_error(write("version.gltf", edited("\"2.0\"", "\"1.0\"")), {"glTF 2.0"});
+  const std::string frame = glb(gltf_json(""), triangle_buffer());
+  std::string lying = frame;
+  lying[8] = static_cast<char>(lying[8] + 4);  // the header's total length
+  expect_error(write("lying.glb", lying), {"cannot read it as .glb", "declares"});
+  std::string huge_chunk = frame;
+  huge_chunk[12] = huge_chunk[13] = huge_chunk[14] = static_cast<char>(0xFF);  // the JSON chunk's length
+  expect_error(write("chunk.glb", huge_chunk), {"cannot read it as .glb", "chunk at byte 12"});
+  // A chain of 100,000 nodes is walked without recursion; the mesh sits at its end.
+  std::string chain = R"({"asset": {"version": "2.0"}, "nodes": [)";
+  for (int n = 0; n + 1 < 100000; ++n) chain += fmt::format("{{\"children\": [{}]}}, ", n + 1);
+  chain += "{\"mesh\": 0}]";
+  chain += good.substr(good.find("],\n  \"meshes\"") + 1);
+  EXPECT_EQ(load_mesh(write("chain.gltf", chain)).mesh.triangle_count(), 1u);
 }
 
 }  // namespace

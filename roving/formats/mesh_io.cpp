@@ -17,7 +17,8 @@
 #include <sstream>
 
 #include "obj_reader.h"
-#include "roving/formats/assimp_reader.h"
+#include "roving/formats/three_mf_reader.h"
+#include "roving/formats/gltf_reader.h"
 #include "off_reader.h"
 #include "ply_reader.h"
 #include "roving/core/error.h"
@@ -101,7 +102,8 @@ LoadedMesh load_mesh(const std::string& path) {
   if (ext == "ply") loaded = std::move(read_ply(path).mesh);
   if (ext == "off") loaded = read_off(path);
   if (ext == "stl") loaded = read_stl(path);
-  if (ext == "gltf" || ext == "glb" || ext == "3mf") loaded = read_with_assimp(path);
+  if (ext == "gltf" || ext == "glb") loaded = read_gltf(path);
+  if (ext == "3mf") loaded = read_3mf(path);
   const TriangleMesh& mesh = loaded.mesh;
   if (mesh.triangle_count() == 0) {
     throw Error(

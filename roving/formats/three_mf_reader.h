@@ -1,5 +1,5 @@
-// glTF 2.0 (.gltf, .glb) and 3MF meshes through assimp (Debian's libassimp): every mesh of the
-// scene with its node's transform applied, as one triangle mesh.
+// 3MF meshes through assimp (Debian's libassimp): every object of the build with its item's
+// transform applied, as one triangle mesh.
 #pragma once
 
 #include <string>
@@ -10,6 +10,6 @@ namespace roving {
 
 // Throws roving::Error naming `path` when assimp refuses the file (with its reason), or when it
 // holds no triangles; coordinates and indices are then checked as for every mesh.
-LoadedMesh read_with_assimp(const std::string& path);
+LoadedMesh read_3mf(const std::string& path);
 
 }  // namespace roving
