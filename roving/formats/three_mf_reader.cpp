@@ -24,6 +24,14 @@
 #include "roving/core/memory_budget.h"
 #include "roving/formats/file_bytes.h"
 
+#if defined(__SANITIZE_ADDRESS__)
+#define ROVING_ADDRESS_SANITIZER
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define ROVING_ADDRESS_SANITIZER
+#endif
+#endif
+
 // Present in sanitizer builds only (weak): the fuzzer's hook, which must not run in the child.
 extern "C" void __sanitizer_set_death_callback(void (*callback)()) __attribute__((weak));
 
@@ -99,7 +107,6 @@ LoadedMesh read_3mf(const std::string& path) {
   int pipe_ends[2];
   if (::pipe(pipe_ends) != 0)
     throw fail(fmt::format("no pipe to a reader process: {}", std::strerror(errno)));
-  const std::size_t memory = available_memory();
   const pid_t child = ::fork();
   if (child < 0) throw fail(fmt::format("no reader process: {}", std::strerror(errno)));
   if (child == 0) {
@@ -111,8 +118,11 @@ LoadedMesh read_3mf(const std::string& path) {
     if (const int null = ::open("/dev/null", O_WRONLY); null >= 0) ::dup2(null, STDERR_FILENO);
     const rlimit cpu{60, 60};  // seconds: a hang ends here
     ::setrlimit(RLIMIT_CPU, &cpu);
+#ifndef ROVING_ADDRESS_SANITIZER  // its allocator maps more data than any limit would allow
+    const rlim_t memory = available_memory();
     const rlimit data{memory, memory};
     ::setrlimit(RLIMIT_DATA, &data);
+#endif
     std::string reply;
     try {
       reply = import_with_assimp(path);
