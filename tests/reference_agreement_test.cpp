@@ -92,14 +92,18 @@ TEST(Baselines, VertexToPlaneMatchesTheClosestPointReferences) {
   const TriangleMesh& bunny = testing::bunny();
   const double diagonal = bunny.bounding_box().diagonal();
   const TriangleMesh test = smoothly_perturbed(bunny, 0.01 * diagonal, 0.2 * diagonal);
-  const SampleSet samples = make_samples(bunny, {SampleSpec::Kind::Area, 2000});
   const DistanceOptions options{Semantics::Closest, 0.05 * diagonal};
   auto v2p = make_method("v2p-naive");
   auto embree = make_method("embree");
-  const auto a = measure_distances(*v2p, test, samples, options);
-  const auto b = measure_distances(*embree, test, samples, options);
-  for (std::size_t k = 0; k < samples.size(); ++k) {
-    ASSERT_NEAR(a.signed_distance[k], b.signed_distance[k], 1e-9 * diagonal) << "sample " << k;
+  // Scattered samples, and neighbouring ones in mesh order, where Embree starts each search from
+  // the previous sample's closest point.
+  for (const SampleSet& samples :
+       {make_samples(bunny, {SampleSpec::Kind::Area, 2000}), make_samples(bunny, {}).head(2000)}) {
+    const auto a = measure_distances(*v2p, test, samples, options);
+    const auto b = measure_distances(*embree, test, samples, options);
+    for (std::size_t k = 0; k < samples.size(); ++k) {
+      ASSERT_NEAR(a.signed_distance[k], b.signed_distance[k], 1e-9 * diagonal) << samples.kind << " sample " << k;
+    }
   }
 }
 

@@ -116,13 +116,12 @@ class DistanceMethod {
   ProgressFn progress_;
 };
 
-// Calls `distance_of(k)` for k in [0, count) on all cores (TBB) and gathers the answers: a value
-// is a hit with that signed distance, nullopt a no-hit. query_seconds is the wall time taken.
-// `distance_of` must be safe to call from several threads at once. A template, so that the
-// per-sample call inlines (std::function cost 4% of an Embree query). `progress` hears of each
-// finished block of samples.
-template <class DistanceOf>
-DistanceResult measure_each(std::size_t count, const DistanceOf& distance_of, const ProgressFn& progress = {}) {
+// measure_each (below) for a `distance_of` that keeps state from one sample to the next: each
+// block of consecutive samples calls `make_worker()` for a worker of its own, and the worker's
+// `operator()(k)` answers for sample k. Neighbours in sample order are mostly neighbours on the
+// surface, so one sample's answer can seed the next one's search.
+template <class MakeWorker>
+DistanceResult measure_in_blocks(std::size_t count, const MakeWorker& make_worker, const ProgressFn& progress = {}) {
   const Stopwatch watch;
   DistanceResult result;
   result.signed_distance.assign(count, 0.0);
@@ -130,6 +129,7 @@ DistanceResult measure_each(std::size_t count, const DistanceOf& distance_of, co
   std::atomic<std::size_t> done{0};
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, 256),
                     [&](const tbb::blocked_range<std::size_t>& range) {
+                      auto distance_of = make_worker();
                       for (std::size_t k = range.begin(); k != range.end(); ++k) {
                         if (const std::optional<double> d = distance_of(k)) {
                           result.hit[k] = 1;
@@ -140,6 +140,16 @@ DistanceResult measure_each(std::size_t count, const DistanceOf& distance_of, co
                     });
   result.query_seconds = watch.seconds();
   return result;
+}
+
+// Calls `distance_of(k)` for k in [0, count) on all cores (TBB) and gathers the answers: a value
+// is a hit with that signed distance, nullopt a no-hit. query_seconds is the wall time taken.
+// `distance_of` must be safe to call from several threads at once. A template, so that the
+// per-sample call inlines (std::function cost 4% of an Embree query). `progress` hears of each
+// finished block of samples.
+template <class DistanceOf>
+DistanceResult measure_each(std::size_t count, const DistanceOf& distance_of, const ProgressFn& progress = {}) {
+  return measure_in_blocks(count, [&] { return std::cref(distance_of); }, progress);
 }
 
 // Checks options against `method` and throws roving::Error naming the option on failure.
