@@ -366,7 +366,7 @@ TEST(ViewCulling, EveryPixelReadHasTheWholeViewsDepth) {
     renderer->render_view(camera, resolution, whole);
     for (const double reach : {h, 0.0}) {
       const ViewFootprint footprint(camera, resolution, samples, group, reach);
-      const std::vector<std::uint32_t> triangles = footprint.triangles_reaching(test);
+      const std::vector<std::uint32_t> triangles = footprint.triangles_reaching(TriangleClusters(test));
       EXPECT_LT(triangles.size(), test.triangle_count() / 2) << "culling keeps most triangles";
       renderer->render_view_part(camera, resolution, footprint.rect(), triangles, part);
       for (int j = 0; j < resolution; ++j) {

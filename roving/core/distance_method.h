@@ -121,7 +121,8 @@ class DistanceMethod {
 // `operator()(k)` answers for sample k. Neighbours in sample order are mostly neighbours on the
 // surface, so one sample's answer can seed the next one's search.
 template <class MakeWorker>
-DistanceResult measure_in_blocks(std::size_t count, const MakeWorker& make_worker, const ProgressFn& progress = {}) {
+DistanceResult measure_in_blocks(std::size_t count, const MakeWorker& make_worker,
+                                 const ProgressFn& progress = {}) {
   const Stopwatch watch;
   DistanceResult result;
   result.signed_distance.assign(count, 0.0);
@@ -148,8 +149,10 @@ DistanceResult measure_in_blocks(std::size_t count, const MakeWorker& make_worke
 // per-sample call inlines (std::function cost 4% of an Embree query). `progress` hears of each
 // finished block of samples.
 template <class DistanceOf>
-DistanceResult measure_each(std::size_t count, const DistanceOf& distance_of, const ProgressFn& progress = {}) {
-  return measure_in_blocks(count, [&] { return std::cref(distance_of); }, progress);
+DistanceResult measure_each(std::size_t count, const DistanceOf& distance_of,
+                            const ProgressFn& progress = {}) {
+  return measure_in_blocks(
+      count, [&] { return std::cref(distance_of); }, progress);
 }
 
 // Checks options against `method` and throws roving::Error naming the option on failure.

@@ -58,6 +58,7 @@ void GlScene::build(GlBackend backend, const TriangleMesh& test_model) {
   if (!renderer) renderer = make_depth_renderer(backend);
   renderer->upload_model(test_model);
   grid = std::make_unique<TriangleGrid>(test_model);
+  clusters.reset();
   test = &test_model;
 }
 

@@ -10,14 +10,17 @@
 #include "roving/core/distance_method.h"
 #include "roving/gl/depth_renderer.h"
 #include "roving/gl_methods/gl_methods.h"
+#include "triangle_clusters.h"
 #include "triangle_grid.h"
 
 namespace roving {
 
-// A renderer with M_C uploaded and the grid for per-camera culling, made by build().
+// A renderer with M_C uploaded and the grid for per-camera culling, made by build(); the
+// clusters for per-view culling, made by the first view.
 struct GlScene {
   std::unique_ptr<DepthRenderer> renderer;
   std::unique_ptr<TriangleGrid> grid;
+  std::unique_ptr<TriangleClusters> clusters;
   const TriangleMesh* test = nullptr;
 
   void build(GlBackend backend, const TriangleMesh& test_model);

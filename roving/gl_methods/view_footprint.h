@@ -9,12 +9,13 @@
 
 #include "roving/core/sample_set.h"
 #include "roving/gl/depth_renderer.h"
+#include "roving/gl_methods/triangle_clusters.h"
 
 namespace roving {
 
 class ViewFootprint {
  public:
-  static constexpr int kCell = 8;  // pixels per cell side
+  static constexpr int kCell = 4;  // pixels per cell side
 
   // The pixels that reading `samples[group]` may touch: around each sample's normal-line segment
   // [x - reach n, x + reach n] as the view projects it (reach = h when the line is marched
@@ -28,9 +29,10 @@ class ViewFootprint {
   // Whether pixel (i, j) lies in a cell some sample reads.
   bool covers(int i, int j) const;
 
-  // The triangles of `mesh` whose projected bounding box (with a pixel to spare) touches a
-  // cell some sample reads: the only ones that can set the depth of a pixel read.
-  std::vector<std::uint32_t> triangles_reaching(const TriangleMesh& mesh) const;
+  // The triangles (of the mesh `clusters` were made from) whose projected bounding box (with a
+  // pixel to spare) touches a cell some sample reads: the only ones that can set the depth of a
+  // pixel read.
+  std::vector<std::uint32_t> triangles_reaching(const TriangleClusters& clusters) const;
 
  private:
   // Whether any cell in [cx0, cx1] x [cy0, cy1] (inclusive, clamped) is read.
@@ -38,8 +40,8 @@ class ViewFootprint {
 
   OrthoCamera camera_;
   int resolution_, cells_;
-  std::vector<std::uint8_t> read_;      // per cell, row by row
-  std::vector<std::uint32_t> summed_;   // summed-area table of read_, (cells + 1)^2
+  std::vector<std::uint8_t> read_;     // per cell, row by row
+  std::vector<std::uint32_t> summed_;  // summed-area table of read_, (cells + 1)^2
   PixelRect rect_;
 };
 

@@ -229,7 +229,8 @@ std::vector<std::optional<double>> view_sample(GlScene& scene, const SampleSet& 
         OrthoCamera::looking_along(-directions[d], box.centre(), radius, radius, radius);
     if (options.cull_views) {
       const ViewFootprint footprint(camera, resolution, samples, groups[d], options.normal_line ? max_error : 0.0);
-      scene.renderer->render_view_part(camera, resolution, footprint.rect(), footprint.triangles_reaching(*scene.test),
+      if (!scene.clusters) scene.clusters = std::make_unique<TriangleClusters>(*scene.test);
+      scene.renderer->render_view_part(camera, resolution, footprint.rect(), footprint.triangles_reaching(*scene.clusters),
                                        depth);
     } else {
       scene.renderer->render_view(camera, resolution, depth);
