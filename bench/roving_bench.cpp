@@ -490,10 +490,11 @@ void gates(Bench& bench) {
   const TriangleMesh middle = decimate_quadric(bunny, 10459);
   std::vector<Vec3> moved = middle.positions();
   const double k = 2 * M_PI / (0.5 * diagonal);
+  const std::vector<Vec3> normals = middle.vertex_normals();
   for (std::size_t v = 0; v < moved.size(); ++v) {
     const Vec3& p = moved[v];
     moved[v] += 0.015 * diagonal * std::sin(k * p.x()) * std::cos(k * p.y() + 0.5) *
-                std::sin(k * p.z() + 1.0) * middle.vertex_normals()[v];
+                std::sin(k * p.z() + 1.0) * normals[v];
   }
   const TriangleMesh test(std::move(moved), middle.triangles());
   const SampleSet samples = bench.samples_on(bunny);

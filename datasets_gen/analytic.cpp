@@ -74,10 +74,11 @@ TriangleMesh square(double half, double height, int n) {
 TriangleMesh smoothly_perturbed(const TriangleMesh& mesh, double amplitude, double wavelength) {
   std::vector<Vec3> moved = mesh.positions();
   const double k = 2 * M_PI / wavelength;
+  const std::vector<Vec3> normals = mesh.vertex_normals();
   for (std::size_t v = 0; v < moved.size(); ++v) {
     const Vec3& p = moved[v];
     const double wave = std::sin(k * p.x()) * std::cos(k * p.y() + 0.5) * std::sin(k * p.z() + 1.0);
-    moved[v] += amplitude * wave * mesh.vertex_normals()[v];
+    moved[v] += amplitude * wave * normals[v];
   }
   return TriangleMesh(std::move(moved), mesh.triangles(), "perturbed mesh");
 }

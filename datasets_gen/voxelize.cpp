@@ -51,7 +51,7 @@ VoxelGrid voxelize(const TriangleMesh& mesh, int dimension, bool thin) {
             const Vec3 a = grid.origin + grid.voxel_size * Vec3(x, y, z);
             const Vec3 b = a + Vec3::Constant(grid.voxel_size);
             if (thin) {
-              const Vec3& n = mesh.face_normals()[f];
+              const Vec3 n = mesh.face_normal(f);
               const Vec3 centre = a + Vec3::Constant(0.5 * grid.voxel_size);
               if (std::abs(n.dot(centre - p[t[0]])) > 0.5 * grid.voxel_size * n.cwiseAbs().maxCoeff())
                 continue;

@@ -96,7 +96,7 @@ TEST(Cli, PointCloudsAreReferencesNotTests) {
     std::ofstream file(xyz);
     for (std::size_t f = 0; f < 200; ++f) {
       const auto c = bunny.centroid(f * 300);
-      const auto& n = bunny.face_normals()[f * 300];
+      const auto n = bunny.face_normal(f * 300);
       file << c.x() << ' ' << c.y() << ' ' << c.z() << ' ' << n.x() << ' ' << n.y() << ' ' << n.z() << '\n';
     }
   }

@@ -234,10 +234,11 @@ TEST_F(BunnyGates, ExactRovingAgreesWithEmbreeOnSurfels) {
   REQUIRE_GL_CONTEXT(GlBackend::OSMesa);
   const TriangleMesh bunny = normalised(testing::bunny());
   PointCloud cloud;
+  const std::vector<Vec3> normals = bunny.vertex_normals();
   for (std::size_t v = 0; v < bunny.vertex_count(); ++v) {
     if (!bunny.vertex_referenced()[v]) continue;
     cloud.positions.push_back(bunny.positions()[v]);
-    cloud.normals.push_back(bunny.vertex_normals()[v]);
+    cloud.normals.push_back(normals[v]);
   }
   const TriangleMesh surfels = make_surfels(cloud, "bunny vertices").mesh;
   auto embree = make_method("embree"), roving = make_method("roving");

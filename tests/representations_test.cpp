@@ -195,7 +195,7 @@ TEST_F(TempFolder, PointCloudReferenceWorksWithEveryMethod) {
     double rho_min = radius;
     for (std::size_t f = 0; f < ico.triangle_count(); ++f) {
       rho_min = std::min(
-          rho_min, std::abs(ico.face_normals()[f].dot(ico.positions()[ico.triangles()[f][0]] - centre)));
+          rho_min, std::abs(ico.face_normal(f).dot(ico.positions()[ico.triangles()[f][0]] - centre)));
     }
     const double low = rho_min - 50, high = radius - 50;
     for (const auto& name : surface_methods()) {

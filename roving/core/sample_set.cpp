@@ -68,32 +68,30 @@ void reserve(SampleSet& samples, std::size_t n) {
 void sample_faces(const TriangleMesh& mesh, SampleSet& samples) {
   reserve(samples, mesh.triangle_count());
   for (std::size_t f = 0; f < mesh.triangle_count(); ++f) {
-    if (mesh.face_normals()[f].isZero()) {
+    if (mesh.face_normal(f).isZero()) {
       ++samples.skipped_degenerate_faces;
       continue;
     }
     samples.positions.push_back(mesh.centroid(f));
-    samples.normals.push_back(mesh.face_normals()[f]);
-    samples.weights.push_back(mesh.face_areas()[f]);
+    samples.normals.push_back(mesh.face_normal(f));
+    samples.weights.push_back(mesh.face_area(f));
     samples.elements.push_back(static_cast<std::uint32_t>(f));
   }
 }
 
 void sample_vertices(const TriangleMesh& mesh, SampleSet& samples) {
   // Each vertex stands for a third of the area of its incident faces.
-  std::vector<double> vertex_area(mesh.vertex_count(), 0.0);
-  for (std::size_t f = 0; f < mesh.triangle_count(); ++f) {
-    for (int corner : mesh.triangles()[f]) vertex_area[corner] += mesh.face_areas()[f] / 3.0;
-  }
+  std::vector<double> vertex_area;
+  const std::vector<Vec3> normals = mesh.vertex_normals(&vertex_area);
   reserve(samples, mesh.vertex_count());
   for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
     if (!mesh.vertex_referenced()[v]) {
       ++samples.skipped_unreferenced_vertices;
-    } else if (mesh.vertex_normals()[v].isZero()) {
+    } else if (normals[v].isZero()) {
       ++samples.skipped_zero_normal_vertices;
     } else {
       samples.positions.push_back(mesh.positions()[v]);
-      samples.normals.push_back(mesh.vertex_normals()[v]);
+      samples.normals.push_back(normals[v]);
       samples.weights.push_back(vertex_area[v]);
       samples.elements.push_back(static_cast<std::uint32_t>(v));
     }
@@ -106,7 +104,7 @@ void sample_area(const TriangleMesh& mesh, std::size_t count, std::uint64_t seed
   std::vector<double> cumulative(mesh.triangle_count());
   double total = 0;
   for (std::size_t f = 0; f < mesh.triangle_count(); ++f) {
-    total += mesh.face_normals()[f].isZero() ? 0.0 : mesh.face_areas()[f];
+    total += mesh.face_normal(f).isZero() ? 0.0 : mesh.face_area(f);
     cumulative[f] = total;
   }
   std::mt19937_64 random(seed);
@@ -121,7 +119,7 @@ void sample_area(const TriangleMesh& mesh, std::size_t count, std::uint64_t seed
     const Triangle& t = mesh.triangles()[f];
     const auto& p = mesh.positions();
     samples.positions.push_back((1 - r1) * p[t[0]] + r1 * (1 - r2) * p[t[1]] + r1 * r2 * p[t[2]]);
-    samples.normals.push_back(mesh.face_normals()[f]);
+    samples.normals.push_back(mesh.face_normal(f));
     samples.weights.push_back(weight);
     samples.elements.push_back(static_cast<std::uint32_t>(f));
   }

@@ -2,7 +2,6 @@
 #include "roving/core/triangle_mesh.h"
 
 #include <fmt/format.h>
-#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -25,35 +24,29 @@ TriangleMesh::TriangleMesh(std::vector<Vec3> positions, std::vector<Triangle> tr
     }
   }
   const int vertex_count = static_cast<int>(positions_.size());
-  face_normals_.resize(triangles_.size());
-  face_areas_.resize(triangles_.size());
-  // Indices, face normals and areas on all cores (at 10 M triangles this pass and the first
-  // touch of its memory were most of a load); sums and the scatter to vertices stay in order.
+  // Indices, areas and degenerate faces on all cores (at 10 M triangles this pass and the first
+  // touch of its memory were most of a load), in fixed blocks whose sums are added in order, so
+  // that the total area does not depend on the threads.
+  constexpr std::size_t kBlock = 4096;
+  const std::size_t blocks = (triangles_.size() + kBlock - 1) / kBlock;
+  std::vector<double> block_area(blocks, 0.0);
+  std::vector<std::size_t> block_degenerate(blocks, 0);
   std::atomic<std::size_t> first_bad_face{triangles_.size()};
-  tbb::parallel_for(
-      tbb::blocked_range<std::size_t>(0, triangles_.size(), 4096),
-      [&](const tbb::blocked_range<std::size_t>& range) {
-        for (std::size_t f = range.begin(); f != range.end(); ++f) {
-          const Triangle& t = triangles_[f];
-          if (t[0] < 0 || t[1] < 0 || t[2] < 0 || t[0] >= vertex_count || t[1] >= vertex_count ||
-              t[2] >= vertex_count) {
-            std::size_t seen = first_bad_face.load();
-            while (f < seen && !first_bad_face.compare_exchange_weak(seen, f)) {
-            }
-            continue;
-          }
-          const Vec3 cross = (positions_[t[1]] - positions_[t[0]]).cross(positions_[t[2]] - positions_[t[0]]);
-          const double twice_area = cross.norm();
-          face_areas_[f] = 0.5 * twice_area;
-          // Degenerate: the area vanishes at double precision relative to the squared
-          // longest edge, so that its normal would be rounding noise.
-          const double longest_edge_squared = std::max({(positions_[t[1]] - positions_[t[0]]).squaredNorm(),
-                                                        (positions_[t[2]] - positions_[t[1]]).squaredNorm(),
-                                                        (positions_[t[0]] - positions_[t[2]]).squaredNorm()});
-          const bool degenerate = !(twice_area > 1e-12 * longest_edge_squared);
-          face_normals_[f] = degenerate ? Vec3::Zero() : Vec3(cross / twice_area);
+  tbb::parallel_for(std::size_t(0), blocks, [&](std::size_t block) {
+    for (std::size_t f = block * kBlock; f < std::min(triangles_.size(), (block + 1) * kBlock); ++f) {
+      const Triangle& t = triangles_[f];
+      if (t[0] < 0 || t[1] < 0 || t[2] < 0 || t[0] >= vertex_count || t[1] >= vertex_count ||
+          t[2] >= vertex_count) {
+        std::size_t seen = first_bad_face.load();
+        while (f < seen && !first_bad_face.compare_exchange_weak(seen, f)) {
         }
-      });
+        continue;
+      }
+      const FaceShape shape = face_shape(f);
+      block_area[block] += 0.5 * shape.twice_area;
+      block_degenerate[block] += shape.degenerate;
+    }
+  });
   if (first_bad_face < triangles_.size()) {
     const std::size_t f = first_bad_face;
     for (int corner : triangles_[f]) {
@@ -63,28 +56,65 @@ TriangleMesh::TriangleMesh(std::vector<Vec3> positions, std::vector<Triangle> tr
       }
     }
   }
+  for (std::size_t block = 0; block < blocks; ++block) {
+    total_area_ += block_area[block];
+    degenerate_triangles_ += block_degenerate[block];
+  }
 
-  vertex_normals_.assign(positions_.size(), Vec3::Zero());
   vertex_referenced_.assign(positions_.size(), false);
-  for (std::size_t f = 0; f < triangles_.size(); ++f) {
-    const Triangle& t = triangles_[f];
-    total_area_ += face_areas_[f];
-    if (face_normals_[f].isZero(0)) ++degenerate_triangles_;
-    const Vec3 cross = (positions_[t[1]] - positions_[t[0]]).cross(positions_[t[2]] - positions_[t[0]]);
-    for (int corner : t) {
-      vertex_normals_[corner] += cross;  // |cross| = 2 * area: area weighting for free
-      vertex_referenced_[corner] = true;
-    }
+  for (const Triangle& t : triangles_) {
+    for (int corner : t) vertex_referenced_[corner] = true;
   }
   for (std::size_t v = 0; v < positions_.size(); ++v) {
-    if (!vertex_referenced_[v]) {
+    if (vertex_referenced_[v]) {
+      bounding_box_.extend(positions_[v]);
+    } else {
       ++unreferenced_vertices_;
-      continue;
     }
-    bounding_box_.extend(positions_[v]);
-    const double length = vertex_normals_[v].norm();
-    vertex_normals_[v] = length > 0 ? Vec3(vertex_normals_[v] / length) : Vec3::Zero();
   }
+}
+
+TriangleMesh::FaceShape TriangleMesh::face_shape(std::size_t face) const {
+  const Triangle& t = triangles_[face];
+  const Vec3& a = positions_[t[0]];
+  const Vec3& b = positions_[t[1]];
+  const Vec3& c = positions_[t[2]];
+  FaceShape shape;
+  shape.cross = (b - a).cross(c - a);
+  shape.twice_area = shape.cross.norm();
+  // Degenerate: the area vanishes at double precision relative to the squared longest edge, so
+  // that its normal would be rounding noise.
+  const double longest_edge_squared =
+      std::max({(b - a).squaredNorm(), (c - b).squaredNorm(), (a - c).squaredNorm()});
+  shape.degenerate = !(shape.twice_area > 1e-12 * longest_edge_squared);
+  return shape;
+}
+
+Vec3 TriangleMesh::face_normal(std::size_t face) const {
+  const FaceShape shape = face_shape(face);
+  return shape.degenerate ? Vec3::Zero() : Vec3(shape.cross / shape.twice_area);
+}
+
+double TriangleMesh::face_area(std::size_t face) const {
+  return 0.5 * face_shape(face).twice_area;
+}
+
+std::vector<Vec3> TriangleMesh::vertex_normals(std::vector<double>* third_areas) const {
+  std::vector<Vec3> normals(positions_.size(), Vec3::Zero());
+  if (third_areas) third_areas->assign(positions_.size(), 0.0);
+  for (const Triangle& t : triangles_) {
+    const Vec3 cross = (positions_[t[1]] - positions_[t[0]]).cross(positions_[t[2]] - positions_[t[0]]);
+    const double third_area = 0.5 * cross.norm() / 3.0;
+    for (int corner : t) {
+      normals[corner] += cross;  // |cross| = 2 * area: area weighting for free
+      if (third_areas) (*third_areas)[corner] += third_area;
+    }
+  }
+  for (Vec3& normal : normals) {
+    const double length = normal.norm();
+    normal = length > 0 ? Vec3(normal / length) : Vec3::Zero();
+  }
+  return normals;
 }
 
 TriangleMesh TriangleMesh::transformed(const Vec3& origin, double scale) const {

@@ -113,7 +113,7 @@ ColouredSurface coloured_surface(const TriangleMesh* surface, const HeatmapLayou
   out.positions.reserve(corners), out.normals.reserve(corners), out.colours.reserve(corners);
   for (std::size_t f = 0; f < surface->triangle_count(); ++f) {
     const Triangle& t = surface->triangles()[f];
-    const Vec3 normal = surface->face_normals()[f];
+    const Vec3 normal = surface->face_normal(f);
     for (int corner = 0; corner < 3; ++corner) {
       out.positions.push_back(surface->positions()[t[corner]]);
       out.normals.push_back(normal);
