@@ -63,12 +63,12 @@ class DepthRenderer {
   // Draws the uploaded model through `camera` into a resolution x resolution 32-bit float depth
   // buffer and returns it row by row from the bottom (x along `right`); 1 where nothing was drawn.
   virtual void render_view(const OrthoCamera& camera, int resolution, std::vector<float>& depth) = 0;
-  // The same view, drawing only the triangles listed in `triangles` (indices into the uploaded
-  // model's triangles) and only the pixels in `rect`: depth has resolution^2 entries, and those
-  // in `rect` are what render_view() gives wherever no omitted triangle covers the pixel; the
-  // others are left as they were.
+  // The same view, drawing only the triangles whose corners (indices into the uploaded model's
+  // vertices, three a triangle) `corners` lists, and only the pixels in `rect`: depth has
+  // resolution^2 entries, and those in `rect` are what render_view() gives wherever no omitted
+  // triangle covers the pixel; the others are left as they were.
   virtual void render_view_part(const OrthoCamera& camera, int resolution, const PixelRect& rect,
-                                const std::vector<std::uint32_t>& triangles, std::vector<float>& depth) = 0;
+                                const std::vector<std::uint32_t>& corners, std::vector<float>& depth) = 0;
 
   // Draws `vertices` (triangles, three consecutive vertices each) into a grid of one-pixel tiles,
   // tile k at column k % columns, row k / columns, each clipped to its own view volume, and

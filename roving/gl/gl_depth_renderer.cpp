@@ -127,7 +127,7 @@ class GlDepthRenderer final : public DepthRenderer {
     gl_.BufferData(GL_ELEMENT_ARRAY_BUFFER, indices.size() * sizeof(unsigned), indices.data(),
                    GL_STATIC_DRAW);
     model_index_count_ = static_cast<GLsizei>(indices.size());
-    model_triangles_ = std::move(indices);  // for drawing parts of the model
+    model_vertex_count_ = mesh.vertex_count();
     check("uploading the test model");
   }
 
@@ -144,12 +144,18 @@ class GlDepthRenderer final : public DepthRenderer {
   }
 
   void render_view_part(const OrthoCamera& camera, int resolution, const PixelRect& rect,
-                        const std::vector<std::uint32_t>& triangles, std::vector<float>& depth) override {
+                        const std::vector<std::uint32_t>& corners, std::vector<float>& depth) override {
     context_->make_current();
     require_view(resolution);
     if (rect.x0 < 0 || rect.y0 < 0 || rect.x1 > resolution || rect.y1 > resolution) {
       throw Error(fmt::format("gl: pixel rectangle [{}, {}) x [{}, {}) outside a {}-pixel view", rect.x0, rect.x1,
                               rect.y0, rect.y1, resolution));
+    }
+    const bool corners_valid = corners.size() % 3 == 0 && std::all_of(corners.begin(), corners.end(), [&](std::uint32_t v) {
+      return v < model_vertex_count_;
+    });
+    if (!corners_valid) {
+      throw Error(fmt::format("gl: part of a view needs three corners a triangle, each below {} vertices", model_vertex_count_));
     }
     depth.resize(static_cast<std::size_t>(resolution) * resolution);
     if (rect.empty()) return;
@@ -157,19 +163,12 @@ class GlDepthRenderer final : public DepthRenderer {
     gl_.Enable(GL_SCISSOR_TEST);
     gl_.Scissor(rect.x0, rect.y0, rect.x1 - rect.x0, rect.y1 - rect.y0);
     bind_framebuffer(resolution, resolution);
-    if (!triangles.empty()) {
-      part_indices_.clear();
-      part_indices_.reserve(3 * triangles.size());
-      for (std::uint32_t t : triangles) {
-        part_indices_.insert(part_indices_.end(), {model_triangles_[3 * t], model_triangles_[3 * t + 1],
-                                                   model_triangles_[3 * t + 2]});
-      }
+    if (!corners.empty()) {
       use_view_program(camera);
       gl_.BindVertexArray(model_vao_);
       gl_.BindBuffer(GL_ELEMENT_ARRAY_BUFFER, part_buffer_);
-      gl_.BufferData(GL_ELEMENT_ARRAY_BUFFER, part_indices_.size() * sizeof(unsigned), part_indices_.data(),
-                     GL_STREAM_DRAW);
-      gl_.DrawElements(GL_TRIANGLES, static_cast<GLsizei>(part_indices_.size()), GL_UNSIGNED_INT, nullptr);
+      gl_.BufferData(GL_ELEMENT_ARRAY_BUFFER, corners.size() * sizeof(std::uint32_t), corners.data(), GL_STREAM_DRAW);
+      gl_.DrawElements(GL_TRIANGLES, static_cast<GLsizei>(corners.size()), GL_UNSIGNED_INT, nullptr);
       gl_.BindBuffer(GL_ELEMENT_ARRAY_BUFFER, model_indices_);
     }
     // Read the rectangle straight into its place in the full-size image.
@@ -282,7 +281,7 @@ class GlDepthRenderer final : public DepthRenderer {
   GLuint view_program_ = 0, tile_program_ = 0;
   GLuint model_vao_ = 0, tile_vao_ = 0, model_vertices_ = 0, model_indices_ = 0, tile_vertices_ = 0;
   GLsizei model_index_count_ = 0;
-  std::vector<unsigned> model_triangles_, part_indices_;  // the model's corners; a part's
+  std::size_t model_vertex_count_ = 0;
   GLuint part_buffer_ = 0;
   Vec3 model_origin_ = Vec3::Zero();
   GLuint framebuffer_ = 0, depth_buffer_ = 0;

@@ -1,6 +1,5 @@
 // Morton order of the triangles' centroids (10 bits per axis over the mesh's box), cut into
-// runs of kSize, each run's bounding sphere (its vertices' box centre, padded radius) and each
-// triangle's box.
+// runs of kSize, and the boxes of each run and each triangle.
 #include "roving/gl_methods/triangle_clusters.h"
 
 #include <tbb/blocked_range.h>
@@ -24,15 +23,14 @@ std::uint64_t spread_bits(std::uint32_t v) {
   return x;
 }
 
-// The triangle's box with its centre rounded to float and its half-size rounded up from the
-// distance to that centre, so that the float box still holds every corner.
-TriangleClusters::Box box_of(const std::vector<Vec3>& positions, const Triangle& corners) {
-  BoundingBox bounds;
-  for (int corner : corners) bounds.extend(positions[corner]);
+// The box with its centre rounded to float and its half-size rounded up from the distance to
+// that centre, so that the float box still holds every corner.
+TriangleClusters::Box float_box(const BoundingBox& bounds, const Vec3& origin) {
   TriangleClusters::Box box;
   for (int axis = 0; axis < 3; ++axis) {
-    box.centre[axis] = static_cast<float>(bounds.centre()[axis]);
-    const double reach = std::max(bounds.max[axis] - box.centre[axis], box.centre[axis] - bounds.min[axis]);
+    const double low = bounds.min[axis] - origin[axis], high = bounds.max[axis] - origin[axis];
+    box.centre[axis] = static_cast<float>(0.5 * (low + high));
+    const double reach = std::max(high - box.centre[axis], box.centre[axis] - low);
     box.half_size[axis] = std::nextafter(static_cast<float>(reach), INFINITY);
   }
   return box;
@@ -40,7 +38,7 @@ TriangleClusters::Box box_of(const std::vector<Vec3>& positions, const Triangle&
 
 }  // namespace
 
-TriangleClusters::TriangleClusters(const TriangleMesh& mesh) {
+TriangleClusters::TriangleClusters(const TriangleMesh& mesh) : origin_(mesh.bounding_box().centre()) {
   const auto& triangles = mesh.triangles();
   const auto& positions = mesh.positions();
   const BoundingBox& box = mesh.bounding_box();
@@ -59,33 +57,29 @@ TriangleClusters::TriangleClusters(const TriangleMesh& mesh) {
                       }
                     });
   tbb::parallel_sort(keyed.begin(), keyed.end());
-  order_.resize(keyed.size());
+  corners_.resize(3 * keyed.size());
   boxes_.resize(keyed.size());
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, keyed.size(), 4096),
                     [&](const tbb::blocked_range<std::size_t>& range) {
                       for (std::size_t i = range.begin(); i != range.end(); ++i) {
-                        order_[i] = keyed[i].second;
-                        boxes_[i] = box_of(positions, triangles[order_[i]]);
+                        const Triangle& corners = triangles[keyed[i].second];
+                        BoundingBox bounds;
+                        for (int k = 0; k < 3; ++k) {
+                          corners_[3 * i + k] = static_cast<std::uint32_t>(corners[k]);
+                          bounds.extend(positions[corners[k]]);
+                        }
+                        boxes_[i] = float_box(bounds, origin_);
                       }
                     });
 
-  const std::size_t clusters = (order_.size() + kSize - 1) / kSize;
-  centres_.resize(clusters);
-  radii_.resize(clusters);
+  const std::size_t clusters = (boxes_.size() + kSize - 1) / kSize;
+  cluster_boxes_.resize(clusters);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, clusters, 256),
                     [&](const tbb::blocked_range<std::size_t>& range) {
                       for (std::size_t c = range.begin(); c != range.end(); ++c) {
                         BoundingBox bounds;
-                        for (const std::uint32_t* t = begin(c); t != end(c); ++t) {
-                          for (int corner : triangles[*t]) bounds.extend(positions[corner]);
-                        }
-                        double radius = 0;
-                        for (const std::uint32_t* t = begin(c); t != end(c); ++t) {
-                          for (int corner : triangles[*t])
-                            radius = std::max(radius, (positions[corner] - bounds.centre()).norm());
-                        }
-                        centres_[c] = bounds.centre();
-                        radii_[c] = radius * (1 + 1e-9);  // rounding can only widen it
+                        for (std::size_t k = 0; k < 3 * size(c); ++k) bounds.extend(positions[corners(c)[k]]);
+                        cluster_boxes_[c] = float_box(bounds, origin_);
                       }
                     });
 }

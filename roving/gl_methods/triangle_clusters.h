@@ -1,10 +1,11 @@
 // Internal: M_C's triangles in small spatially coherent clusters (Morton order of their
-// centroids), each with a bounding sphere, so that a view can reject a whole cluster whose
-// projected sphere touches no pixel it reads before looking at its triangles; each triangle's
-// box is stored beside it, in cluster order, so that the triangles are then decided reading
-// memory in sequence rather than gathering their vertices.
+// centroids), each with a bounding box, so that a view can reject a whole cluster whose
+// projected box touches no pixel it reads before looking at its triangles; each triangle's
+// corners and box are stored in cluster order, so that the triangles are then decided, and the
+// kept ones' corners copied, reading memory in sequence.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -16,30 +17,31 @@ class TriangleClusters {
  public:
   static constexpr std::size_t kSize = 16;  // triangles per cluster (the last may hold fewer)
 
-  // An axis-aligned box holding a triangle, rounded outwards to float.
+  // An axis-aligned box, relative to origin(), rounded outwards to float: the mesh's own
+  // coordinates may be far from 0, where float would lose the box's size.
   struct Box {
     float centre[3], half_size[3];
   };
 
   explicit TriangleClusters(const TriangleMesh& mesh);
 
-  std::size_t count() const { return centres_.size(); }
-  // The triangles of cluster c.
-  const std::uint32_t* begin(std::size_t c) const { return order_.data() + c * kSize; }
-  const std::uint32_t* end(std::size_t c) const {
-    return order_.data() + std::min(order_.size(), (c + 1) * kSize);
-  }
-  // A sphere holding every vertex of cluster c's triangles.
-  const Vec3& centre(std::size_t c) const { return centres_[c]; }
-  double radius(std::size_t c) const { return radii_[c]; }
-  // The boxes of cluster c's triangles, in the same order as begin(c).
+  // The mesh's box centre.
+  const Vec3& origin() const { return origin_; }
+  std::size_t count() const { return cluster_boxes_.size(); }
+  // How many triangles cluster c holds.
+  std::size_t size(std::size_t c) const { return std::min(kSize, boxes_.size() - c * kSize); }
+  // The corners (vertex indices, three a triangle) of cluster c's triangles.
+  const std::uint32_t* corners(std::size_t c) const { return corners_.data() + 3 * c * kSize; }
+  // The boxes of cluster c's triangles, in the same order.
   const Box* boxes(std::size_t c) const { return boxes_.data() + c * kSize; }
+  // A box holding every vertex of cluster c's triangles.
+  const Box& cluster_box(std::size_t c) const { return cluster_boxes_[c]; }
 
  private:
-  std::vector<std::uint32_t> order_;  // triangle ids, cluster by cluster
-  std::vector<Vec3> centres_;
-  std::vector<double> radii_;
-  std::vector<Box> boxes_;  // one per entry of order_
+  Vec3 origin_;
+  std::vector<std::uint32_t> corners_;  // cluster by cluster
+  std::vector<Box> boxes_;              // one per triangle of corners_
+  std::vector<Box> cluster_boxes_;
 };
 
 }  // namespace roving

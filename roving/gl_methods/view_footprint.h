@@ -1,7 +1,7 @@
 // Which pixels of a viewpoint-sampling view its samples read, and which triangles of M_C can
 // cover them. A view then draws only those triangles, scissored to the rectangle around the
 // read pixels (DepthRenderer::render_view_part): every pixel read keeps the depth the whole
-// view gives it, while a view's ~240 samples cover under a fifth of its image.
+// view gives it, while a view's ~240 samples read about 1% of its image.
 #pragma once
 
 #include <cstdint>
@@ -15,33 +15,45 @@ namespace roving {
 
 class ViewFootprint {
  public:
-  static constexpr int kCell = 4;  // pixels per cell side
-
   // The pixels that reading `samples[group]` may touch: around each sample's normal-line segment
   // [x - reach n, x + reach n] as the view projects it (reach = h when the line is marched
   // across the view, 0 when the view is read at the sample), with the 4 x 4 neighbourhood the
-  // reading inspects and a pixel to spare.
+  // reading inspects.
   ViewFootprint(const OrthoCamera& camera, int resolution, const SampleSet& samples,
                 const std::vector<std::uint32_t>& group, double reach);
 
-  // The pixels' bounding rectangle, whole cells, within the image.
+  // The pixels' bounding rectangle, within the image.
   const PixelRect& rect() const { return rect_; }
-  // Whether pixel (i, j) lies in a cell some sample reads.
+  // Whether some sample may read pixel (i, j).
   bool covers(int i, int j) const;
 
-  // The triangles (of the mesh `clusters` were made from) whose projected bounding box (with a
-  // pixel to spare) touches a cell some sample reads: the only ones that can set the depth of a
-  // pixel read.
-  std::vector<std::uint32_t> triangles_reaching(const TriangleClusters& clusters) const;
+  // The corners (three a triangle) of the triangles of the mesh `clusters` were made from whose
+  // projected bounding box holds a pixel some sample reads: the only ones that can set its depth.
+  std::vector<std::uint32_t> corners_reaching(const TriangleClusters& clusters) const;
 
  private:
-  // Whether any cell in [cx0, cx1] x [cy0, cy1] (inclusive, clamped) is read.
-  bool any_cell(int cx0, int cy0, int cx1, int cy1) const;
+  // One bit per square of 2^shift x 2^shift pixels, row by row. Pixel ranges are inclusive,
+  // not empty, and already clamped to the image.
+  class Bitmap {
+   public:
+    Bitmap(int resolution, int shift);
+    void mark(int i0, int j0, int i1, int j1);
+    bool any(int i0, int j0, int i1, int j1) const;
+
+   private:
+    int shift_, side_, words_;  // side_ squares a row, in words_ 64-bit words
+    std::vector<std::uint64_t> bits_;
+  };
+
+  // Marks pixels [i0, i1] x [j0, j1] (inclusive, clamped to the image).
+  void mark(int i0, int j0, int i1, int j1);
+  // Whether any pixel in [i0, i1] x [j0, j1] (inclusive, clamped) is marked: the coarse bitmap
+  // rejects most ranges in a word or two, the fine one decides the rest.
+  bool any_marked(int i0, int j0, int i1, int j1) const;
 
   OrthoCamera camera_;
-  int resolution_, cells_;
-  std::vector<std::uint8_t> read_;     // per cell, row by row
-  std::vector<std::uint32_t> summed_;  // summed-area table of read_, (cells + 1)^2
+  int resolution_;
+  Bitmap fine_, coarse_;  // pixels read; 8 x 8-pixel squares holding one
   PixelRect rect_;
 };
 

@@ -230,7 +230,7 @@ std::vector<std::optional<double>> view_sample(GlScene& scene, const SampleSet& 
     if (options.cull_views) {
       const ViewFootprint footprint(camera, resolution, samples, groups[d], options.normal_line ? max_error : 0.0);
       if (!scene.clusters) scene.clusters = std::make_unique<TriangleClusters>(*scene.test);
-      scene.renderer->render_view_part(camera, resolution, footprint.rect(), footprint.triangles_reaching(*scene.clusters),
+      scene.renderer->render_view_part(camera, resolution, footprint.rect(), footprint.corners_reaching(*scene.clusters),
                                        depth);
     } else {
       scene.renderer->render_view(camera, resolution, depth);
