@@ -108,6 +108,12 @@ class CgalAabbMethod final : public DistanceMethod {
     return watch.seconds();
   }
 
+  void release() override {
+    tree_.clear();
+    TriangleList().swap(triangles_);
+    built_ = false;
+  }
+
   DistanceResult measure(const SampleSet& samples, const DistanceOptions& options) override {
     if (!built_) throw Error(name_ + ": measure() called before build()");
     validate_options(*this, options);

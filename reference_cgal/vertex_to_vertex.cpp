@@ -56,6 +56,10 @@ class KdTreeVertexToVertex final : public ClosestPointBaseline {
     built_ = true;
     return watch.seconds();
   }
+  void release() override {
+    tree_.reset();
+    built_ = false;
+  }
 
  protected:
   Vec3 nearest(const Vec3& x) const override {

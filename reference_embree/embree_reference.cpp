@@ -105,6 +105,11 @@ class EmbreeReference final : public DistanceMethod {
     return watch.seconds();
   }
 
+  void release() override {
+    if (scene_) rtcReleaseScene(scene_);
+    scene_ = nullptr;
+  }
+
   DistanceResult measure(const SampleSet& samples, const DistanceOptions& options) override {
     if (!scene_) throw Error("embree: measure() called before build()");
     validate_options(*this, options);

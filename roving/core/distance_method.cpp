@@ -80,6 +80,7 @@ DistanceResult measure_distances(DistanceMethod& method, const TriangleMesh& tes
   validate_options(method, options);
   const double build_seconds = method.build(test);
   DistanceResult result = method.measure(samples, options);
+  method.release();
   result.build_seconds = build_seconds;
   return result;
 }

@@ -107,6 +107,10 @@ class DistanceMethod {
   // (h <= 0 or not finite, unsupported semantics).
   virtual DistanceResult measure(const SampleSet& samples, const DistanceOptions& options) = 0;
 
+  // Frees what build() made (its BVH, tree or GL scene), so that statistics and output after
+  // the query do not hold it too; measure() then needs build() again.
+  virtual void release() {}
+
   bool supports(Semantics semantics) const;
 
   // Who hears how far measure() has got (empty: nobody).
@@ -158,7 +162,7 @@ DistanceResult measure_each(std::size_t count, const DistanceOf& distance_of,
 // Checks options against `method` and throws roving::Error naming the option on failure.
 void validate_options(const DistanceMethod& method, const DistanceOptions& options);
 
-// build() + measure(), with both times filled in.
+// build() + measure() + release(), with both times filled in.
 DistanceResult measure_distances(DistanceMethod& method, const TriangleMesh& test, const SampleSet& samples,
                                  const DistanceOptions& options);
 

@@ -62,6 +62,12 @@ void GlScene::build(GlBackend backend, const TriangleMesh& test_model) {
   test = &test_model;
 }
 
+void GlScene::release() {
+  grid.reset();
+  clusters.reset();
+  test = nullptr;
+}
+
 std::string GlScene::renderer_name() const {
   const RendererInfo info = renderer->info();
   return fmt::format("{}: {} ({})", info.backend, info.renderer, info.version);

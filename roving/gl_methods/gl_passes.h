@@ -24,6 +24,8 @@ struct GlScene {
   const TriangleMesh* test = nullptr;
 
   void build(GlBackend backend, const TriangleMesh& test_model);
+  // Frees the culling structures (the renderer and its context stay, to be reused).
+  void release();
   std::string renderer_name() const;
 };
 
@@ -70,6 +72,7 @@ class GlMethod : public DistanceMethod {
   explicit GlMethod(GlMethodOptions options) : options_(options) {}
   std::vector<Semantics> supported_semantics() const override { return {Semantics::FirstHit}; }
   double build(const TriangleMesh& test) override;
+  void release() override { scene_.release(); }
   DistanceResult measure(const SampleSet& samples, const DistanceOptions& options) final;
 
  protected:
