@@ -21,20 +21,19 @@ class Cooperative final : public GlMethod {
     std::iota(candidates.begin(), candidates.end(), 0u);
     std::optional<ViewBudget> budget;
     if (options_.auto_views) budget = calibrate(samples, max_error, report, record, candidates);
-    const auto viewed =
-        view_sample(scene_, samples, candidates, max_error, options_, report, progress_, budget ? &*budget : nullptr);
-    std::vector<std::uint32_t> rejected;
-    for (std::uint32_t k : candidates) {
-      if (viewed[k]) {
-        record(k, *viewed[k], Resolution::View);
-      } else {
-        rejected.push_back(k);
-      }
-    }
-    const auto roved = rove(scene_, samples, rejected, max_error, report, progress_);
-    for (std::size_t i = 0; i < rejected.size(); ++i) {
-      if (roved[i]) record(rejected[i], *roved[i], Resolution::Camera);
-    }
+    std::vector<std::uint8_t> viewed(samples.size(), 0);
+    view_sample(
+        scene_, samples, candidates, max_error, options_, report, progress_,
+        [&](std::uint32_t k, double d) {
+          viewed[k] = 1;
+          record(k, d, Resolution::View);
+        },
+        budget ? &*budget : nullptr);
+    // What no view accepted goes to the cameras (candidates is reused for it).
+    candidates.erase(std::remove_if(candidates.begin(), candidates.end(), [&](std::uint32_t k) { return viewed[k]; }),
+                     candidates.end());
+    rove(scene_, samples, candidates, max_error, report, progress_,
+         [&](std::uint32_t k, double d) { record(k, d, Resolution::Camera); });
   }
 
  private:
@@ -54,11 +53,9 @@ class Cooperative final : public GlMethod {
     double seconds_per_camera = 0;
     for (const auto& half : spread) {
       const Stopwatch watch;
-      const auto roved = rove(scene_, samples, half, max_error, report, progress_);
+      rove(scene_, samples, half, max_error, report, progress_,
+           [&](std::uint32_t k, double d) { record(k, d, Resolution::Camera); });
       seconds_per_camera = watch.seconds() / double(std::max<std::size_t>(half.size(), 1));
-      for (std::size_t i = 0; i < half.size(); ++i) {
-        if (roved[i]) record(half[i], *roved[i], Resolution::Camera);
-      }
     }
     candidates.erase(std::remove_if(candidates.begin(), candidates.end(), [&](std::uint32_t k) { return taken[k]; }),
                      candidates.end());

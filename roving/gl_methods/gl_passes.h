@@ -29,11 +29,14 @@ struct GlScene {
   std::string renderer_name() const;
 };
 
-// Surface roving for samples[indices[i]]: out[i] is d (first hit) or nullopt. Fills the
-// report's camera fields; tells `progress` of each batch of cameras.
-std::vector<std::optional<double>> rove(GlScene& scene, const SampleSet& samples,
-                                        const std::vector<std::uint32_t>& indices, double max_error,
-                                        GlReport& report, const ProgressFn& progress);
+// Where a pass hands each sample it resolves, k, and its d (first hit). Passed on at once
+// rather than gathered, so that no pass holds a value for every sample.
+using Found = std::function<void(std::uint32_t k, double d)>;
+
+// Surface roving for samples[indices[i]]: found(k, d) for each k of `indices` whose camera sees
+// M_C. Fills the report's camera fields; tells `progress` of each batch of cameras.
+void rove(GlScene& scene, const SampleSet& samples, const std::vector<std::uint32_t>& indices, double max_error,
+          GlReport& report, const ProgressFn& progress, const Found& found);
 
 // `--views auto`: a view is drawn while its expected cost stays below that of the per-sample
 // cameras it would save. A camera's cost is measured by a first batch of cameras; a view's, and
@@ -56,14 +59,13 @@ class ViewBudget {
   std::size_t views_ = 0, attempted_ = 0, resolved_ = 0;
 };
 
-// Viewpoint sampling of samples[candidates]: out[k] is d where a view accepted sample k. Views
-// go in decreasing number of samples; with a `budget`, the first view not worth drawing ends
-// them (the rest have fewer samples still). Fills the report's view fields; tells `progress` of
-// each view.
-std::vector<std::optional<double>> view_sample(GlScene& scene, const SampleSet& samples,
-                                               const std::vector<std::uint32_t>& candidates, double max_error,
-                                               const GlMethodOptions& options, GlReport& report,
-                                               const ProgressFn& progress, ViewBudget* budget = nullptr);
+// Viewpoint sampling of samples[candidates]: found(k, d) where a view accepted sample k, from
+// several threads at once (for different k). Views go in decreasing number of samples; with a
+// `budget`, the first view not worth drawing ends them (the rest have fewer samples still).
+// Fills the report's view fields; tells `progress` of each view.
+void view_sample(GlScene& scene, const SampleSet& samples, const std::vector<std::uint32_t>& candidates,
+                 double max_error, const GlMethodOptions& options, GlReport& report, const ProgressFn& progress,
+                 const Found& found, ViewBudget* budget = nullptr);
 
 // What the three GL methods share: checks, timing, and filling in the result and report; each
 // method only says how it resolves samples.

@@ -104,18 +104,15 @@ class SurfaceRoving final : public GlMethod {
   void resolve(const SampleSet& samples, double max_error, GlReport& report, const Record& record) override {
     std::vector<std::uint32_t> all(samples.size());
     for (std::uint32_t k = 0; k < all.size(); ++k) all[k] = k;
-    const auto d = rove(scene_, samples, all, max_error, report, progress_);
-    for (std::uint32_t k = 0; k < all.size(); ++k) {
-      if (d[k]) record(k, *d[k], Resolution::Camera);
-    }
+    rove(scene_, samples, all, max_error, report, progress_,
+         [&](std::uint32_t k, double d) { record(k, d, Resolution::Camera); });
   }
 };
 
 }  // namespace
 
-std::vector<std::optional<double>> rove(GlScene& scene, const SampleSet& samples,
-                                        const std::vector<std::uint32_t>& indices, double max_error,
-                                        GlReport& report, const ProgressFn& progress) {
+void rove(GlScene& scene, const SampleSet& samples, const std::vector<std::uint32_t>& indices, double max_error,
+          GlReport& report, const ProgressFn& progress, const Found& found) {
   const TriangleMesh& test = *scene.test;
   // The camera's half-width: half a pixel across, and the shared rule's tolerance, which the
   // lines and points drawn for edges and vertices near the ray reach (normal_line.h). Tiny:
@@ -128,7 +125,6 @@ std::vector<std::optional<double>> rove(GlScene& scene, const SampleSet& samples
   report.camera_depth_step = 2 * half_depth * std::ldexp(1.0, -24);
   report.sample_cameras += indices.size();
 
-  std::vector<std::optional<double>> out(indices.size());
   std::vector<float> depth;
   for (std::size_t first = 0; first < indices.size(); first += kTilesPerBatch) {
     const std::size_t count = std::min(kTilesPerBatch, indices.size() - first);
@@ -162,13 +158,12 @@ std::vector<std::optional<double>> rove(GlScene& scene, const SampleSet& samples
     for (std::size_t tile = 0; tile < count; ++tile) {
       // Depth z is t / 2h along the ray from x + h n; d = h - t. 1 is the cleared, empty tile.
       if (depth[tile] < 1.0f) {
-        out[first + tile] =
-            std::clamp(half_depth - double(depth[tile]) * 2 * half_depth, -max_error, max_error);
+        found(indices[first + tile],
+              std::clamp(half_depth - double(depth[tile]) * 2 * half_depth, -max_error, max_error));
       }
     }
     if (progress) progress("cameras", first + count, indices.size());
   }
-  return out;
 }
 
 std::unique_ptr<DistanceMethod> make_surface_roving(const GlMethodOptions& options) {

@@ -4,6 +4,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <numeric>
 
@@ -171,10 +172,9 @@ class ViewLine {
 
 }  // namespace
 
-std::vector<std::optional<double>> view_sample(GlScene& scene, const SampleSet& samples,
-                                               const std::vector<std::uint32_t>& candidates, double max_error,
-                                               const GlMethodOptions& options, GlReport& report,
-                                               const ProgressFn& progress, ViewBudget* budget) {
+void view_sample(GlScene& scene, const SampleSet& samples, const std::vector<std::uint32_t>& candidates,
+                 double max_error, const GlMethodOptions& options, GlReport& report, const ProgressFn& progress,
+                 const Found& found, ViewBudget* budget) {
   // Voxel references have only axis normals: then the 6 axis views suffice (Section 4.3).
   const bool axis_normals = std::all_of(samples.normals.begin(), samples.normals.end(), [](const Vec3& n) {
     return n.cwiseAbs().maxCoeff() == 1.0 && n.cwiseAbs().sum() == 1.0;
@@ -215,7 +215,6 @@ std::vector<std::optional<double>> view_sample(GlScene& scene, const SampleSet& 
   // Four neighbouring depths are one smooth patch when they differ by less than a surface at
   // 80 degrees to the view would over two pixels (in normalised depth).
   const double smooth_span = 2 * report.view_pixel_size * std::tan(80 * M_PI / 180) / (2 * radius);
-  std::vector<std::optional<double>> out(samples.size());
   std::vector<float> depth;
   const std::size_t views = std::count_if(groups.begin(), groups.end(), [](const auto& g) { return !g.empty(); });
   for (const std::uint32_t d : order) {
@@ -224,6 +223,11 @@ std::vector<std::optional<double>> view_sample(GlScene& scene, const SampleSet& 
     if (progress) progress("views", report.views_rendered, views);
     ++report.views_rendered;
     const Stopwatch watch;
+    std::atomic<std::size_t> resolved{0};
+    const auto accept = [&](std::uint32_t k, double d) {
+      found(k, d);
+      ++resolved;
+    };
     // The camera looks against the direction, at the surfaces facing it.
     const OrthoCamera camera =
         OrthoCamera::looking_along(-directions[d], box.centre(), radius, radius, radius);
@@ -242,7 +246,8 @@ std::vector<std::optional<double>> view_sample(GlScene& scene, const SampleSet& 
                         [&](const tbb::blocked_range<std::size_t>& range) {
                           for (std::size_t i = range.begin(); i != range.end(); ++i) {
                             const std::uint32_t k = groups[d][i];
-                            out[k] = view.first_crossing(samples.positions[k], samples.normals[k], max_error);
+                            const auto s = view.first_crossing(samples.positions[k], samples.normals[k], max_error);
+                            if (s) accept(k, *s);
                           }
                         });
     } else {
@@ -257,15 +262,11 @@ std::vector<std::optional<double>> view_sample(GlScene& scene, const SampleSet& 
         // The occlusion test: another part of M_C in front shows as a difference beyond h.
         if (std::abs(along_view) > max_error) continue;
         // To the normal: a surface parallel to M_R's at distance d meets the view line at d / cos.
-        out[k] = options.cosine_correction ? along_view * directions[d].dot(samples.normals[k]) : along_view;
+        accept(k, options.cosine_correction ? along_view * directions[d].dot(samples.normals[k]) : along_view);
       }
     }
-    if (budget) {
-      const auto resolved = std::count_if(groups[d].begin(), groups[d].end(), [&](std::uint32_t k) { return out[k]; });
-      budget->record_view(watch.seconds(), groups[d].size(), resolved);
-    }
+    if (budget) budget->record_view(watch.seconds(), groups[d].size(), resolved);
   }
-  return out;
 }
 
 namespace {
@@ -278,10 +279,8 @@ class ViewpointSampling final : public GlMethod {
   void resolve(const SampleSet& samples, double max_error, GlReport& report, const Record& record) override {
     std::vector<std::uint32_t> all(samples.size());
     std::iota(all.begin(), all.end(), 0u);
-    const auto d = view_sample(scene_, samples, all, max_error, options_, report, progress_);
-    for (std::uint32_t k = 0; k < samples.size(); ++k) {
-      if (d[k]) record(k, *d[k], Resolution::View);
-    }
+    view_sample(scene_, samples, all, max_error, options_, report, progress_,
+                [&](std::uint32_t k, double d) { record(k, d, Resolution::View); });
   }
 };
 
