@@ -147,6 +147,7 @@ void BM_RovingCameras(benchmark::State& state) {
     state.SkipWithError("roving disagrees with Embree");
     return;
   }
+  roving->build(p.test);  // measure_distances released it
   for (auto _ : state) benchmark::DoNotOptimize(roving->measure(p.samples, options));
   state.SetItemsProcessed(static_cast<int64_t>(state.iterations() * p.samples.size()));
 }

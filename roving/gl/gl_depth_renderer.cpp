@@ -148,14 +148,15 @@ class GlDepthRenderer final : public DepthRenderer {
     context_->make_current();
     require_view(resolution);
     if (rect.x0 < 0 || rect.y0 < 0 || rect.x1 > resolution || rect.y1 > resolution) {
-      throw Error(fmt::format("gl: pixel rectangle [{}, {}) x [{}, {}) outside a {}-pixel view", rect.x0, rect.x1,
-                              rect.y0, rect.y1, resolution));
+      throw Error(fmt::format("gl: pixel rectangle [{}, {}) x [{}, {}) outside a {}-pixel view", rect.x0,
+                              rect.x1, rect.y0, rect.y1, resolution));
     }
-    const bool corners_valid = corners.size() % 3 == 0 && std::all_of(corners.begin(), corners.end(), [&](std::uint32_t v) {
-      return v < model_vertex_count_;
-    });
+    const bool corners_valid =
+        corners.size() % 3 == 0 &&
+        std::all_of(corners.begin(), corners.end(), [&](std::uint32_t v) { return v < model_vertex_count_; });
     if (!corners_valid) {
-      throw Error(fmt::format("gl: part of a view needs three corners a triangle, each below {} vertices", model_vertex_count_));
+      throw Error(fmt::format("gl: part of a view needs three corners a triangle, each below {} vertices",
+                              model_vertex_count_));
     }
     depth.resize(static_cast<std::size_t>(resolution) * resolution);
     if (rect.empty()) return;
@@ -167,7 +168,8 @@ class GlDepthRenderer final : public DepthRenderer {
       use_view_program(camera);
       gl_.BindVertexArray(model_vao_);
       gl_.BindBuffer(GL_ELEMENT_ARRAY_BUFFER, part_buffer_);
-      gl_.BufferData(GL_ELEMENT_ARRAY_BUFFER, corners.size() * sizeof(std::uint32_t), corners.data(), GL_STREAM_DRAW);
+      gl_.BufferData(GL_ELEMENT_ARRAY_BUFFER, corners.size() * sizeof(std::uint32_t), corners.data(),
+                     GL_STREAM_DRAW);
       gl_.DrawElements(GL_TRIANGLES, static_cast<GLsizei>(corners.size()), GL_UNSIGNED_INT, nullptr);
       gl_.BindBuffer(GL_ELEMENT_ARRAY_BUFFER, model_indices_);
     }
@@ -179,7 +181,6 @@ class GlDepthRenderer final : public DepthRenderer {
     gl_.Disable(GL_SCISSOR_TEST);
     check("rendering part of a view");
   }
-
 
   void render_tiles(const std::vector<TileVertex>& vertices, std::size_t tile_count,
                     std::vector<float>& depth) override {

@@ -29,9 +29,11 @@ class Cooperative final : public GlMethod {
           record(k, d, Resolution::View);
         },
         budget ? &*budget : nullptr);
+    scene_.clusters.reset();  // the views' culling structure; the cameras use the grid
     // What no view accepted goes to the cameras (candidates is reused for it).
-    candidates.erase(std::remove_if(candidates.begin(), candidates.end(), [&](std::uint32_t k) { return viewed[k]; }),
-                     candidates.end());
+    candidates.erase(
+        std::remove_if(candidates.begin(), candidates.end(), [&](std::uint32_t k) { return viewed[k]; }),
+        candidates.end());
     rove(scene_, samples, candidates, max_error, report, progress_,
          [&](std::uint32_t k, double d) { record(k, d, Resolution::Camera); });
   }
@@ -42,7 +44,8 @@ class Cooperative final : public GlMethod {
   // to warm up (per-thread buffers sized to M_C, the driver's first batch), the second timed.
   ViewBudget calibrate(const SampleSet& samples, double max_error, GlReport& report, const Record& record,
                        std::vector<std::uint32_t>& candidates) {
-    const std::size_t count = std::min(samples.size(), std::clamp<std::size_t>(samples.size() / 16, 4096, 65536));
+    const std::size_t count =
+        std::min(samples.size(), std::clamp<std::size_t>(samples.size() / 16, 4096, 65536));
     std::vector<std::uint32_t> spread[2];
     std::vector<std::uint8_t> taken(samples.size(), 0);
     for (std::size_t i = 0; i < count; ++i) {
@@ -57,8 +60,9 @@ class Cooperative final : public GlMethod {
            [&](std::uint32_t k, double d) { record(k, d, Resolution::Camera); });
       seconds_per_camera = watch.seconds() / double(std::max<std::size_t>(half.size(), 1));
     }
-    candidates.erase(std::remove_if(candidates.begin(), candidates.end(), [&](std::uint32_t k) { return taken[k]; }),
-                     candidates.end());
+    candidates.erase(
+        std::remove_if(candidates.begin(), candidates.end(), [&](std::uint32_t k) { return taken[k]; }),
+        candidates.end());
     return ViewBudget(seconds_per_camera);  // the second, warm half's
   }
 };

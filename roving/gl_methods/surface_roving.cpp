@@ -111,8 +111,8 @@ class SurfaceRoving final : public GlMethod {
 
 }  // namespace
 
-void rove(GlScene& scene, const SampleSet& samples, const std::vector<std::uint32_t>& indices, double max_error,
-          GlReport& report, const ProgressFn& progress, const Found& found) {
+void rove(GlScene& scene, const SampleSet& samples, const std::vector<std::uint32_t>& indices,
+          double max_error, GlReport& report, const ProgressFn& progress, const Found& found) {
   const TriangleMesh& test = *scene.test;
   // The camera's half-width: half a pixel across, and the shared rule's tolerance, which the
   // lines and points drawn for edges and vertices near the ray reach (normal_line.h). Tiny:

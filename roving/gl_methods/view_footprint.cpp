@@ -19,7 +19,9 @@ int floor_pixel(double x) {
 }
 
 // Bits lo..hi (inclusive, 0..63) of a word.
-std::uint64_t bit_range(int lo, int hi) { return (~std::uint64_t{0} << lo) & (~std::uint64_t{0} >> (63 - hi)); }
+std::uint64_t bit_range(int lo, int hi) {
+  return (~std::uint64_t{0} << lo) & (~std::uint64_t{0} >> (63 - hi));
+}
 
 }  // namespace
 
@@ -32,7 +34,8 @@ void ViewFootprint::Bitmap::mark(int i0, int j0, int i1, int j1) {
   i0 >>= shift_, j0 >>= shift_, i1 >>= shift_, j1 >>= shift_;
   for (int j = j0; j <= j1; ++j) {
     std::uint64_t* row = bits_.data() + static_cast<std::size_t>(j) * words_;
-    for (int w = i0 / 64; w <= i1 / 64; ++w) row[w] |= bit_range(w == i0 / 64 ? i0 % 64 : 0, w == i1 / 64 ? i1 % 64 : 63);
+    for (int w = i0 / 64; w <= i1 / 64; ++w)
+      row[w] |= bit_range(w == i0 / 64 ? i0 % 64 : 0, w == i1 / 64 ? i1 % 64 : 63);
   }
 }
 
@@ -86,7 +89,8 @@ void ViewFootprint::mark(int i0, int j0, int i1, int j1) {
   if (i0 > i1 || j0 > j1) return;
   fine_.mark(i0, j0, i1, j1);
   coarse_.mark(i0, j0, i1, j1);
-  rect_ = {std::min(rect_.x0, i0), std::min(rect_.y0, j0), std::max(rect_.x1, i1 + 1), std::max(rect_.y1, j1 + 1)};
+  rect_ = {std::min(rect_.x0, i0), std::min(rect_.y0, j0), std::max(rect_.x1, i1 + 1),
+           std::max(rect_.y1, j1 + 1)};
 }
 
 bool ViewFootprint::covers(int i, int j) const {

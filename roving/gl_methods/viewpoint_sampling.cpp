@@ -173,8 +173,8 @@ class ViewLine {
 }  // namespace
 
 void view_sample(GlScene& scene, const SampleSet& samples, const std::vector<std::uint32_t>& candidates,
-                 double max_error, const GlMethodOptions& options, GlReport& report, const ProgressFn& progress,
-                 const Found& found, ViewBudget* budget) {
+                 double max_error, const GlMethodOptions& options, GlReport& report,
+                 const ProgressFn& progress, const Found& found, ViewBudget* budget) {
   // Voxel references have only axis normals: then the 6 axis views suffice (Section 4.3).
   const bool axis_normals = std::all_of(samples.normals.begin(), samples.normals.end(), [](const Vec3& n) {
     return n.cwiseAbs().maxCoeff() == 1.0 && n.cwiseAbs().sum() == 1.0;
@@ -182,22 +182,28 @@ void view_sample(GlScene& scene, const SampleSet& samples, const std::vector<std
   const std::vector<Vec3> directions =
       axis_normals ? axis_directions() : view_directions(options.views_h, options.views_v);
   report.axis_views = axis_normals;
-  // Each sample goes to the direction nearest its normal.
-  std::vector<std::uint32_t> direction_of(candidates.size());
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, candidates.size(), 1024),
-                    [&](const tbb::blocked_range<std::size_t>& range) {
-                      for (std::size_t i = range.begin(); i != range.end(); ++i) {
-                        std::uint32_t best = 0;
-                        double best_dot = -2;
-                        for (std::uint32_t d = 0; d < directions.size(); ++d) {
-                          const double dot = directions[d].dot(samples.normals[candidates[i]]);
-                          if (dot > best_dot) best_dot = dot, best = d;
-                        }
-                        direction_of[i] = best;
-                      }
-                    });
+  // Each sample goes to the direction nearest its normal; groups are sized before they are
+  // filled, and the per-sample directions freed once grouped.
   std::vector<std::vector<std::uint32_t>> groups(directions.size());
-  for (std::size_t i = 0; i < candidates.size(); ++i) groups[direction_of[i]].push_back(candidates[i]);
+  {
+    std::vector<std::uint32_t> direction_of(candidates.size());
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, candidates.size(), 1024),
+                      [&](const tbb::blocked_range<std::size_t>& range) {
+                        for (std::size_t i = range.begin(); i != range.end(); ++i) {
+                          std::uint32_t best = 0;
+                          double best_dot = -2;
+                          for (std::uint32_t d = 0; d < directions.size(); ++d) {
+                            const double dot = directions[d].dot(samples.normals[candidates[i]]);
+                            if (dot > best_dot) best_dot = dot, best = d;
+                          }
+                          direction_of[i] = best;
+                        }
+                      });
+    std::vector<std::size_t> sizes(directions.size(), 0);
+    for (const std::uint32_t d : direction_of) ++sizes[d];
+    for (std::size_t d = 0; d < directions.size(); ++d) groups[d].reserve(sizes[d]);
+    for (std::size_t i = 0; i < candidates.size(); ++i) groups[direction_of[i]].push_back(candidates[i]);
+  }
   // Fullest views first: with a budget, the views worth drawing come first.
   std::vector<std::uint32_t> order(directions.size());
   std::iota(order.begin(), order.end(), 0u);
@@ -216,7 +222,8 @@ void view_sample(GlScene& scene, const SampleSet& samples, const std::vector<std
   // 80 degrees to the view would over two pixels (in normalised depth).
   const double smooth_span = 2 * report.view_pixel_size * std::tan(80 * M_PI / 180) / (2 * radius);
   std::vector<float> depth;
-  const std::size_t views = std::count_if(groups.begin(), groups.end(), [](const auto& g) { return !g.empty(); });
+  const std::size_t views =
+      std::count_if(groups.begin(), groups.end(), [](const auto& g) { return !g.empty(); });
   for (const std::uint32_t d : order) {
     if (groups[d].empty()) break;
     if (budget && !budget->worth_a_view(groups[d].size())) break;
@@ -232,10 +239,11 @@ void view_sample(GlScene& scene, const SampleSet& samples, const std::vector<std
     const OrthoCamera camera =
         OrthoCamera::looking_along(-directions[d], box.centre(), radius, radius, radius);
     if (options.cull_views) {
-      const ViewFootprint footprint(camera, resolution, samples, groups[d], options.normal_line ? max_error : 0.0);
+      const ViewFootprint footprint(camera, resolution, samples, groups[d],
+                                    options.normal_line ? max_error : 0.0);
       if (!scene.clusters) scene.clusters = std::make_unique<TriangleClusters>(*scene.test);
-      scene.renderer->render_view_part(camera, resolution, footprint.rect(), footprint.corners_reaching(*scene.clusters),
-                                       depth);
+      scene.renderer->render_view_part(camera, resolution, footprint.rect(),
+                                       footprint.corners_reaching(*scene.clusters), depth);
     } else {
       scene.renderer->render_view(camera, resolution, depth);
     }
@@ -246,7 +254,8 @@ void view_sample(GlScene& scene, const SampleSet& samples, const std::vector<std
                         [&](const tbb::blocked_range<std::size_t>& range) {
                           for (std::size_t i = range.begin(); i != range.end(); ++i) {
                             const std::uint32_t k = groups[d][i];
-                            const auto s = view.first_crossing(samples.positions[k], samples.normals[k], max_error);
+                            const auto s =
+                                view.first_crossing(samples.positions[k], samples.normals[k], max_error);
                             if (s) accept(k, *s);
                           }
                         });
@@ -254,15 +263,16 @@ void view_sample(GlScene& scene, const SampleSet& samples, const std::vector<std
       // The paper's reading: the view at the sample's own pixel, within h of its depth.
       for (std::uint32_t k : groups[d]) {
         const Vec3 q = camera.to_normalised(samples.positions[k]);
-        const std::optional<double> seen =
-            read_depth(depth, resolution, 0.5 * q.x() + 0.5, 0.5 * q.y() + 0.5, options.bilinear, smooth_span);
+        const std::optional<double> seen = read_depth(depth, resolution, 0.5 * q.x() + 0.5, 0.5 * q.y() + 0.5,
+                                                      options.bilinear, smooth_span);
         if (!seen) continue;  // nothing drawn there
         // Along the view direction: positive where M_C is nearer the camera than the sample.
         const double along_view = (q.z() - *seen) * 2 * radius;
         // The occlusion test: another part of M_C in front shows as a difference beyond h.
         if (std::abs(along_view) > max_error) continue;
         // To the normal: a surface parallel to M_R's at distance d meets the view line at d / cos.
-        accept(k, options.cosine_correction ? along_view * directions[d].dot(samples.normals[k]) : along_view);
+        accept(k,
+               options.cosine_correction ? along_view * directions[d].dot(samples.normals[k]) : along_view);
       }
     }
     if (budget) budget->record_view(watch.seconds(), groups[d].size(), resolved);
