@@ -40,8 +40,8 @@ void rove(GlScene& scene, const SampleSet& samples, const std::vector<std::uint3
 
 // `--views auto`: a view is drawn while its expected cost stays below that of the per-sample
 // cameras it would save. A camera's cost is measured by a first batch of cameras; a view's, and
-// the fraction of its samples a view resolves, by the views drawn so far (the first is always
-// drawn, to measure).
+// the fraction of its samples a view resolves, by the views read so far (a view is read while
+// the next is drawn, so the first two are always drawn).
 class ViewBudget {
  public:
   explicit ViewBudget(double seconds_per_camera) : seconds_per_camera_(seconds_per_camera) {}

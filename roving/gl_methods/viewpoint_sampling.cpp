@@ -2,8 +2,10 @@
 // samples, read at each sample's pixel.
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/task_group.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cmath>
 #include <numeric>
@@ -221,61 +223,108 @@ void view_sample(GlScene& scene, const SampleSet& samples, const std::vector<std
   // Four neighbouring depths are one smooth patch when they differ by less than a surface at
   // 80 degrees to the view would over two pixels (in normalised depth).
   const double smooth_span = 2 * report.view_pixel_size * std::tan(80 * M_PI / 180) / (2 * radius);
-  std::vector<float> depth;
   const std::size_t views =
       std::count_if(groups.begin(), groups.end(), [](const auto& g) { return !g.empty(); });
-  for (const std::uint32_t d : order) {
-    if (groups[d].empty()) break;
-    if (budget && !budget->worth_a_view(groups[d].size())) break;
-    if (progress) progress("views", report.views_rendered, views);
-    ++report.views_rendered;
-    const Stopwatch watch;
+  // A view to draw: its camera (looking against the direction, at the surfaces facing it) and,
+  // when culled, the pixels read and the triangles that can cover them.
+  struct View {
+    std::uint32_t direction = 0;
+    OrthoCamera camera;
+    PixelRect rect;
+    std::vector<std::uint32_t> corners;
+    std::vector<float> depth;
+  };
+  if (options.cull_views && !scene.clusters) scene.clusters = std::make_unique<TriangleClusters>(*scene.test);
+  const auto prepare = [&](View& view, std::uint32_t d) {
+    view.direction = d;
+    view.camera = OrthoCamera::looking_along(-directions[d], box.centre(), radius, radius, radius);
+    if (!options.cull_views) return;
+    const ViewFootprint footprint(view.camera, resolution, samples, groups[d],
+                                  options.normal_line ? max_error : 0.0);
+    view.rect = footprint.rect();
+    view.corners = footprint.corners_reaching(*scene.clusters);
+  };
+  const auto draw = [&](View& view) {
+    if (options.cull_views) {
+      scene.renderer->render_view_part(view.camera, resolution, view.rect, view.corners, view.depth);
+    } else {
+      scene.renderer->render_view(view.camera, resolution, view.depth);
+    }
+  };
+  // The samples of a drawn view: found(k, d) for each it accepts; returns how many.
+  const auto read = [&](const View& view) {
+    const std::vector<std::uint32_t>& group = groups[view.direction];
+    const OrthoCamera& camera = view.camera;
     std::atomic<std::size_t> resolved{0};
     const auto accept = [&](std::uint32_t k, double d) {
       found(k, d);
       ++resolved;
     };
-    // The camera looks against the direction, at the surfaces facing it.
-    const OrthoCamera camera =
-        OrthoCamera::looking_along(-directions[d], box.centre(), radius, radius, radius);
-    if (options.cull_views) {
-      const ViewFootprint footprint(camera, resolution, samples, groups[d],
-                                    options.normal_line ? max_error : 0.0);
-      if (!scene.clusters) scene.clusters = std::make_unique<TriangleClusters>(*scene.test);
-      scene.renderer->render_view_part(camera, resolution, footprint.rect(),
-                                       footprint.corners_reaching(*scene.clusters), depth);
-    } else {
-      scene.renderer->render_view(camera, resolution, depth);
-    }
     if (options.normal_line) {
-      const ViewLine view(camera, depth, resolution, smooth_span, 2 * radius, report.view_pixel_size,
+      const ViewLine line(camera, view.depth, resolution, smooth_span, 2 * radius, report.view_pixel_size,
                           report.view_depth_step);
-      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, groups[d].size(), 256),
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, group.size(), 256),
                         [&](const tbb::blocked_range<std::size_t>& range) {
                           for (std::size_t i = range.begin(); i != range.end(); ++i) {
-                            const std::uint32_t k = groups[d][i];
+                            const std::uint32_t k = group[i];
                             const auto s =
-                                view.first_crossing(samples.positions[k], samples.normals[k], max_error);
+                                line.first_crossing(samples.positions[k], samples.normals[k], max_error);
                             if (s) accept(k, *s);
                           }
                         });
     } else {
       // The paper's reading: the view at the sample's own pixel, within h of its depth.
-      for (std::uint32_t k : groups[d]) {
+      const Vec3& direction = directions[view.direction];
+      for (std::uint32_t k : group) {
         const Vec3 q = camera.to_normalised(samples.positions[k]);
-        const std::optional<double> seen = read_depth(depth, resolution, 0.5 * q.x() + 0.5, 0.5 * q.y() + 0.5,
-                                                      options.bilinear, smooth_span);
+        const std::optional<double> seen = read_depth(view.depth, resolution, 0.5 * q.x() + 0.5,
+                                                      0.5 * q.y() + 0.5, options.bilinear, smooth_span);
         if (!seen) continue;  // nothing drawn there
         // Along the view direction: positive where M_C is nearer the camera than the sample.
         const double along_view = (q.z() - *seen) * 2 * radius;
         // The occlusion test: another part of M_C in front shows as a difference beyond h.
         if (std::abs(along_view) > max_error) continue;
         // To the normal: a surface parallel to M_R's at distance d meets the view line at d / cos.
-        accept(k,
-               options.cosine_correction ? along_view * directions[d].dot(samples.normals[k]) : along_view);
+        accept(k, options.cosine_correction ? along_view * direction.dot(samples.normals[k]) : along_view);
       }
     }
-    if (budget) budget->record_view(watch.seconds(), groups[d].size(), resolved);
+    return resolved.load();
+  };
+
+  // A pipeline of three views: while the GL thread (this one) draws view i, the other cores read
+  // view i - 1 and prepare view i + 1 (footprint and culling), so that the CPU work hides behind
+  // the driver's. The order of views, and what each reads, are those of drawing one at a time.
+  std::array<View, 3> ring;  // view i in ring[i % 3]
+  const auto worth_drawing = [&](std::size_t i) {
+    return i < views && (!budget || budget->worth_a_view(groups[order[i]].size()));
+  };
+  std::size_t drawn = 0;
+  double previous_seconds = 0;
+  if (worth_drawing(0)) prepare(ring[0], order[0]);
+  for (; worth_drawing(drawn); ++drawn) {
+    const std::size_t i = drawn;
+    if (progress) progress("views", report.views_rendered, views);
+    ++report.views_rendered;
+    const Stopwatch watch;
+    std::size_t previous_resolved = 0;
+    tbb::task_group others;
+    others.run([&] {
+      if (i > 0) previous_resolved = read(ring[(i - 1) % 3]);
+      if (i + 1 < views) prepare(ring[(i + 1) % 3], order[i + 1]);
+    });
+    try {
+      draw(ring[i % 3]);
+    } catch (...) {
+      others.wait();
+      throw;
+    }
+    others.wait();
+    if (budget && i > 0) budget->record_view(previous_seconds, groups[order[i - 1]].size(), previous_resolved);
+    previous_seconds = watch.seconds();
+  }
+  if (drawn > 0) {
+    const std::size_t resolved = read(ring[(drawn - 1) % 3]);
+    if (budget) budget->record_view(previous_seconds, groups[order[drawn - 1]].size(), resolved);
   }
 }
 
