@@ -319,7 +319,8 @@ void view_sample(GlScene& scene, const SampleSet& samples, const std::vector<std
       throw;
     }
     others.wait();
-    if (budget && i > 0) budget->record_view(previous_seconds, groups[order[i - 1]].size(), previous_resolved);
+    if (budget && i > 0)
+      budget->record_view(previous_seconds, groups[order[i - 1]].size(), previous_resolved);
     previous_seconds = watch.seconds();
   }
   if (drawn > 0) {
