@@ -1,6 +1,7 @@
 // Exact surface roving (paper Section 4.1): one orthographic one-pixel camera per sample.
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/task_group.h>
 
 #include <algorithm>
 #include <cmath>
@@ -59,8 +60,9 @@ void widen_edge(const Vec3& p, const Vec3& q, const Emit& emit) {
   for (const int i : {0, 1, 2, 0, 2, 3}) emit(corners[i]);
 }
 
-// Tiles per draw: 512 x 512, well inside every GL's framebuffer and a few MB of vertices.
-constexpr std::size_t kTilesPerBatch = 512 * 512;
+// Tiles per draw: 64 x 64, small enough that the next batch is built while one is drawn, large
+// enough that the per-draw cost (clear, flush, read back) is spread over many cameras.
+constexpr std::size_t kTilesPerBatch = 64 * 64;
 constexpr std::size_t kSamplesPerChunk = 512;
 
 // Appends, for sample camera `camera` in tile `tile`, every triangle of the grid cells along its
@@ -125,8 +127,8 @@ void rove(GlScene& scene, const SampleSet& samples, const std::vector<std::uint3
   report.camera_depth_step = 2 * half_depth * std::ldexp(1.0, -24);
   report.sample_cameras += indices.size();
 
-  std::vector<float> depth;
-  for (std::size_t first = 0; first < indices.size(); first += kTilesPerBatch) {
+  // The triangles of batch `first` .. first + kTilesPerBatch of `indices`, tile by tile.
+  const auto emit_batch = [&](std::size_t first, std::vector<TileVertex>& vertices) {
     const std::size_t count = std::min(kTilesPerBatch, indices.size() - first);
     const std::size_t chunks = (count + kSamplesPerChunk - 1) / kSamplesPerChunk;
     std::vector<std::vector<TileVertex>> chunk_vertices(chunks);
@@ -149,12 +151,29 @@ void rove(GlScene& scene, const SampleSet& samples, const std::vector<std::uint3
             }
           }
         });
-    std::vector<TileVertex> vertices;
     std::size_t total = 0;
     for (const auto& v : chunk_vertices) total += v.size();
+    vertices.clear();
     vertices.reserve(total);
     for (const auto& v : chunk_vertices) vertices.insert(vertices.end(), v.begin(), v.end());
-    scene.renderer->render_tiles(vertices, count, depth);
+  };
+
+  // A pipeline of two batches: while the GL thread (this one) draws a batch, the other cores
+  // build the next one.
+  std::vector<TileVertex> batch[2];
+  std::vector<float> depth;
+  if (!indices.empty()) emit_batch(0, batch[0]);
+  for (std::size_t first = 0, b = 0; first < indices.size(); first += kTilesPerBatch, ++b) {
+    const std::size_t count = std::min(kTilesPerBatch, indices.size() - first);
+    tbb::task_group next;
+    if (first + count < indices.size()) next.run([&] { emit_batch(first + count, batch[(b + 1) % 2]); });
+    try {
+      scene.renderer->render_tiles(batch[b % 2], count, depth);
+    } catch (...) {
+      next.wait();
+      throw;
+    }
+    next.wait();
     for (std::size_t tile = 0; tile < count; ++tile) {
       // Depth z is t / 2h along the ray from x + h n; d = h - t. 1 is the cleared, empty tile.
       if (depth[tile] < 1.0f) {
