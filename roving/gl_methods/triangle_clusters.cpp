@@ -38,7 +38,8 @@ TriangleClusters::Box float_box(const BoundingBox& bounds, const Vec3& origin) {
 
 }  // namespace
 
-TriangleClusters::TriangleClusters(const TriangleMesh& mesh) : origin_(mesh.bounding_box().centre()) {
+TriangleClusters::TriangleClusters(const TriangleMesh& mesh)
+    : origin_(mesh.bounding_box().centre()), positions_(&mesh.positions()) {
   const auto& triangles = mesh.triangles();
   const auto& positions = mesh.positions();
   const BoundingBox& box = mesh.bounding_box();

@@ -23,10 +23,12 @@ class TriangleClusters {
     float centre[3], half_size[3];
   };
 
+  // Keeps a reference to the mesh's positions: the mesh must outlive the clusters.
   explicit TriangleClusters(const TriangleMesh& mesh);
 
   // The mesh's box centre.
   const Vec3& origin() const { return origin_; }
+  const std::vector<Vec3>& positions() const { return *positions_; }
   std::size_t count() const { return cluster_boxes_.size(); }
   // How many triangles cluster c holds.
   std::size_t size(std::size_t c) const { return std::min(kSize, boxes_.size() - c * kSize); }
@@ -39,6 +41,7 @@ class TriangleClusters {
 
  private:
   Vec3 origin_;
+  const std::vector<Vec3>* positions_;
   std::vector<std::uint32_t> corners_;  // cluster by cluster
   std::vector<Box> boxes_;              // one per triangle of corners_
   std::vector<Box> cluster_boxes_;

@@ -56,6 +56,21 @@ bool ViewFootprint::Bitmap::any(int i0, int j0, int i1, int j1) const {
   return false;
 }
 
+template <class Test>
+bool ViewFootprint::Bitmap::any_where(int i0, int j0, int i1, int j1, const Test& test) const {
+  i0 >>= shift_, j0 >>= shift_, i1 >>= shift_, j1 >>= shift_;
+  for (int j = j0; j <= j1; ++j) {
+    const std::uint64_t* row = bits_.data() + static_cast<std::size_t>(j) * words_;
+    for (int w = i0 / 64; w <= i1 / 64; ++w) {
+      std::uint64_t bits = row[w] & bit_range(w == i0 / 64 ? i0 % 64 : 0, w == i1 / 64 ? i1 % 64 : 63);
+      for (; bits != 0; bits &= bits - 1) {
+        if (test(64 * w + __builtin_ctzll(bits), j)) return true;
+      }
+    }
+  }
+  return false;
+}
+
 ViewFootprint::ViewFootprint(const OrthoCamera& camera, int resolution, const SampleSet& samples,
                              const std::vector<std::uint32_t>& group, double reach)
     : camera_(camera), resolution_(resolution), fine_(resolution, 0), coarse_(resolution, 3) {
@@ -128,6 +143,36 @@ std::vector<std::uint32_t> ViewFootprint::corners_reaching(const TriangleCluster
     return any_marked(floor_pixel(low.x()) + 1, floor_pixel(low.y()) + 1, floor_pixel(high.x()),
                       floor_pixel(high.y()));
   };
+  // A triangle whose box passes is kept where a read pixel's centre lies within kSlack of it: on
+  // the inner side of each edge's line moved out by kSlack in x and in y (which holds the
+  // triangle grown by a square of kSlack). In double: projected as the box centres are, a few
+  // thousand triangles a view, while the GL thread draws another view.
+  const std::vector<Vec3>& positions = clusters.positions();
+  const auto covers_read_pixel = [&](const std::uint32_t* corners) {
+    Eigen::Vector2d p[3];
+    for (int k = 0; k < 3; ++k) p[k] = offset + linear * (positions[corners[k]] - clusters.origin());
+    const Eigen::Vector2d u = p[1] - p[0], v = p[2] - p[0];
+    const double area = u.x() * v.y() - u.y() * v.x();
+    if (!(std::abs(area) > 0)) return true;  // degenerate (or not finite): the box decided
+    double a[3], b[3], c[3];                 // a x + b y + c >= 0 within the widened edge
+    for (int e = 0; e < 3; ++e) {
+      const Eigen::Vector2d& from = p[e];
+      const Eigen::Vector2d edge = p[(e + 1) % 3] - from;
+      a[e] = area > 0 ? -edge.y() : edge.y();
+      b[e] = area > 0 ? edge.x() : -edge.x();
+      c[e] = -(a[e] * from.x() + b[e] * from.y()) + kSlack * (std::abs(a[e]) + std::abs(b[e]));
+    }
+    const Eigen::Vector2d low = p[0].cwiseMin(p[1]).cwiseMin(p[2]), high = p[0].cwiseMax(p[1]).cwiseMax(p[2]);
+    const int i0 = std::max(floor_pixel(low.x() - 0.5 - kSlack) + 1, rect_.x0);
+    const int j0 = std::max(floor_pixel(low.y() - 0.5 - kSlack) + 1, rect_.y0);
+    const int i1 = std::min(floor_pixel(high.x() - 0.5 + kSlack), rect_.x1 - 1);
+    const int j1 = std::min(floor_pixel(high.y() - 0.5 + kSlack), rect_.y1 - 1);
+    return i0 <= i1 && j0 <= j1 && fine_.any_where(i0, j0, i1, j1, [&](int i, int j) {
+      const double x = i + 0.5, y = j + 0.5;
+      return a[0] * x + b[0] * y + c[0] >= 0 && a[1] * x + b[1] * y + c[1] >= 0 &&
+             a[2] * x + b[2] * y + c[2] >= 0;
+    });
+  };
   // A cluster whose box reaches no read pixel is passed over whole; the others are decided
   // triangle by triangle. Blocks of clusters keep their triangles in cluster order.
   constexpr std::size_t kBlock = 64;
@@ -138,8 +183,8 @@ std::vector<std::uint32_t> ViewFootprint::corners_reaching(const TriangleCluster
           for (std::size_t c = block * kBlock; c < std::min(clusters.count(), (block + 1) * kBlock); ++c) {
             if (!reaches(clusters.cluster_box(c))) continue;
             for (std::size_t t = 0; t < clusters.size(c); ++t) {
-              if (!reaches(clusters.boxes(c)[t])) continue;
               const std::uint32_t* corners = clusters.corners(c) + 3 * t;
+              if (!reaches(clusters.boxes(c)[t]) || !covers_read_pixel(corners)) continue;
               kept[block].insert(kept[block].end(), corners, corners + 3);
             }
           }

@@ -27,8 +27,9 @@ class ViewFootprint {
   // Whether some sample may read pixel (i, j).
   bool covers(int i, int j) const;
 
-  // The corners (three a triangle) of the triangles of the mesh `clusters` were made from whose
-  // projected bounding box holds a pixel some sample reads: the only ones that can set its depth.
+  // The corners (three a triangle) of the triangles of the mesh `clusters` were made from that
+  // can cover a pixel some sample reads (its centre within a quarter pixel of the projected
+  // triangle): the only ones that can set its depth.
   std::vector<std::uint32_t> corners_reaching(const TriangleClusters& clusters) const;
 
  private:
@@ -39,6 +40,9 @@ class ViewFootprint {
     Bitmap(int resolution, int shift);
     void mark(int i0, int j0, int i1, int j1);
     bool any(int i0, int j0, int i1, int j1) const;
+    // Whether test(i, j) holds for some marked square (i, j) of the range, in row order.
+    template <class Test>
+    bool any_where(int i0, int j0, int i1, int j1, const Test& test) const;
 
    private:
     int shift_, side_, words_;  // side_ squares a row, in words_ 64-bit words
