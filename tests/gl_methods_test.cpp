@@ -13,8 +13,8 @@
 #include "roving/core/error.h"
 #include "roving/core/normalise.h"
 #include "roving/core/statistics.h"
-#include "roving/gl_methods/agreement.h"
 #include "roving/gl/shaded_renderer.h"
+#include "roving/gl_methods/agreement.h"
 #include "roving/gl_methods/view_footprint.h"
 #include "roving/registry/method_registry.h"
 #include "roving/representations/surfels.h"
@@ -99,7 +99,8 @@ TEST_P(EachBackend, ShadedPictureDrawsColourOnWhiteTopRowFirst) {
   depth_renderer->render_view(along_z, 8, before);
 
   ColouredSurface face;
-  for (const Vec3& p : {Vec3(-1, 0, 1), Vec3(1, 0, 1), Vec3(1, 1, 1), Vec3(-1, 0, 1), Vec3(1, 1, 1), Vec3(-1, 1, 1)}) {
+  for (const Vec3& p :
+       {Vec3(-1, 0, 1), Vec3(1, 0, 1), Vec3(1, 1, 1), Vec3(-1, 0, 1), Vec3(1, 1, 1), Vec3(-1, 1, 1)}) {
     face.positions.push_back(p);
     face.normals.push_back(Vec3::UnitZ());
     face.colours.push_back({200, 100, 50});
@@ -341,47 +342,58 @@ namespace {
 
 // Culling and scissoring a view change no result: every pixel its samples read has the depth
 // of the whole view, bit for bit, whichever reading (normal line marched across the view, or
-// the paper's read at the sample) and whatever the direction.
+// the paper's read at the sample) and whatever the direction; also with both models far from
+// the origin, where float coordinates keep fewer digits of the model's size.
 TEST(ViewCulling, EveryPixelReadHasTheWholeViewsDepth) {
   REQUIRE_GL_CONTEXT(GlBackend::OSMesa);
   const TriangleMesh bunny = normalised(testing::bunny());
-  const TriangleMesh test = smoothly_perturbed(decimate_quadric(bunny, 10459), 0.01 * bunny.bounding_box().diagonal(),
-                                               0.5 * bunny.bounding_box().diagonal());
-  const SampleSet samples = make_samples(bunny, {});
+  const TriangleMesh perturbed =
+      smoothly_perturbed(decimate_quadric(bunny, 10459), 0.01 * bunny.bounding_box().diagonal(),
+                         0.5 * bunny.bounding_box().diagonal());
   const double h = 0.05 * bunny.bounding_box().diagonal();
-  auto renderer = make_depth_renderer(GlBackend::OSMesa);
-  renderer->upload_model(test);
-  BoundingBox box = test.bounding_box();
-  for (const Vec3& x : samples.positions) box.extend(x);
-  const double radius = 0.5 * box.diagonal() + h;
   const int resolution = 1024;
-  std::size_t pixels_compared = 0;
-  for (const Vec3& direction : {Vec3(0, 0, 1), Vec3(0.3, -1, 0.2), Vec3(-1, 0.1, 0.5)}) {
-    const Vec3 d = direction.normalized();
-    std::vector<std::uint32_t> group;  // the samples facing the view, as viewpoint sampling groups them
-    for (std::uint32_t k = 0; k < samples.size(); ++k) {
-      if (samples.normals[k].dot(d) > std::cos(10 * M_PI / 180)) group.push_back(k);
-    }
-    const OrthoCamera camera = OrthoCamera::looking_along(-d, box.centre(), radius, radius, radius);
-    std::vector<float> whole, part(static_cast<std::size_t>(resolution) * resolution, -1.0f);
-    renderer->render_view(camera, resolution, whole);
-    for (const double reach : {h, 0.0}) {
-      const ViewFootprint footprint(camera, resolution, samples, group, reach);
-      const std::vector<std::uint32_t> corners = footprint.corners_reaching(TriangleClusters(test));
-      EXPECT_LT(corners.size() / 3, test.triangle_count() / 2) << "culling keeps most triangles";
-      renderer->render_view_part(camera, resolution, footprint.rect(), corners, part);
-      for (int j = 0; j < resolution; ++j) {
-        for (int i = 0; i < resolution; ++i) {
-          if (!footprint.covers(i, j)) continue;
-          const std::size_t p = static_cast<std::size_t>(j) * resolution + i;
-          ASSERT_EQ(std::memcmp(&whole[p], &part[p], sizeof(float)), 0)
-              << "pixel (" << i << ", " << j << "): " << whole[p] << " vs " << part[p];
-          ++pixels_compared;
+  auto renderer = make_depth_renderer(GlBackend::OSMesa);
+  for (const Vec3& offset : {Vec3(0, 0, 0), Vec3(1e5, -2e5, 3e5)}) {
+    const auto moved = [&](const TriangleMesh& mesh) {
+      std::vector<Vec3> positions = mesh.positions();
+      for (Vec3& p : positions) p += offset;
+      return TriangleMesh(positions, mesh.triangles());
+    };
+    const TriangleMesh test = moved(perturbed);
+    const SampleSet samples = make_samples(moved(bunny), {});
+    renderer->upload_model(test);
+    BoundingBox box = test.bounding_box();
+    for (const Vec3& x : samples.positions) box.extend(x);
+    const double radius = 0.5 * box.diagonal() + h;
+    std::size_t pixels_compared = 0;
+    for (const Vec3& direction : {Vec3(0, 0, 1), Vec3(0.3, -1, 0.2), Vec3(-1, 0.1, 0.5)}) {
+      const Vec3 d = direction.normalized();
+      std::vector<std::uint32_t> group;  // the samples facing the view, as viewpoint sampling groups them
+      for (std::uint32_t k = 0; k < samples.size(); ++k) {
+        if (samples.normals[k].dot(d) > std::cos(10 * M_PI / 180)) group.push_back(k);
+      }
+      const OrthoCamera camera = OrthoCamera::looking_along(-d, box.centre(), radius, radius, radius);
+      std::vector<float> whole, part(static_cast<std::size_t>(resolution) * resolution, -1.0f);
+      renderer->render_view(camera, resolution, whole);
+      for (const double reach : {h, 0.0}) {
+        const ViewFootprint footprint(camera, resolution, samples, group, reach);
+        const std::vector<std::uint32_t> corners = footprint.corners_reaching(TriangleClusters(test));
+        EXPECT_LT(corners.size() / 3, test.triangle_count() / 2) << "culling keeps most triangles";
+        renderer->render_view_part(camera, resolution, footprint.rect(), corners, part);
+        for (int j = 0; j < resolution; ++j) {
+          for (int i = 0; i < resolution; ++i) {
+            if (!footprint.covers(i, j)) continue;
+            const std::size_t p = static_cast<std::size_t>(j) * resolution + i;
+            ASSERT_EQ(std::memcmp(&whole[p], &part[p], sizeof(float)), 0)
+                << "offset " << offset.transpose() << ", pixel (" << i << ", " << j << "): " << whole[p]
+                << " vs " << part[p];
+            ++pixels_compared;
+          }
         }
       }
     }
+    EXPECT_GT(pixels_compared, 10000u) << "offset " << offset.transpose();
   }
-  EXPECT_GT(pixels_compared, 10000u);
 }
 
 // And so the GL methods give the same distances, hits and resolutions with and without it.
@@ -389,7 +401,8 @@ TEST(ViewCulling, CooperativeIsIdenticalWithAndWithout) {
   REQUIRE_GL_CONTEXT(GlBackend::OSMesa);
   const TriangleMesh bunny = normalised(testing::bunny());
   const double diagonal = bunny.bounding_box().diagonal();
-  const TriangleMesh test = smoothly_perturbed(decimate_quadric(bunny, 10459), 0.01 * diagonal, 0.5 * diagonal);
+  const TriangleMesh test =
+      smoothly_perturbed(decimate_quadric(bunny, 10459), 0.01 * diagonal, 0.5 * diagonal);
   const SampleSet samples = make_samples(bunny, parse_sample_spec("area:6000"));
   const DistanceOptions options{Semantics::FirstHit, 0.05 * bunny.bounding_box().diagonal()};
   for (const bool normal_line : {true, false}) {
@@ -403,7 +416,8 @@ TEST(ViewCulling, CooperativeIsIdenticalWithAndWithout) {
     EXPECT_EQ(whole.signed_distance, culled.signed_distance);  // exact equality of doubles
     EXPECT_EQ(whole.gl->resolved_by, culled.gl->resolved_by);
     EXPECT_EQ(whole.gl->observations(), culled.gl->observations());
-    EXPECT_GT(std::count(culled.gl->resolved_by.begin(), culled.gl->resolved_by.end(), Resolution::View), 1000);
+    EXPECT_GT(std::count(culled.gl->resolved_by.begin(), culled.gl->resolved_by.end(), Resolution::View),
+              1000);
   }
 }
 
