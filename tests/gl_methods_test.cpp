@@ -302,6 +302,53 @@ TEST_F(BunnyGates, CooperativeAutoViewsKeepsItsAccuracyAndCountsHonestly) {
   EXPECT_GE(views.within_fraction(), 0.99) << views.resolved << " view-resolved";
 }
 
+// A view resolves a sample whose pixels see a crease beside its cell, not only on a flat
+// patch: a roof (two facets 10 degrees apart) against itself raised by half a view pixel, so
+// that d is too small for bilinear reading across the ridge. The samples 1.6 to 2.2 pixels from
+// the ridge have it in their 4 x 4 pixels but not in their cell: a view resolves them, to the
+// float depth image's 1% (the distance floor's promise). With the ridge along a pixel axis (the
+// case a 2 x 2 planarity test misses) and turned 30 degrees.
+TEST(CooperativeViews, ResolveBesideACreaseExactly) {
+  REQUIRE_GL_CONTEXT(GlBackend::OSMesa);
+  const double slope = std::tan(5 * M_PI / 180);
+  for (const double turn : {0.0, 30.0}) {
+    const Eigen::Matrix3d rotation = Eigen::AngleAxisd(turn * M_PI / 180, Vec3::UnitZ()).toRotationMatrix();
+    const auto roof = [&](double lift) {
+      std::vector<Vec3> positions;
+      for (const double x : {-1.0, 0.0, 1.0}) {
+        for (const double y : {-1.0, 1.0})
+          positions.push_back(rotation * Vec3(x, y, slope * std::abs(x) + lift));
+      }
+      return TriangleMesh(positions, {{0, 2, 1}, {1, 2, 3}, {2, 4, 3}, {3, 4, 5}});
+    };
+    const TriangleMesh test = roof(0.0);
+    const double h = 0.05 * test.bounding_box().diagonal();
+    auto cooperative = make_method("cooperative");  // 24 x 12, 1024 px
+    cooperative->build(test);
+    const double pixel = 2 * (0.5 * test.bounding_box().diagonal() + h) / 1024;  // the views' pixel
+    const TriangleMesh reference = roof(-0.5 * pixel);  // below: d = -0.5 pixel cos(5 degrees)
+    const SampleSet samples = make_samples(reference, parse_sample_spec("area:200000"));
+    const DistanceOptions options{Semantics::FirstHit, h};
+    const DistanceResult e = measure_distances(*make_method("embree"), test, samples, options);
+    const DistanceResult c = measure_distances(*cooperative, test, samples, options);
+    EXPECT_NEAR(c.gl->view_pixel_size, pixel, 1e-3 * pixel);
+    std::size_t beside = 0, beside_by_view = 0;
+    for (std::size_t k = 0; k < samples.size(); ++k) {
+      if (c.gl->resolved_by[k] != Resolution::View) continue;
+      ASSERT_TRUE(e.hit[k]);
+      EXPECT_NEAR(c.signed_distance[k], e.signed_distance[k], 0.01 * std::abs(e.signed_distance[k])) << k;
+    }
+    for (std::size_t k = 0; k < samples.size(); ++k) {
+      const double from_ridge = std::abs((rotation.transpose() * samples.positions[k]).x()) / pixel;
+      if (from_ridge < 1.6 || from_ridge > 2.2) continue;
+      ++beside;
+      beside_by_view += c.gl->resolved_by[k] == Resolution::View;
+    }
+    EXPECT_GT(beside, 200u);
+    EXPECT_GE(beside_by_view, 0.9 * beside) << "ridge turned " << turn << " degrees";
+  }
+}
+
 // The cooperative method's error is bounded on every kind of pair (the full matrix, 4 shapes x
 // 4 kinds of test x 2 h, is in results/gl-accuracy.md): a CI-sized subset, against Embree.
 TEST(CooperativeBound, WithinOnePercentOnEveryKindOfPair) {

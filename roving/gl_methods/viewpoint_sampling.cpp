@@ -66,7 +66,8 @@ class ViewLine {
         smooth_span_(smooth_span),
         depth_scale_(depth_scale),
         crease_limit_(std::tan(kCreaseDegrees * M_PI / 180) * pixel_size / depth_scale),
-        min_distance_(100 * 4 * depth_step) {}
+        min_distance_(100 * 4 * depth_step),
+        noise_(16 * depth_step / depth_scale) {}
 
   std::optional<double> first_crossing(const Vec3& x, const Vec3& n, double h) const {
     // Steps of at most half a pixel across the image, at least 2.
@@ -87,12 +88,20 @@ class ViewLine {
         // which only the few samples next to a crease reach (the matrix in gl-accuracy: every
         // pair within 1%; at 1% per sample, twice the cameras for no measurable gain).
         const double limit = std::min(crease_limit_, 0.1 * std::abs(s) / depth_scale_);
-        if (!flat_around(camera_.to_normalised(x + s * n), limit)) return std::nullopt;
-        // A float depth image resolves d to a few of its steps: keep only distances at least
-        // 100 times that, so a view-resolved d errs by under 1%; nearer ones go to roving,
-        // whose camera spans 2h, not the whole model, in the same float.
-        if (std::abs(s) < min_distance_) return std::nullopt;
-        return s;
+        const Vec3 at = camera_.to_normalised(x + s * n);
+        if (flat_around(at, limit)) {
+          // A float depth image resolves d to a few of its steps: keep only distances at least
+          // 100 times that, so a view-resolved d errs by under 1%; nearer ones go to roving,
+          // whose camera spans 2h, not the whole model, in the same float.
+          if (std::abs(s) < min_distance_) return std::nullopt;
+          return s;
+        }
+        // Too near a gentle crease for bilinear reading at this d: the crease may lie outside
+        // the point's cell, and then the cell's plane gives d.
+        if (limit == crease_limit_ || !flat_around(at, crease_limit_)) return std::nullopt;
+        const std::optional<double> on_facet = on_one_facet(x, n, at);
+        if (!on_facet || std::abs(*on_facet) < min_distance_) return std::nullopt;
+        return on_facet;
       }
       t_previous = t;
       f_previous = f_now;
@@ -124,6 +133,43 @@ class ViewLine {
       }
     }
     return true;
+  }
+
+  // A triangle mesh's depth image is planar on each facet. Where the 2 x 2 pixels around `at`
+  // (normalised) lie on one plane, and along each axis so do the two pixels beyond them on one
+  // side or the other, one facet holds their whole cell: a crease through the cell would put a
+  // pixel off the plane, or, parallel to an axis, the pixels beyond on both sides. Then the
+  // crossing of the line x + t n with that plane, if it lies in the cell, is the line's crossing
+  // of the surface, exact but for the pixels' float noise; nullopt otherwise.
+  std::optional<double> on_one_facet(const Vec3& x, const Vec3& n, const Vec3& at) const {
+    const double u = (0.5 * at.x() + 0.5) * resolution_ - 0.5, v = (0.5 * at.y() + 0.5) * resolution_ - 0.5;
+    const int i0 = static_cast<int>(std::floor(u)) - 1, j0 = static_cast<int>(std::floor(v)) - 1;
+    // z(i, j) over the 4 x 4 window, the cell between i, j in [1, 2]; flat_around has checked
+    // that all 16 are drawn, inside the image.
+    const auto z = [&](int i, int j) {
+      return double(depth_[static_cast<std::size_t>(j0 + j) * resolution_ + i0 + i]);
+    };
+    if (std::abs(z(1, 1) - z(2, 1) - z(1, 2) + z(2, 2)) > noise_) return std::nullopt;
+    const double gx = 0.5 * (z(2, 1) - z(1, 1) + z(2, 2) - z(1, 2));
+    const double gy = 0.5 * (z(1, 2) - z(1, 1) + z(2, 2) - z(2, 1));
+    const double c = 0.25 * (z(1, 1) + z(2, 1) + z(1, 2) + z(2, 2)) - 1.5 * (gx + gy);
+    const auto plane = [&](double i, double j) { return c + gx * i + gy * j; };
+    const auto on_plane = [&](int i, int j) { return std::abs(z(i, j) - plane(i, j)) <= noise_; };
+    const bool along_x = (on_plane(0, 1) && on_plane(0, 2)) || (on_plane(3, 1) && on_plane(3, 2));
+    const bool along_y = (on_plane(1, 0) && on_plane(2, 0)) || (on_plane(1, 3) && on_plane(2, 3));
+    if (!along_x || !along_y) return std::nullopt;
+    // The line in the window's coordinates, w(t) = w0 + t dw.
+    const auto window = [&](const Vec3& q) {
+      return Vec3((0.5 * q.x() + 0.5) * resolution_ - 0.5 - i0, (0.5 * q.y() + 0.5) * resolution_ - 0.5 - j0,
+                  q.z());
+    };
+    const Vec3 w0 = window(camera_.to_normalised(x)), dw = window(camera_.to_normalised(x + n)) - w0;
+    const double rate = gx * dw.x() + gy * dw.y() - dw.z();
+    if (rate == 0) return std::nullopt;  // the line runs in the plane
+    const double t = (w0.z() - plane(w0.x(), w0.y())) / rate;
+    const Vec3 w = w0 + t * dw;
+    if (!(w.x() >= 1 && w.x() <= 2 && w.y() >= 1 && w.y() <= 2)) return std::nullopt;
+    return t;
   }
 
   // Seen minus own depth at x + t n (normalised depth); nullopt where the view is not one smooth
@@ -170,6 +216,7 @@ class ViewLine {
   const std::vector<float>& depth_;
   int resolution_;
   double smooth_span_, depth_scale_, crease_limit_, min_distance_;
+  double noise_;  // normalised depth: a few float steps, what a pixel's depth may err by
 };
 
 }  // namespace
