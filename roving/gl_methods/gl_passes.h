@@ -2,6 +2,8 @@
 // cooperative.
 #pragma once
 
+#include <tbb/task_group.h>
+
 #include <functional>
 #include <memory>
 #include <optional>
@@ -29,14 +31,29 @@ struct GlScene {
   std::string renderer_name() const;
 };
 
+// Runs `background` on TBB's other threads while this thread (the one holding the GL context)
+// runs `foreground`; returns once both are done, rethrowing a failure of either.
+template <class Background, class Foreground>
+void run_beside(const Background& background, const Foreground& foreground) {
+  tbb::task_group others;
+  others.run(background);
+  try {
+    foreground();
+  } catch (...) {
+    others.wait();
+    throw;
+  }
+  others.wait();
+}
+
 // Where a pass hands each sample it resolves, k, and its d (first hit). Passed on at once
 // rather than gathered, so that no pass holds a value for every sample.
 using Found = std::function<void(std::uint32_t k, double d)>;
 
 // Surface roving for samples[indices[i]]: found(k, d) for each k of `indices` whose camera sees
 // M_C. Fills the report's camera fields; tells `progress` of each batch of cameras.
-void rove(GlScene& scene, const SampleSet& samples, const std::vector<std::uint32_t>& indices, double max_error,
-          GlReport& report, const ProgressFn& progress, const Found& found);
+void rove(GlScene& scene, const SampleSet& samples, const std::vector<std::uint32_t>& indices,
+          double max_error, GlReport& report, const ProgressFn& progress, const Found& found);
 
 // `--views auto`: a view is drawn while its expected cost stays below that of the per-sample
 // cameras it would save. A camera's cost is measured by a first batch of cameras; a view's, and
@@ -64,8 +81,8 @@ class ViewBudget {
 // `budget`, the first view not worth drawing ends them (the rest have fewer samples still).
 // Fills the report's view fields; tells `progress` of each view.
 void view_sample(GlScene& scene, const SampleSet& samples, const std::vector<std::uint32_t>& candidates,
-                 double max_error, const GlMethodOptions& options, GlReport& report, const ProgressFn& progress,
-                 const Found& found, ViewBudget* budget = nullptr);
+                 double max_error, const GlMethodOptions& options, GlReport& report,
+                 const ProgressFn& progress, const Found& found, ViewBudget* budget = nullptr);
 
 // What the three GL methods share: checks, timing, and filling in the result and report; each
 // method only says how it resolves samples.

@@ -1,7 +1,6 @@
 // Exact surface roving (paper Section 4.1): one orthographic one-pixel camera per sample.
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
-#include <tbb/task_group.h>
 
 #include <algorithm>
 #include <cmath>
@@ -165,15 +164,11 @@ void rove(GlScene& scene, const SampleSet& samples, const std::vector<std::uint3
   if (!indices.empty()) emit_batch(0, batch[0]);
   for (std::size_t first = 0, b = 0; first < indices.size(); first += kTilesPerBatch, ++b) {
     const std::size_t count = std::min(kTilesPerBatch, indices.size() - first);
-    tbb::task_group next;
-    if (first + count < indices.size()) next.run([&] { emit_batch(first + count, batch[(b + 1) % 2]); });
-    try {
-      scene.renderer->render_tiles(batch[b % 2], count, depth);
-    } catch (...) {
-      next.wait();
-      throw;
-    }
-    next.wait();
+    run_beside(
+        [&] {
+          if (first + count < indices.size()) emit_batch(first + count, batch[(b + 1) % 2]);
+        },
+        [&] { scene.renderer->render_tiles(batch[b % 2], count, depth); });
     for (std::size_t tile = 0; tile < count; ++tile) {
       // Depth z is t / 2h along the ray from x + h n; d = h - t. 1 is the cleared, empty tile.
       if (depth[tile] < 1.0f) {

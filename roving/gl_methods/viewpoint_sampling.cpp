@@ -2,7 +2,6 @@
 // samples, read at each sample's pixel.
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
-#include <tbb/task_group.h>
 
 #include <algorithm>
 #include <array>
@@ -354,18 +353,12 @@ void view_sample(GlScene& scene, const SampleSet& samples, const std::vector<std
     ++report.views_rendered;
     const Stopwatch watch;
     std::size_t previous_resolved = 0;
-    tbb::task_group others;
-    others.run([&] {
-      if (i > 0) previous_resolved = read(ring[(i - 1) % 3]);
-      if (i + 1 < views) prepare(ring[(i + 1) % 3], order[i + 1]);
-    });
-    try {
-      draw(ring[i % 3]);
-    } catch (...) {
-      others.wait();
-      throw;
-    }
-    others.wait();
+    run_beside(
+        [&] {
+          if (i > 0) previous_resolved = read(ring[(i - 1) % 3]);
+          if (i + 1 < views) prepare(ring[(i + 1) % 3], order[i + 1]);
+        },
+        [&] { draw(ring[i % 3]); });
     if (budget && i > 0)
       budget->record_view(previous_seconds, groups[order[i - 1]].size(), previous_resolved);
     previous_seconds = watch.seconds();
