@@ -420,13 +420,17 @@ TEST(ViewCulling, EveryPixelReadHasTheWholeViewsDepth) {
         if (samples.normals[k].dot(d) > std::cos(10 * M_PI / 180)) group.push_back(k);
       }
       const OrthoCamera camera = OrthoCamera::looking_along(-d, box.centre(), radius, radius, radius);
-      std::vector<float> whole, part(static_cast<std::size_t>(resolution) * resolution, -1.0f);
+      std::vector<float> whole, part(static_cast<std::size_t>(resolution) * resolution, -1.0f), other;
       renderer->render_view(camera, resolution, whole);
       for (const double reach : {h, 0.0}) {
+        // The part is drawn over another view's depths, so that a pixel it leaves uncleared shows.
+        renderer->render_view(OrthoCamera::looking_along(d, box.centre(), radius, radius, radius), resolution,
+                              other);
         const ViewFootprint footprint(camera, resolution, samples, group, reach);
         const std::vector<std::uint32_t> corners = footprint.corners_reaching(TriangleClusters(test));
         EXPECT_LT(corners.size() / 3, test.triangle_count() / 2) << "culling keeps most triangles";
-        renderer->render_view_part(camera, resolution, footprint.rect(), corners, part);
+        renderer->render_view_part(camera, resolution, footprint.rect(), footprint.read_squares(), corners,
+                                   part);
         for (int j = 0; j < resolution; ++j) {
           for (int i = 0; i < resolution; ++i) {
             if (!footprint.covers(i, j)) continue;

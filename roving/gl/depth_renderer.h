@@ -65,9 +65,11 @@ class DepthRenderer {
   virtual void render_view(const OrthoCamera& camera, int resolution, std::vector<float>& depth) = 0;
   // The same view, drawing only the triangles whose corners (indices into the uploaded model's
   // vertices, three a triangle) `corners` lists, and only the pixels in `rect`: depth has
-  // resolution^2 entries, and those in `rect` are what render_view() gives wherever no omitted
-  // triangle covers the pixel; the others are left as they were.
+  // resolution^2 entries; at the pixels of the `wanted` rectangles (within `rect`) they are what
+  // render_view() gives wherever no omitted triangle covers the pixel; elsewhere in `rect` they
+  // are undefined, and outside it left as they were.
   virtual void render_view_part(const OrthoCamera& camera, int resolution, const PixelRect& rect,
+                                const std::vector<PixelRect>& wanted,
                                 const std::vector<std::uint32_t>& corners, std::vector<float>& depth) = 0;
 
   // Draws `vertices` (triangles, three consecutive vertices each) into a grid of one-pixel tiles,

@@ -47,6 +47,15 @@ void main() {
 }
 )";
 
+// Depth 1 (the far plane, as a clear leaves it) over rectangles given in pixels.
+constexpr const char* kFarVertexShader = R"(#version 450 core
+layout(location = 0) in vec2 pixel;
+uniform float resolution;
+void main() {
+  gl_Position = vec4(2.0 * pixel / resolution - 1.0, 1.0, 1.0);
+}
+)";
+
 constexpr const char* kDepthOnlyFragmentShader = R"(#version 450 core
 void main() {}
 )";
@@ -65,12 +74,19 @@ class GlDepthRenderer final : public DepthRenderer {
     max_size_ = std::min({renderbuffer, viewport[0], viewport[1]});
     view_program_ = link(kViewVertexShader, "view");
     tile_program_ = link(kTileVertexShader, "tile");
+    far_program_ = link(kFarVertexShader, "far");
     gl_.GenVertexArrays(1, &model_vao_);
     gl_.GenVertexArrays(1, &tile_vao_);
+    gl_.GenVertexArrays(1, &far_vao_);
     gl_.GenBuffers(1, &model_vertices_);
     gl_.GenBuffers(1, &model_indices_);
     gl_.GenBuffers(1, &tile_vertices_);
     gl_.GenBuffers(1, &part_buffer_);
+    gl_.GenBuffers(1, &far_vertices_);
+    gl_.BindVertexArray(far_vao_);
+    gl_.BindBuffer(GL_ARRAY_BUFFER, far_vertices_);
+    gl_.VertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 2 * sizeof(float), nullptr);
+    gl_.EnableVertexAttribArray(0);
     gl_.BindVertexArray(tile_vao_);
     gl_.BindBuffer(GL_ARRAY_BUFFER, tile_vertices_);
     gl_.VertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(TileVertex), nullptr);
@@ -94,10 +110,13 @@ class GlDepthRenderer final : public DepthRenderer {
     gl_.DeleteBuffers(1, &model_indices_);
     gl_.DeleteBuffers(1, &tile_vertices_);
     gl_.DeleteBuffers(1, &part_buffer_);
+    gl_.DeleteBuffers(1, &far_vertices_);
     gl_.DeleteVertexArrays(1, &model_vao_);
     gl_.DeleteVertexArrays(1, &tile_vao_);
+    gl_.DeleteVertexArrays(1, &far_vao_);
     gl_.DeleteProgram(view_program_);
     gl_.DeleteProgram(tile_program_);
+    gl_.DeleteProgram(far_program_);
     if (framebuffer_) gl_.DeleteFramebuffers(1, &framebuffer_);
     if (depth_buffer_) gl_.DeleteRenderbuffers(1, &depth_buffer_);
   }
@@ -144,13 +163,19 @@ class GlDepthRenderer final : public DepthRenderer {
   }
 
   void render_view_part(const OrthoCamera& camera, int resolution, const PixelRect& rect,
-                        const std::vector<std::uint32_t>& corners, std::vector<float>& depth) override {
+                        const std::vector<PixelRect>& wanted, const std::vector<std::uint32_t>& corners,
+                        std::vector<float>& depth) override {
     context_->make_current();
     require_view(resolution);
-    if (rect.x0 < 0 || rect.y0 < 0 || rect.x1 > resolution || rect.y1 > resolution) {
+    const auto inside = [&](const PixelRect& r, const PixelRect& outer) {
+      return r.x0 >= outer.x0 && r.y0 >= outer.y0 && r.x1 <= outer.x1 && r.y1 <= outer.y1;
+    };
+    if (!inside(rect, {0, 0, resolution, resolution})) {
       throw Error(fmt::format("gl: pixel rectangle [{}, {}) x [{}, {}) outside a {}-pixel view", rect.x0,
                               rect.x1, rect.y0, rect.y1, resolution));
     }
+    if (!std::all_of(wanted.begin(), wanted.end(), [&](const PixelRect& r) { return inside(r, rect); }))
+      throw Error("gl: a wanted part of a view lies outside its pixel rectangle");
     const bool corners_valid =
         corners.size() % 3 == 0 &&
         std::all_of(corners.begin(), corners.end(), [&](std::uint32_t v) { return v < model_vertex_count_; });
@@ -160,10 +185,12 @@ class GlDepthRenderer final : public DepthRenderer {
     }
     depth.resize(static_cast<std::size_t>(resolution) * resolution);
     if (rect.empty()) return;
-    // Only the rectangle is cleared, drawn and read: the scissor box bounds all three.
+    // Only the rectangle is drawn and read (the scissor box bounds both), and only the wanted
+    // pixels in it are cleared: a scissored clear costs as much as drawing the whole rectangle.
     gl_.Enable(GL_SCISSOR_TEST);
     gl_.Scissor(rect.x0, rect.y0, rect.x1 - rect.x0, rect.y1 - rect.y0);
-    bind_framebuffer(resolution, resolution);
+    bind_framebuffer(resolution, resolution, /*clear=*/false);
+    draw_far(resolution, wanted);
     if (!corners.empty()) {
       use_view_program(camera);
       gl_.BindVertexArray(model_vao_);
@@ -242,9 +269,28 @@ class GlDepthRenderer final : public DepthRenderer {
     gl_.Uniform3f(gl_.GetUniformLocation(program, name), float(v.x()), float(v.y()), float(v.z()));
   }
 
-  // A depth-only framebuffer of at least width x height (grown, never shrunk), cleared to 1 over
-  // the used corner, with the viewport on that corner.
-  void bind_framebuffer(int width, int height) {
+  // Depth 1 over the rectangles, one draw for all: what a clear gives, only there.
+  void draw_far(int resolution, const std::vector<PixelRect>& rects) {
+    if (rects.empty()) return;
+    std::vector<float> corners;
+    corners.reserve(12 * rects.size());
+    for (const PixelRect& r : rects) {
+      const float x0 = float(r.x0), y0 = float(r.y0), x1 = float(r.x1), y1 = float(r.y1);
+      corners.insert(corners.end(), {x0, y0, x1, y0, x1, y1, x0, y0, x1, y1, x0, y1});
+    }
+    gl_.UseProgram(far_program_);
+    gl_.Uniform1f(gl_.GetUniformLocation(far_program_, "resolution"), float(resolution));
+    gl_.BindVertexArray(far_vao_);
+    gl_.BindBuffer(GL_ARRAY_BUFFER, far_vertices_);
+    gl_.BufferData(GL_ARRAY_BUFFER, corners.size() * sizeof(float), corners.data(), GL_STREAM_DRAW);
+    gl_.DepthFunc(GL_ALWAYS);
+    gl_.DrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(corners.size() / 2));
+    gl_.DepthFunc(GL_LESS);
+  }
+
+  // A depth-only framebuffer of at least width x height (grown, never shrunk), with the viewport
+  // on its used corner, cleared to 1 there unless `clear` is false.
+  void bind_framebuffer(int width, int height, bool clear = true) {
     if (width > fb_width_ || height > fb_height_) {
       fb_width_ = std::max(fb_width_, width);
       fb_height_ = std::max(fb_height_, height);
@@ -266,6 +312,7 @@ class GlDepthRenderer final : public DepthRenderer {
     }
     gl_.BindFramebuffer(GL_FRAMEBUFFER, framebuffer_);
     gl_.Viewport(0, 0, width, height);
+    if (!clear) return;
     gl_.ClearDepth(1.0);
     gl_.Clear(GL_DEPTH_BUFFER_BIT);
   }
@@ -279,8 +326,9 @@ class GlDepthRenderer final : public DepthRenderer {
   gl::Api gl_;
   RendererInfo info_;
   int max_size_ = 0;
-  GLuint view_program_ = 0, tile_program_ = 0;
+  GLuint view_program_ = 0, tile_program_ = 0, far_program_ = 0;
   GLuint model_vao_ = 0, tile_vao_ = 0, model_vertices_ = 0, model_indices_ = 0, tile_vertices_ = 0;
+  GLuint far_vao_ = 0, far_vertices_ = 0;
   GLsizei model_index_count_ = 0;
   std::size_t model_vertex_count_ = 0;
   GLuint part_buffer_ = 0;

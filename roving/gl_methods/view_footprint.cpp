@@ -71,9 +71,23 @@ bool ViewFootprint::Bitmap::any_where(int i0, int j0, int i1, int j1, const Test
   return false;
 }
 
+std::vector<PixelRect> ViewFootprint::Bitmap::runs() const {
+  std::vector<PixelRect> runs;
+  for (int j = 0; j < side_; ++j) {
+    const std::uint64_t* row = bits_.data() + static_cast<std::size_t>(j) * words_;
+    int start = -1;  // the open run's first square
+    for (int i = 0; i <= side_; ++i) {
+      const bool marked = i < side_ && (row[i / 64] >> (i % 64) & 1);
+      if (marked && start < 0) start = i;
+      if (!marked && start >= 0) runs.push_back({start, j, i, j + 1}), start = -1;
+    }
+  }
+  return runs;
+}
+
 ViewFootprint::ViewFootprint(const OrthoCamera& camera, int resolution, const SampleSet& samples,
                              const std::vector<std::uint32_t>& group, double reach)
-    : camera_(camera), resolution_(resolution), fine_(resolution, 0), coarse_(resolution, 3) {
+    : camera_(camera), resolution_(resolution), fine_(resolution, 0), coarse_(resolution, kCoarseShift) {
   rect_ = {resolution_, resolution_, 0, 0};
   const auto pixel = [&](const Vec3& p) {
     const Vec3 q = camera_.to_normalised(p);
@@ -110,6 +124,15 @@ void ViewFootprint::mark(int i0, int j0, int i1, int j1) {
 
 bool ViewFootprint::covers(int i, int j) const {
   return i >= 0 && j >= 0 && i < resolution_ && j < resolution_ && fine_.any(i, j, i, j);
+}
+
+std::vector<PixelRect> ViewFootprint::read_squares() const {
+  std::vector<PixelRect> squares = coarse_.runs();
+  for (PixelRect& r : squares) {  // squares -> pixels, within rect_
+    r = {std::max(r.x0 << kCoarseShift, rect_.x0), std::max(r.y0 << kCoarseShift, rect_.y0),
+         std::min(r.x1 << kCoarseShift, rect_.x1), std::min(r.y1 << kCoarseShift, rect_.y1)};
+  }
+  return squares;
 }
 
 bool ViewFootprint::any_marked(int i0, int j0, int i1, int j1) const {

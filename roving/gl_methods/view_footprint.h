@@ -26,6 +26,9 @@ class ViewFootprint {
   const PixelRect& rect() const { return rect_; }
   // Whether some sample may read pixel (i, j).
   bool covers(int i, int j) const;
+  // Rectangles within rect() holding every pixel some sample may read: the 8 x 8-pixel squares
+  // that hold one, consecutive squares of a row merged.
+  std::vector<PixelRect> read_squares() const;
 
   // The corners (three a triangle) of the triangles of the mesh `clusters` were made from that
   // can cover a pixel some sample reads (its centre within a quarter pixel of the projected
@@ -43,6 +46,8 @@ class ViewFootprint {
     // Whether test(i, j) holds for some marked square (i, j) of the range, in row order.
     template <class Test>
     bool any_where(int i0, int j0, int i1, int j1, const Test& test) const;
+    // The marked squares as runs [i0, i1) x [j, j + 1) along each row (in squares).
+    std::vector<PixelRect> runs() const;
 
    private:
     int shift_, side_, words_;  // side_ squares a row, in words_ 64-bit words
@@ -55,9 +60,11 @@ class ViewFootprint {
   // rejects most ranges in a word or two, the fine one decides the rest.
   bool any_marked(int i0, int j0, int i1, int j1) const;
 
+  static constexpr int kCoarseShift = 3;  // coarse squares of 8 x 8 pixels
+
   OrthoCamera camera_;
   int resolution_;
-  Bitmap fine_, coarse_;  // pixels read; 8 x 8-pixel squares holding one
+  Bitmap fine_, coarse_;  // pixels read; squares holding one
   PixelRect rect_;
 };
 

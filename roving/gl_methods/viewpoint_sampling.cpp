@@ -277,6 +277,7 @@ void view_sample(GlScene& scene, const SampleSet& samples, const std::vector<std
     std::uint32_t direction = 0;
     OrthoCamera camera;
     PixelRect rect;
+    std::vector<PixelRect> wanted;
     std::vector<std::uint32_t> corners;
     std::vector<float> depth;
   };
@@ -288,11 +289,13 @@ void view_sample(GlScene& scene, const SampleSet& samples, const std::vector<std
     const ViewFootprint footprint(view.camera, resolution, samples, groups[d],
                                   options.normal_line ? max_error : 0.0);
     view.rect = footprint.rect();
+    view.wanted = footprint.read_squares();
     view.corners = footprint.corners_reaching(*scene.clusters);
   };
   const auto draw = [&](View& view) {
     if (options.cull_views) {
-      scene.renderer->render_view_part(view.camera, resolution, view.rect, view.corners, view.depth);
+      scene.renderer->render_view_part(view.camera, resolution, view.rect, view.wanted, view.corners,
+                                       view.depth);
     } else {
       scene.renderer->render_view(view.camera, resolution, view.depth);
     }
