@@ -156,6 +156,54 @@ TEST(GlObservations, FixedSmallCaseIsExact) {
   EXPECT_EQ(std::count(rejected.resolved_by.begin(), rejected.resolved_by.end(), Resolution::Unresolved), 12);
 }
 
+// The grid search gives the direction comparing every one gives: random normals, normals on the
+// cells' borders (ties), at and near the poles, and not finite, on grids of every shape.
+TEST(ViewDirections, NearestIsTheExhaustiveSearchsAnswer) {
+  std::vector<Vec3> normals;
+  std::srand(7);
+  const auto uniform = [] { return 2.0 * std::rand() / RAND_MAX - 1.0; };
+  for (int k = 0; k < 1000; ++k) normals.push_back(Vec3(uniform(), uniform(), uniform()).normalized());
+  for (const Vec3& n : {Vec3(0, 0, 1), Vec3(0, 0, -1), Vec3(1, 0, 0), Vec3(-1, 0, 0), Vec3(0, 1, 0),
+                        Vec3(1e-12, 0, 1), Vec3(-1e-300, 1e-300, -1), Vec3(1, 1, 0), Vec3(0, 0, 0)}) {
+    normals.push_back(n);
+  }
+  normals.push_back(Vec3(std::nan(""), 0, 1));
+  const auto exhaustive = [](const std::vector<Vec3>& directions, const Vec3& n) {
+    std::uint32_t best = 0;
+    double best_dot = -2;
+    for (std::uint32_t d = 0; d < directions.size(); ++d) {
+      if (directions[d].dot(n) > best_dot) best_dot = directions[d].dot(n), best = d;
+    }
+    return best;
+  };
+  for (const auto& [h, v] : std::vector<std::pair<int, int>>{{1, 1},
+                                                             {2, 1},
+                                                             {3, 1},
+                                                             {3, 2},
+                                                             {4, 4},
+                                                             {6, 3},
+                                                             {24, 12},
+                                                             {36, 18},
+                                                             {72, 36},
+                                                             {5, 90},
+                                                             {720, 360}}) {
+    const std::vector<Vec3> directions = view_directions(h, v);
+    std::vector<Vec3> on_borders = normals;  // between two columns, and between two rows
+    for (int i = 0; i < h; ++i) {
+      const double longitude = 2 * M_PI * i / h, latitude = M_PI * (i % v) / v - M_PI / 2;
+      on_borders.emplace_back(std::cos(longitude), std::sin(longitude), 0.3);
+      on_borders.emplace_back(std::cos(latitude) * std::cos(longitude + 0.1),
+                              std::cos(latitude) * std::sin(longitude + 0.1), std::sin(latitude));
+    }
+    for (const Vec3& n : on_borders) {
+      ASSERT_EQ(nearest_direction(directions, h, v, n), exhaustive(directions, n))
+          << h << "x" << v << ", n = " << n.transpose();
+    }
+  }
+  const std::vector<Vec3> axes = axis_directions();
+  for (const Vec3& n : normals) EXPECT_EQ(nearest_direction(axes, 0, 0, n), exhaustive(axes, n));
+}
+
 TEST(GlOptions, BadOptionsNameTheOption) {
   int h = 0, v = 0;
   for (const char* bad : {"24", "24x", "x12", "0x12", "24x0", "24x12x3", "axb", "721x2"}) {

@@ -2,7 +2,9 @@
 // checks, and the --views parser.
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <charconv>
+#include <cmath>
 
 #include "gl_passes.h"
 #include "roving/core/error.h"
@@ -28,8 +30,8 @@ void parse_views(const std::string& text, GlMethodOptions& options) {
   options.auto_views = text.rfind("auto", 0) == 0;
   if (text == "auto") return;
   try {
-    parse_views(options.auto_views && text.size() > 5 && text[4] == ':' ? text.substr(5) : text, options.views_h,
-                options.views_v);
+    parse_views(options.auto_views && text.size() > 5 && text[4] == ':' ? text.substr(5) : text,
+                options.views_h, options.views_v);
   } catch (const Error&) {
     throw Error(fmt::format(
         "--views: expected HxV with H and V in 1..720 (e.g. 24x12), auto, or auto:HxV, found '{}'", text));
@@ -52,6 +54,37 @@ std::vector<Vec3> view_directions(int h, int v) {
 
 std::vector<Vec3> axis_directions() {
   return {Vec3::UnitX(), -Vec3::UnitX(), Vec3::UnitY(), -Vec3::UnitY(), Vec3::UnitZ(), -Vec3::UnitZ()};
+}
+
+std::uint32_t nearest_direction(const std::vector<Vec3>& directions, int h, int v, const Vec3& n) {
+  std::uint32_t best = 0;
+  double best_dot = -2;
+  const auto compare = [&](std::uint32_t d) {
+    const double dot = directions[d].dot(n);
+    if (dot > best_dot || (dot == best_dot && d < best)) best_dot = dot, best = d;
+  };
+  // With 3 or more columns every row's nearest direction is in the column whose longitude is
+  // nearest n's (the rows' latitudes are within +-90 degrees), and along that column's meridian
+  // the nearest is the row whose latitude is nearest n's angle from the equator in that
+  // meridian's plane. Float may put either one cell off: the 3 x 3 cells around are compared,
+  // and column 0, which a near-pole n may tie with every column of a row. Too few columns, and
+  // normals that are not finite or so short that the products underflow, compare them all.
+  if (h < 3 || !n.allFinite() || !(n.cwiseAbs().maxCoeff() > 1e-100)) {
+    for (std::uint32_t d = 0; d < directions.size(); ++d) compare(d);
+    return best;
+  }
+  const double column_step = 2 * M_PI / h;
+  double longitude = std::atan2(n.y(), n.x());
+  if (longitude < 0) longitude += 2 * M_PI;
+  const int i = std::min(h - 1, static_cast<int>(longitude / column_step));
+  const double centre = (i + 0.5) * column_step;
+  const double latitude = std::atan2(n.z(), n.x() * std::cos(centre) + n.y() * std::sin(centre));
+  const int j = std::clamp(static_cast<int>(std::floor((latitude + M_PI / 2) / (M_PI / v))), 0, v - 1);
+  for (int row = std::max(j - 1, 0); row <= std::min(j + 1, v - 1); ++row) {
+    for (const int column : {(i + h - 1) % h, i, (i + 1) % h, 0})
+      compare(static_cast<std::uint32_t>(row * h + column));
+  }
+  return best;
 }
 
 void GlScene::build(GlBackend backend, const TriangleMesh& test_model) {

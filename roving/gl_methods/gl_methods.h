@@ -48,6 +48,11 @@ std::vector<Vec3> view_directions(int h, int v);
 // The 6 axis directions +x, -x, +y, -y, +z, -z: the views of a voxel reference (Section 4.3).
 std::vector<Vec3> axis_directions();
 
+// The index of the direction nearest n (the largest dot product, the lowest index among equal
+// ones), as comparing n with every direction gives. Where `directions` is view_directions(h, v)
+// only the cells around n's own are compared; h = v = 0 (the axes, say) compares them all.
+std::uint32_t nearest_direction(const std::vector<Vec3>& directions, int h, int v, const Vec3& n);
+
 // Exact surface roving: one orthographic camera per sample, its view volume the box of
 // half-height h about the sample along its normal and one pixel across, whose centre is the
 // central ray. Cameras are one-pixel tiles of one framebuffer, many per draw; each tile draws only

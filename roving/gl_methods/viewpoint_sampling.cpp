@@ -229,6 +229,7 @@ void view_sample(GlScene& scene, const SampleSet& samples, const std::vector<std
   });
   const std::vector<Vec3> directions =
       axis_normals ? axis_directions() : view_directions(options.views_h, options.views_v);
+  const int grid_h = axis_normals ? 0 : options.views_h, grid_v = axis_normals ? 0 : options.views_v;
   report.axis_views = axis_normals;
   // Each sample goes to the direction nearest its normal; groups are sized before they are
   // filled, and the per-sample directions freed once grouped.
@@ -238,13 +239,8 @@ void view_sample(GlScene& scene, const SampleSet& samples, const std::vector<std
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, candidates.size(), 1024),
                       [&](const tbb::blocked_range<std::size_t>& range) {
                         for (std::size_t i = range.begin(); i != range.end(); ++i) {
-                          std::uint32_t best = 0;
-                          double best_dot = -2;
-                          for (std::uint32_t d = 0; d < directions.size(); ++d) {
-                            const double dot = directions[d].dot(samples.normals[candidates[i]]);
-                            if (dot > best_dot) best_dot = dot, best = d;
-                          }
-                          direction_of[i] = best;
+                          direction_of[i] =
+                              nearest_direction(directions, grid_h, grid_v, samples.normals[candidates[i]]);
                         }
                       });
     std::vector<std::size_t> sizes(directions.size(), 0);
