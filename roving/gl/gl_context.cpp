@@ -163,7 +163,7 @@ class EglContext final : public Context {
 // variable once, when its first context is made. The GL methods already keep two cores busy: this
 // thread drives GL while the CPU work runs beside it (run_beside). On two cores more rasteriser
 // threads only take turns with that work and add a hand-off to every draw, so there llvmpipe
-// rasterises in this thread (cooperative 24x12, bunny vs 10,459: 0.33 -> 0.29 s). A user's own
+// rasterises in this thread (cooperative 24x12, bunny vs 10,459: 0.31 -> 0.28 s). A user's own
 // setting wins; more cores keep Mesa's default.
 void rasterise_here_on_two_cores() {
   static std::once_flag once;
