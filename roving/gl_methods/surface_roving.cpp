@@ -82,9 +82,20 @@ void emit_triangles(const TriangleMesh& test, const TriangleGrid& grid, const Or
     if (stamp[face] == mark) return;
     stamp[face] = mark;
     const Triangle& t = test.triangles()[face];
+    // The view volume is a pixel across, so most triangles of a cell lie wholly to one side of it:
+    // those are passed over on the corners' offsets across it, before any division. The others
+    // get their corners in the camera's frame (as camera.to_normalised computes them) and the
+    // test on all three axes.
+    const Vec3 offset[3] = {test.positions()[t[0]] - camera.centre, test.positions()[t[1]] - camera.centre,
+                            test.positions()[t[2]] - camera.centre};
+    const auto misses = [&](const Vec3& axis, double half) {
+      const double a0 = offset[0].dot(axis), a1 = offset[1].dot(axis), a2 = offset[2].dot(axis);
+      const double bound = half * (1 + 1e-9);  // beyond it, a / half > 1 whatever the rounding
+      return (a0 > bound && a1 > bound && a2 > bound) || (a0 < -bound && a1 < -bound && a2 < -bound);
+    };
+    if (misses(camera.right, camera.half_width) || misses(camera.up, camera.half_height)) return;
     Vec3 q[3];
     for (int c = 0; c < 3; ++c) q[c] = camera.to_normalised(test.positions()[t[c]]);
-    // Cheap rejection: all corners beyond one face of the view volume.
     for (int axis = 0; axis < 3; ++axis) {
       const double low = axis == 2 ? 0.0 : -1.0;
       if ((q[0][axis] > 1 && q[1][axis] > 1 && q[2][axis] > 1) ||
