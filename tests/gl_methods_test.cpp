@@ -186,7 +186,8 @@ TEST(ViewDirections, NearestIsTheExhaustiveSearchsAnswer) {
                                                              {36, 18},
                                                              {72, 36},
                                                              {5, 90},
-                                                             {720, 360}}) {
+                                                             {720, 360},
+                                                             {720, 720}}) {
     const std::vector<Vec3> directions = view_directions(h, v);
     std::vector<Vec3> on_borders = normals;  // between two columns, and between two rows
     for (int i = 0; i < h; ++i) {
