@@ -58,7 +58,7 @@ std::vector<Vec3> axis_directions() {
 
 namespace {
 
-// atan2(y, x) to within 0.0015 radians (0.09 degrees; 0 for 0, 0), a sixth of the smallest cell
+// atan2(y, x) to within 0.0015 radians (0.09 degrees; 0 for 0, 0), a third of the smallest cell
 // --views allows (0.25 degrees): enough to find n's cell to within one, and far cheaper.
 double rough_atan2(double y, double x) {
   const double ax = std::abs(x), ay = std::abs(y), high = std::max(ax, ay);
