@@ -15,6 +15,7 @@
 #include "roving/core/statistics.h"
 #include "roving/gl/shaded_renderer.h"
 #include "roving/gl_methods/agreement.h"
+#include "roving/gl_methods/gl_passes.h"
 #include "roving/gl_methods/view_footprint.h"
 #include "roving/registry/method_registry.h"
 #include "roving/representations/surfels.h"
@@ -324,31 +325,60 @@ TEST_F(BunnyGates, CooperativeAgreesWithRovingAndItsViewsWithEmbree) {
 namespace roving {
 namespace {
 
-// --views auto draws a view only where it beats the cameras it saves: whatever it chooses, its
-// answers are those of roving (cameras) or of a view (within the views' tolerance), and its
-// observations are what it did.
+// --views auto draws a view only where it beats the cameras it saves, and may draw none: what
+// it chooses depends on timings, so this holds for any choice. Its cameras' answers are those of
+// exact roving, to roving's own tolerance (a camera's tile may sit elsewhere in the framebuffer);
+// its views' are within the views' tolerance of Embree; its observations are what it did. At
+// 24 x 12 on this pair it draws none here; at 4 x 2 now none, now one.
 TEST_F(BunnyGates, CooperativeAutoViewsKeepsItsAccuracyAndCountsHonestly) {
   REQUIRE_GL_CONTEXT(GlBackend::OSMesa);
-  GlMethodOptions gl;
-  parse_views("auto", gl);
-  EXPECT_TRUE(gl.auto_views);
-  EXPECT_EQ(gl.views_h, 24);
-  auto cooperative = make_method("cooperative", gl);
   auto roving = make_method("roving");
-  const Statistics exact = stats(measure_distances(*roving, *test_, *samples_, {Semantics::FirstHit, h()}));
-  const DistanceResult c = measure_distances(*cooperative, *test_, *samples_, {Semantics::FirstHit, h()});
-  const Statistics s = stats(c);
-  EXPECT_LE(std::abs(s.usiad - exact.usiad), 0.01 * exact.usiad);
-  EXPECT_LE(std::abs(s.siad - exact.siad), 0.01 * exact.usiad);
-  const auto resolved = [&](Resolution how) {
-    return static_cast<std::size_t>(std::count(c.gl->resolved_by.begin(), c.gl->resolved_by.end(), how));
-  };
-  EXPECT_GE(c.gl->views_rendered, 1u);  // the first view is drawn, to measure it
-  EXPECT_EQ(c.gl->sample_cameras + resolved(Resolution::View), samples_->size());
-  EXPECT_EQ(resolved(Resolution::View) + resolved(Resolution::Camera) + resolved(Resolution::Unresolved),
-            samples_->size());
-  const ViewAgreement views = view_agreement(*embree_, c, *samples_, *c.gl);
-  EXPECT_GE(views.within_fraction(), 0.99) << views.resolved << " view-resolved";
+  const DistanceResult exact = measure_distances(*roving, *test_, *samples_, {Semantics::FirstHit, h()});
+  for (const std::string views : {"auto", "auto:8x4"}) {
+    SCOPED_TRACE(views);
+    GlMethodOptions gl;
+    parse_views(views, gl);
+    EXPECT_TRUE(gl.auto_views);
+    auto cooperative = make_method("cooperative", gl);
+    const DistanceResult c = measure_distances(*cooperative, *test_, *samples_, {Semantics::FirstHit, h()});
+    const auto resolved = [&](Resolution how) {
+      return static_cast<std::size_t>(std::count(c.gl->resolved_by.begin(), c.gl->resolved_by.end(), how));
+    };
+    EXPECT_EQ(c.gl->sample_cameras + resolved(Resolution::View), samples_->size());
+    EXPECT_EQ(resolved(Resolution::View) + resolved(Resolution::Camera) + resolved(Resolution::Unresolved),
+              samples_->size());
+    EXPECT_EQ(c.gl->views_rendered > 0, c.gl->view_pixel_size > 0);
+    std::size_t cameras = 0, same = 0;
+    for (std::size_t k = 0; k < samples_->size(); ++k) {
+      if (c.gl->resolved_by[k] == Resolution::View) continue;
+      ++cameras;
+      same +=
+          c.hit[k] == exact.hit[k] &&
+          (!c.hit[k] || std::abs(c.signed_distance[k] - exact.signed_distance[k]) <= roving_tolerance(*c.gl));
+    }
+    EXPECT_EQ(same, cameras);
+    if (c.gl->views_rendered > 0) {
+      const ViewAgreement v = view_agreement(*embree_, c, *samples_, *c.gl);
+      EXPECT_GE(v.within_fraction(), 0.99) << v.resolved << " view-resolved";
+    }
+  }
+}
+
+// The budget's arithmetic: the first view is always drawn (to measure one); until a view is
+// read, every sample of the next is taken to be resolved, the most it could save; then the
+// resolved fraction so far.
+TEST(ViewBudget, DrawsAViewOnlyWhileItCostsLessThanTheCamerasItSaves) {
+  ViewBudget budget(1e-6);  // a camera: 1 us
+  EXPECT_TRUE(budget.worth_a_view(1));
+  budget.record_step(0.010);  // 10 ms a view
+  EXPECT_FALSE(budget.worth_a_view(10000));
+  EXPECT_TRUE(budget.worth_a_view(10001));
+  budget.record_read(10000, 5000);  // half resolved: 20,000 samples to save 10 ms
+  EXPECT_FALSE(budget.worth_a_view(20000));
+  EXPECT_TRUE(budget.worth_a_view(20001));
+  budget.record_step(0.030);  // now 20 ms a view on average
+  EXPECT_FALSE(budget.worth_a_view(40000));
+  EXPECT_TRUE(budget.worth_a_view(40001));
 }
 
 // A view resolves a sample whose pixels see a crease beside its cell, not only on a flat

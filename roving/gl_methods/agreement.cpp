@@ -33,16 +33,14 @@ double view_tolerance(const GlReport& gl, double alpha, double d) {
 
 ViewAgreement view_agreement(const DistanceResult& reference, const DistanceResult& result,
                              const SampleSet& samples, const GlReport& gl) {
-  const std::vector<Vec3> directions =
-      gl.axis_views ? axis_directions() : view_directions(gl.views_h, gl.views_v);
-  const int grid_h = gl.axis_views ? 0 : gl.views_h, grid_v = gl.axis_views ? 0 : gl.views_v;
+  const ViewGrid grid(gl.axis_views, gl.views_h, gl.views_v);
   ViewAgreement v;
   for (std::size_t k = 0; k < samples.size(); ++k) {
     if (gl.resolved_by[k] != Resolution::View) continue;
     ++v.resolved;
     if (!reference.hit[k]) continue;
     const Vec3& n = samples.normals[k];
-    const double best = directions[nearest_direction(directions, grid_h, grid_v, n)].dot(n);
+    const double best = grid.directions[grid.nearest(n)].dot(n);
     const double alpha = std::acos(std::clamp(best, -1.0, 1.0));
     v.within += std::abs(reference.signed_distance[k] - result.signed_distance[k]) <=
                 view_tolerance(gl, alpha, reference.signed_distance[k]);

@@ -56,6 +56,12 @@ std::vector<Vec3> axis_directions() {
   return {Vec3::UnitX(), -Vec3::UnitX(), Vec3::UnitY(), -Vec3::UnitY(), Vec3::UnitZ(), -Vec3::UnitZ()};
 }
 
+bool axis_normals(const SampleSet& samples) {
+  return std::all_of(samples.normals.begin(), samples.normals.end(), [](const Vec3& n) {
+    return n.cwiseAbs().maxCoeff() == 1.0 && n.cwiseAbs().sum() == 1.0;
+  });
+}
+
 namespace {
 
 // atan2(y, x) to within 0.0015 radians (0.09 degrees; 0 for 0, 0), a third of the smallest cell

@@ -29,10 +29,12 @@ struct GlMethodOptions {
   // to their rectangle (view_footprint.h). Every pixel read keeps its depth, so results are
   // identical (tests/gl_methods_test.cpp); off only to show that.
   bool cull_views = true;
-  // `--views auto`: the cooperative method draws a direction's view only while it is expected to
-  // cost less than the per-sample cameras it would save, both timed as the run goes; the other
-  // samples go to cameras. Never slower than exact roving by more than one view and a
-  // calibration; its observations are reported as they happened.
+  // `--views auto`: the cooperative method starts with the cameras, timed as they go, and turns
+  // to views only if the fullest direction's cameras would cost more than grouping the samples
+  // by direction and a first draw; then it draws a direction's view only while it is expected to
+  // cost less than the per-sample cameras it would save, and the other samples go to cameras.
+  // Otherwise it is exact roving, in the same pipeline. Its observations are reported as they
+  // happened.
   bool auto_views = false;
 };
 
@@ -52,6 +54,21 @@ std::vector<Vec3> axis_directions();
 // ones), as comparing n with every direction gives. Where `directions` is view_directions(h, v)
 // only the cells around n's own are compared; h = v = 0 (the axes, say) compares them all.
 std::uint32_t nearest_direction(const std::vector<Vec3>& directions, int h, int v, const Vec3& n);
+
+// The directions of a run's views and their nearest: the 6 axes when `axes` (the views of a
+// voxel reference), else the H x V grid.
+struct ViewGrid {
+  ViewGrid(bool axes, int h, int v)
+      : directions(axes ? axis_directions() : view_directions(h, v)), h(axes ? 0 : h), v(axes ? 0 : v) {}
+  std::uint32_t nearest(const Vec3& n) const { return nearest_direction(directions, h, v, n); }
+
+  std::vector<Vec3> directions;
+  int h, v;
+};
+
+// Whether every normal is an axis, as a voxel reference's are: then the 6 axis views suffice
+// (Section 4.3).
+bool axis_normals(const SampleSet& samples);
 
 // Exact surface roving: one orthographic camera per sample, its view volume the box of
 // half-height h about the sample along its normal and one pixel across, whose centre is the

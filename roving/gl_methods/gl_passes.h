@@ -50,30 +50,47 @@ void run_beside(const Background& background, const Foreground& foreground) {
 // rather than gathered, so that no pass holds a value for every sample.
 using Found = std::function<void(std::uint32_t k, double d)>;
 
+// What rove's cameras cost, measured as it goes: the first batch's draw (which compiles the
+// tile shader) and the steps of the pipeline after it (a batch drawn while the next is built).
+struct CameraCost {
+  double first_draw_seconds = 0;
+  double step_seconds = 0;
+  std::size_t stepped_cameras = 0;  // the cameras of those steps
+  double seconds_per_camera() const { return step_seconds / double(stepped_cameras); }
+};
+
+// Asked before each batch of cameras after the first, with how many of the indices will be done
+// once it is drawn and the cost so far: true makes it the last batch.
+using LastBatch = std::function<bool(std::size_t done, const CameraCost& cost)>;
+
 // Surface roving for samples[indices[i]]: found(k, d) for each k of `indices` whose camera sees
-// M_C. Fills the report's camera fields; tells `progress` of each batch of cameras.
-void rove(GlScene& scene, const SampleSet& samples, const std::vector<std::uint32_t>& indices,
-          double max_error, GlReport& report, const ProgressFn& progress, const Found& found);
+// M_C. Fills the report's camera fields; tells `progress` of each batch of cameras. Returns how
+// many of `indices` it did: all, unless `last_batch` stopped it early (at a batch boundary).
+std::size_t rove(GlScene& scene, const SampleSet& samples, const std::vector<std::uint32_t>& indices,
+                 double max_error, GlReport& report, const ProgressFn& progress, const Found& found,
+                 const LastBatch& last_batch = {});
 
 // `--views auto`: a view is drawn while its expected cost stays below that of the per-sample
-// cameras it would save. A camera's cost is measured by a first batch of cameras; a view's, and
-// the fraction of its samples a view resolves, by the views read so far (a view is read while
-// the next is drawn, so the first two are always drawn).
+// cameras it would save. A camera's cost is measured by the first batches of cameras; a view's
+// by the steps of the views' pipeline so far (a view drawn while the previous is read and the
+// next prepared), and the fraction of its samples a view resolves by the views read so far:
+// until the first is read (it is read while the next is drawn), all, the most a view can save.
 class ViewBudget {
  public:
   explicit ViewBudget(double seconds_per_camera) : seconds_per_camera_(seconds_per_camera) {}
   bool worth_a_view(std::size_t samples) const {
-    if (views_ == 0) return true;
-    const double resolved_fraction = double(resolved_) / double(attempted_);
-    return view_seconds_ / views_ < resolved_fraction * double(samples) * seconds_per_camera_;
+    if (steps_ == 0) return true;
+    const double resolved_fraction = attempted_ ? double(resolved_) / double(attempted_) : 1.0;
+    return step_seconds_ / double(steps_) < resolved_fraction * double(samples) * seconds_per_camera_;
   }
-  void record_view(double seconds, std::size_t samples, std::size_t resolved) {
-    ++views_, view_seconds_ += seconds, attempted_ += samples, resolved_ += resolved;
+  void record_step(double seconds) { ++steps_, step_seconds_ += seconds; }
+  void record_read(std::size_t samples, std::size_t resolved) {
+    attempted_ += samples, resolved_ += resolved;
   }
 
  private:
-  double seconds_per_camera_, view_seconds_ = 0;
-  std::size_t views_ = 0, attempted_ = 0, resolved_ = 0;
+  double seconds_per_camera_, step_seconds_ = 0;
+  std::size_t steps_ = 0, attempted_ = 0, resolved_ = 0;
 };
 
 // Viewpoint sampling of samples[candidates]: found(k, d) where a view accepted sample k, from

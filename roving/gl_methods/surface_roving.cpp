@@ -7,6 +7,7 @@
 
 #include "gl_passes.h"
 #include "roving/core/normal_line.h"
+#include "roving/core/stopwatch.h"
 #include "roving/gl_methods/gl_methods.h"
 
 namespace roving {
@@ -123,8 +124,9 @@ class SurfaceRoving final : public GlMethod {
 
 }  // namespace
 
-void rove(GlScene& scene, const SampleSet& samples, const std::vector<std::uint32_t>& indices,
-          double max_error, GlReport& report, const ProgressFn& progress, const Found& found) {
+std::size_t rove(GlScene& scene, const SampleSet& samples, const std::vector<std::uint32_t>& indices,
+                 double max_error, GlReport& report, const ProgressFn& progress, const Found& found,
+                 const LastBatch& last_batch) {
   const TriangleMesh& test = *scene.test;
   // The camera's half-width: half a pixel across, and the shared rule's tolerance, which the
   // lines and points drawn for edges and vertices near the ray reach (normal_line.h). Tiny:
@@ -135,7 +137,6 @@ void rove(GlScene& scene, const SampleSet& samples, const std::vector<std::uint3
   // clamped into [-h, h].
   const double half_depth = max_error + half_width;
   report.camera_depth_step = 2 * half_depth * std::ldexp(1.0, -24);
-  report.sample_cameras += indices.size();
 
   // The triangles of batch `first` .. first + kTilesPerBatch of `indices`, tile by tile.
   const auto emit_batch = [&](std::size_t first, std::vector<TileVertex>& vertices) {
@@ -172,14 +173,23 @@ void rove(GlScene& scene, const SampleSet& samples, const std::vector<std::uint3
   // build the next one.
   std::vector<TileVertex> batch[2];
   std::vector<float> depth;
+  CameraCost cost;
+  std::size_t end = indices.size();  // where last_batch stops it
   if (!indices.empty()) emit_batch(0, batch[0]);
-  for (std::size_t first = 0, b = 0; first < indices.size(); first += kTilesPerBatch, ++b) {
-    const std::size_t count = std::min(kTilesPerBatch, indices.size() - first);
+  for (std::size_t first = 0, b = 0; first < end; first += kTilesPerBatch, ++b) {
+    const std::size_t count = std::min(kTilesPerBatch, end - first);
+    if (b > 0 && last_batch && last_batch(first + count, cost)) end = first + count;
+    const Stopwatch step;
+    double draw_seconds = 0;
     run_beside(
         [&] {
-          if (first + count < indices.size()) emit_batch(first + count, batch[(b + 1) % 2]);
+          if (first + count < end) emit_batch(first + count, batch[(b + 1) % 2]);
         },
-        [&] { scene.renderer->render_tiles(batch[b % 2], count, depth); });
+        [&] {
+          const Stopwatch draw;
+          scene.renderer->render_tiles(batch[b % 2], count, depth);
+          draw_seconds = draw.seconds();
+        });
     for (std::size_t tile = 0; tile < count; ++tile) {
       // Depth z is t / 2h along the ray from x + h n; d = h - t. 1 is the cleared, empty tile.
       if (depth[tile] < 1.0f) {
@@ -187,8 +197,16 @@ void rove(GlScene& scene, const SampleSet& samples, const std::vector<std::uint3
               std::clamp(half_depth - double(depth[tile]) * 2 * half_depth, -max_error, max_error));
       }
     }
+    report.sample_cameras += count;
+    if (b == 0) {
+      cost.first_draw_seconds = draw_seconds;
+    } else {
+      cost.step_seconds += step.seconds();
+      cost.stepped_cameras += count;
+    }
     if (progress) progress("cameras", first + count, indices.size());
   }
+  return end;
 }
 
 std::unique_ptr<DistanceMethod> make_surface_roving(const GlMethodOptions& options) {

@@ -223,14 +223,9 @@ class ViewLine {
 void view_sample(GlScene& scene, const SampleSet& samples, const std::vector<std::uint32_t>& candidates,
                  double max_error, const GlMethodOptions& options, GlReport& report,
                  const ProgressFn& progress, const Found& found, ViewBudget* budget) {
-  // Voxel references have only axis normals: then the 6 axis views suffice (Section 4.3).
-  const bool axis_normals = std::all_of(samples.normals.begin(), samples.normals.end(), [](const Vec3& n) {
-    return n.cwiseAbs().maxCoeff() == 1.0 && n.cwiseAbs().sum() == 1.0;
-  });
-  const std::vector<Vec3> directions =
-      axis_normals ? axis_directions() : view_directions(options.views_h, options.views_v);
-  const int grid_h = axis_normals ? 0 : options.views_h, grid_v = axis_normals ? 0 : options.views_v;
-  report.axis_views = axis_normals;
+  report.axis_views = axis_normals(samples);
+  const ViewGrid grid(report.axis_views, options.views_h, options.views_v);
+  const std::vector<Vec3>& directions = grid.directions;
   // Each sample goes to the direction nearest its normal; groups are sized before they are
   // filled, and the per-sample directions freed once grouped.
   std::vector<std::vector<std::uint32_t>> groups(directions.size());
@@ -239,8 +234,7 @@ void view_sample(GlScene& scene, const SampleSet& samples, const std::vector<std
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, candidates.size(), 1024),
                       [&](const tbb::blocked_range<std::size_t>& range) {
                         for (std::size_t i = range.begin(); i != range.end(); ++i) {
-                          direction_of[i] =
-                              nearest_direction(directions, grid_h, grid_v, samples.normals[candidates[i]]);
+                          direction_of[i] = grid.nearest(samples.normals[candidates[i]]);
                         }
                       });
     std::vector<std::size_t> sizes(directions.size(), 0);
@@ -344,7 +338,6 @@ void view_sample(GlScene& scene, const SampleSet& samples, const std::vector<std
     return i < views && (!budget || budget->worth_a_view(groups[order[i]].size()));
   };
   std::size_t drawn = 0;
-  double previous_seconds = 0;
   if (worth_drawing(0)) prepare(ring[0], order[0]);
   for (; worth_drawing(drawn); ++drawn) {
     const std::size_t i = drawn;
@@ -358,13 +351,14 @@ void view_sample(GlScene& scene, const SampleSet& samples, const std::vector<std
           if (i + 1 < views) prepare(ring[(i + 1) % 3], order[i + 1]);
         },
         [&] { draw(ring[i % 3]); });
-    if (budget && i > 0)
-      budget->record_view(previous_seconds, groups[order[i - 1]].size(), previous_resolved);
-    previous_seconds = watch.seconds();
+    if (budget) {
+      budget->record_step(watch.seconds());
+      if (i > 0) budget->record_read(groups[order[i - 1]].size(), previous_resolved);
+    }
   }
   if (drawn > 0) {
     const std::size_t resolved = read(ring[(drawn - 1) % 3]);
-    if (budget) budget->record_view(previous_seconds, groups[order[drawn - 1]].size(), resolved);
+    if (budget) budget->record_read(groups[order[drawn - 1]].size(), resolved);
   }
 }
 
