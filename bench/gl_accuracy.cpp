@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include "data_folder.h"
 #include "accuracy_pairs.h"
 #include "analytic.h"
 #include "decimate.h"
@@ -110,8 +111,7 @@ bool cooperative_matrix(const std::string& data, GlMethodOptions gl) {
 
 int main(int argc, char** argv) {
   CLI::App app{"gl-accuracy: GL methods against the exact references, full size"};
-  std::string data =
-      std::getenv("ROVING_DATA") ? std::getenv("ROVING_DATA") : ROVING_SOURCE_DIR "/../shared/data";
+  std::string data = default_data_folder();
   std::string backend = "osmesa";
   bool time_naive = true;
   app.add_option("--data", data, "folder of the real models");

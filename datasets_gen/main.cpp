@@ -9,6 +9,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "data_folder.h"
 #include "analytic.h"
 #include "decimate.h"
 #include "paper_models.h"
@@ -81,11 +82,10 @@ PointCloud sampled_points(const TriangleMesh& mesh, std::size_t count) {
 
 int main(int argc, char** argv) {
   CLI::App app{"roving-datasets: normalised, decimated, voxelised, sampled and analytic test models"};
-  std::string data = std::getenv("ROVING_DATA") && *std::getenv("ROVING_DATA") ? std::getenv("ROVING_DATA")
-                                                                               : "../shared/data";
+  std::string data = default_data_folder();
   std::string out = "build/datasets";
   bool quick = false;
-  app.add_option("--data", data, "folder of the real models ($ROVING_DATA or ../shared/data)")
+  app.add_option("--data", data, "folder of the real models ($ROVING_DATA, else the checkout's data/)")
       ->capture_default_str();
   app.add_option("--out", out, "folder to write into")->capture_default_str();
   app.add_flag("--quick", quick, "the bunny's files only (for tests)");

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <string>
 
+#include "data_folder.h"
 #include "roving/core/error.h"
 #include "roving/core/triangle_mesh.h"
 #include "roving/formats/mesh_io.h"
@@ -15,15 +16,10 @@
 
 namespace roving::testing {
 
-// Path of a real model in $ROVING_DATA or ../shared/data beside the checkout. A test that needs
-// one fails (never skips) when neither holds it: CI must not pass without the data.
+// Path of a real model in $ROVING_DATA or the checkout's data/. A test that needs one fails
+// (never skips) when the folder lacks it: CI must not pass without the data.
 inline std::string data_file(const std::string& name) {
-  std::filesystem::path folder;
-  if (const char* env = std::getenv("ROVING_DATA"); env && *env) {
-    folder = env;
-  } else {
-    folder = std::filesystem::path(ROVING_SOURCE_DIR) / ".." / "shared" / "data";
-  }
+  const std::filesystem::path folder = default_data_folder();
   const auto path = folder / name;
   if (!std::filesystem::exists(path)) {
     throw std::runtime_error("test data '" + name + "' not found in " + folder.string() +
