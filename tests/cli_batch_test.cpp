@@ -13,16 +13,6 @@ namespace {
 
 using namespace roving::testing::cli;
 
-std::string cube_obj(double s) {
-  std::string obj;
-  for (int i = 0; i < 8; ++i) obj += fmt::format("v {} {} {}\n", i & 1 ? s : -s, i & 2 ? s : -s, i & 4 ? s : -s);
-  for (const char* f : {"1 3 2", "2 3 4", "5 6 7", "6 8 7", "1 2 5", "2 6 5", "3 7 4", "4 7 8", "1 5 3", "3 5 7",
-                        "2 4 6", "4 8 6"}) {
-    obj += fmt::format("f {}\n", f);
-  }
-  return obj;
-}
-
 // Five cubes of half-sides 0.50 .. 0.54 and a manifest pairing the first with each of the
 // others, plus one pair whose test does not exist.
 struct Dataset {
@@ -145,9 +135,15 @@ TEST(CliBatch, JsonLinesAndFoldersMatchedByName) {
   const Folder refs, tests;
   for (const char* name : {"a.obj", "b.obj", "only-here.obj"}) refs.file(name, cube_obj(0.5));
   for (const char* name : {"a.obj", "b.obj", "not-there.obj"}) tests.file(name, cube_obj(0.52));
-  const CliRun folders = run_cli("batch " + refs.path.string() + " " + tests.path.string() + " --out " +
-                                 data.out("folders") + " --semantics closest");
+  // A file without a partner is an error listing each such file (nothing measured), unless skipped.
+  const std::string folder_pair = refs.path.string() + " " + tests.path.string();
+  expect_error("batch " + folder_pair + " --out " + data.out("folders"),
+               {"2 file(s) without a partner", "only-here.obj", "not-there.obj", "--skip-unpaired"});
+  EXPECT_FALSE(fs::exists(data.out("folders")));
+  const CliRun folders =
+      run_cli("batch " + folder_pair + " --out " + data.out("folders") + " --semantics closest --skip-unpaired");
   EXPECT_EQ(folders.exit_code, 0) << folders.err;
+  EXPECT_NE(folders.err.find("skipping 2 file(s) without a partner"), std::string::npos) << folders.err;
   const auto rows = read_csv(data.out("folders") + "/summary.csv");
   ASSERT_EQ(rows.size(), 3u);  // a.obj and b.obj
   EXPECT_NE(rows[1][1].find("a.obj"), std::string::npos);

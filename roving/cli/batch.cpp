@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <memory>
 
@@ -84,6 +85,7 @@ void check_columns(const std::string& where, const std::map<std::string, std::st
 }
 
 std::vector<Pair> read_manifest(const std::string& path) {
+  require_regular_file(path, "a batch manifest (.csv or .jsonl)");
   std::ifstream file(path);
   if (!file) throw Error(fmt::format("{}: cannot open the batch manifest", path));
   const fs::path folder = fs::path(path).parent_path();
@@ -128,18 +130,42 @@ std::vector<Pair> read_manifest(const std::string& path) {
   return pairs;
 }
 
-// Files of `references` paired with the files of the same name in `tests`, by name.
-std::vector<Pair> pair_folders(const std::string& references, const std::string& tests) {
+// The names of the regular files in `folder`, sorted.
+std::vector<std::string> file_names(const std::string& folder) {
   std::vector<std::string> names;
-  for (const auto& entry : fs::directory_iterator(references)) {
-    if (entry.is_regular_file() && fs::exists(fs::path(tests) / entry.path().filename())) {
-      names.push_back(entry.path().filename().string());
-    }
+  for (const auto& entry : fs::directory_iterator(folder)) {
+    if (entry.is_regular_file()) names.push_back(entry.path().filename().string());
   }
   std::sort(names.begin(), names.end());
+  return names;
+}
+
+// Files of `references` paired with the files of the same name in `tests`. A file without a
+// partner is an error that lists every such file, unless `skip_unpaired`.
+std::vector<Pair> pair_folders(const std::string& references, const std::string& tests, bool skip_unpaired) {
+  const std::vector<std::string> in_references = file_names(references), in_tests = file_names(tests);
+  std::vector<std::string> names, unpaired;
+  std::set_intersection(in_references.begin(), in_references.end(), in_tests.begin(), in_tests.end(),
+                        std::back_inserter(names));
+  for (const auto& [folder, listed] : {std::pair{&references, &in_references}, {&tests, &in_tests}}) {
+    for (const std::string& name : *listed) {
+      if (!std::binary_search(names.begin(), names.end(), name)) {
+        unpaired.push_back((fs::path(*folder) / name).string());
+      }
+    }
+  }
   if (names.empty()) {
     throw Error(fmt::format("{} and {}: expected files of the same name in both folders, found none", references,
                             tests));
+  }
+  if (!unpaired.empty() && !skip_unpaired) {
+    throw Error(fmt::format("{} and {}: {} file(s) without a partner of the same name in the other folder: {}; "
+                            "pass --skip-unpaired to measure the {} pair(s) found",
+                            references, tests, unpaired.size(), fmt::join(unpaired, ", "), names.size()));
+  }
+  if (!unpaired.empty()) {
+    std::fprintf(stderr, "roving: skipping %zu file(s) without a partner (--skip-unpaired): %s\n", unpaired.size(),
+                 fmt::format("{}", fmt::join(unpaired, ", ")).c_str());
   }
   std::vector<Pair> pairs;
   for (const std::string& name : names) {
@@ -155,7 +181,7 @@ std::pair<std::size_t, std::size_t> shard_range(const std::string& shard, std::s
   const std::size_t slash = shard.find('/');
   if (slash == std::string::npos || !parse_number(std::string_view(shard).substr(0, slash), i) ||
       !parse_number(std::string_view(shard).substr(slash + 1), n) || n < 1 || i < 0 || i >= n) {
-    throw Error(fmt::format("--shard: expected I/N with 0 <= I < N (e.g. 0/4, as Slurm's "
+    throw UsageError(fmt::format("--shard: expected I/N with 0 <= I < N (e.g. 0/4, as Slurm's "
                             "$SLURM_ARRAY_TASK_ID/$SLURM_ARRAY_TASK_COUNT), found '{}'",
                             shard));
   }
@@ -190,9 +216,9 @@ MeasureArguments arguments_for(const Pair& pair, const MeasureArguments& default
 std::string pair_key(const MeasureArguments& a, const std::string& reference_sha, const std::string& test_sha) {
   const std::string identity = fmt::format(
       "{}|{}|method={}|semantics={}|samples={}|seed={}|max_error={}|views={}|resolution={}|backend={}|"
-      "symmetric={}|ref_type={}|test_type={}|bins={}",
+      "symmetric={}|ref_type={}|test_type={}|bins={}|hausdorff_bound={}",
       reference_sha, test_sha, a.method, a.semantics, a.samples, a.seed ? std::to_string(*a.seed) : "", a.max_error,
-      a.views, a.resolution, a.backend, a.symmetric, a.reference_type, a.test_type, a.histogram_bins);
+      a.views, a.resolution, a.backend, a.symmetric, a.reference_type, a.test_type, a.histogram_bins, a.hausdorff_bound);
   unsigned char digest[EVP_MAX_MD_SIZE];
   unsigned int length = 0;
   EVP_Digest(identity.data(), identity.size(), digest, &length, EVP_sha256(), nullptr);
@@ -239,24 +265,45 @@ std::vector<std::string> summary_row(const nlohmann::json& report) {
   return row;
 }
 
-// summary.csv from every report in `folder`, in list order; returns (ok, failed) counts.
-std::pair<std::size_t, std::size_t> merge(const std::string& folder) {
-  std::vector<nlohmann::json> reports;
-  if (!fs::is_directory(folder)) throw Error(fmt::format("--merge: expected a batch folder, found '{}'", folder));
+// Removes the temporary files that writers killed mid-write left in `folder` (never those a live
+// process, such as a concurrent shard, is writing); returns how many.
+std::size_t sweep_abandoned(const std::string& folder) {
+  std::size_t removed = 0;
   for (const auto& entry : fs::directory_iterator(folder)) {
-    if (entry.path().extension() != ".json") continue;
+    if (is_temporary_name(entry.path().filename().string())) removed += remove_if_abandoned(entry.path().string());
+  }
+  return removed;
+}
+
+// summary.csv from the reports in `folder`, one row per pair index in index order (where a pair
+// has two reports, a finished one over a failed one, then the newer); temporary files are never
+// read as reports. Returns (ok, failed) counts.
+std::pair<std::size_t, std::size_t> merge(const std::string& folder) {
+  if (!fs::is_directory(folder)) throw Error(fmt::format("--merge: expected a batch folder, found '{}'", folder));
+  sweep_abandoned(folder);
+  std::map<std::size_t, std::pair<nlohmann::json, fs::file_time_type>> by_index;
+  for (const auto& entry : fs::directory_iterator(folder)) {
+    const std::string name = entry.path().filename().string();
+    if (entry.path().extension() != ".json" || name.front() == '.' || !entry.is_regular_file()) continue;
     std::ifstream file(entry.path());
+    nlohmann::json report;
     try {
-      nlohmann::json report = nlohmann::json::parse(file);
-      if (report.contains("batch")) reports.push_back(std::move(report));
+      report = nlohmann::json::parse(file);
     } catch (const nlohmann::json::exception&) {
       throw Error(fmt::format("{}: not a JSON report (a file of another kind in the batch folder?)",
                               entry.path().string()));
     }
+    if (!report.contains("batch")) continue;
+    const std::size_t index = report["batch"]["index"].get<std::size_t>();
+    const fs::file_time_type written = entry.last_write_time();
+    const auto rank = [](const nlohmann::json& r, fs::file_time_type t) { return std::pair(r["batch"]["status"] == "ok", t); };
+    const auto found = by_index.find(index);
+    if (found == by_index.end() || rank(found->second.first, found->second.second) < rank(report, written)) {
+      by_index[index] = {std::move(report), written};
+    }
   }
-  std::sort(reports.begin(), reports.end(), [](const nlohmann::json& a, const nlohmann::json& b) {
-    return a["batch"]["index"].get<std::size_t>() < b["batch"]["index"].get<std::size_t>();
-  });
+  std::vector<nlohmann::json> reports;
+  for (auto& [index, report] : by_index) reports.push_back(std::move(report.first));
   std::vector<std::string> header = {"index", "reference", "test", "status", "error", "method", "semantics",
                                      "samples", "no_hits", "diagonal", "max_error"};
   const nlohmann::json statistics = statistics_json(Statistics());
@@ -308,12 +355,13 @@ int run_batch(const BatchArguments& args, std::string& stage) {
   if (args.inputs.size() == 1) {
     pairs = read_manifest(args.inputs[0]);
   } else if (args.inputs.size() == 2 && fs::is_directory(args.inputs[0]) && fs::is_directory(args.inputs[1])) {
-    pairs = pair_folders(args.inputs[0], args.inputs[1]);
+    pairs = pair_folders(args.inputs[0], args.inputs[1], args.skip_unpaired);
   } else {
-    throw Error(fmt::format("batch: expected a manifest (.csv or .jsonl) or two folders, found {} argument(s)",
+    throw UsageError(fmt::format("batch: expected a manifest (.csv or .jsonl) or two folders, found {} argument(s)",
                             args.inputs.size()));
   }
   const auto [first, last] = shard_range(args.shard, pairs.size());
+  plan_command_line(args.defaults);  // the command line's own options: a usage error (exit 2) if bad
   // Every pair's options are checked before any is measured: a typo fails the batch at once.
   std::vector<MeasureArguments> arguments;
   for (std::size_t i = first; i < last; ++i) {
@@ -325,6 +373,9 @@ int run_batch(const BatchArguments& args, std::string& stage) {
     }
   }
   fs::create_directories(args.out);
+  if (const std::size_t swept = sweep_abandoned(args.out)) {
+    std::fprintf(stderr, "roving: removed %zu temporary file(s) an interrupted run left in %s\n", swept, args.out.c_str());
+  }
 
   Progress progress(args.defaults.quiet);
   const Stopwatch watch;

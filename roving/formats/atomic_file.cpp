@@ -1,17 +1,52 @@
 // Temporary-file-and-rename output.
 #include "roving/formats/atomic_file.h"
 
+#include <fcntl.h>
 #include <fmt/format.h>
+#include <sys/file.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <array>
+#include <atomic>
 #include <cerrno>
+#include <csignal>
 #include <cstdlib>
 #include <cstring>
+#include <regex>
 
 #include "roving/core/error.h"
 
 namespace roving {
+
+namespace {
+
+// The temporary files alive in this process, for the signal handler: slots of pointers to each
+// AtomicFile's temporary_ (lock-free, so the handler may read them).
+std::array<std::atomic<const char*>, 64> live_temporaries{};
+
+void track(const char* temporary) {
+  for (auto& slot : live_temporaries) {
+    const char* empty = nullptr;
+    if (slot.compare_exchange_strong(empty, temporary)) return;
+  }  // more than 64 at once: the next run sweeps what a signal leaves
+}
+
+void untrack(const char* temporary) {
+  for (auto& slot : live_temporaries) {
+    const char* expected = temporary;
+    if (slot.compare_exchange_strong(expected, nullptr)) return;
+  }
+}
+
+extern "C" void remove_temporaries_and_exit(int signal) {
+  for (auto& slot : live_temporaries) {
+    if (const char* temporary = slot.load()) ::unlink(temporary);
+  }
+  ::_exit(128 + signal);
+}
+
+}  // namespace
 
 AtomicFile::AtomicFile(std::string path) : path_(std::move(path)) {
   const auto slash = path_.find_last_of('/');
@@ -24,10 +59,17 @@ AtomicFile::AtomicFile(std::string path) : path_(std::move(path)) {
   const int fd = ::mkstemps(pattern.data(), static_cast<int>(extension.size()));
   if (fd < 0) throw Error(fmt::format("{}: cannot open for writing ({})", path_, std::strerror(errno)));
   temporary_ = pattern;
+  // The lock says "a live process writes this": remove_if_abandoned() leaves it alone. A second
+  // descriptor keeps it until the rename, after the stream is closed.
+  lock_fd_ = ::dup(fd);
+  if (lock_fd_ >= 0) ::flock(lock_fd_, LOCK_EX);
+  track(temporary_.c_str());
   stream_ = ::fdopen(fd, "wb");
   if (!stream_) {
     ::close(fd);
     ::unlink(temporary_.c_str());
+    untrack(temporary_.c_str());
+    if (lock_fd_ >= 0) ::close(lock_fd_);
     throw Error(fmt::format("{}: cannot open for writing", path_));
   }
 }
@@ -35,6 +77,31 @@ AtomicFile::AtomicFile(std::string path) : path_(std::move(path)) {
 AtomicFile::~AtomicFile() {
   if (stream_) std::fclose(stream_);
   if (!committed_) ::unlink(temporary_.c_str());
+  untrack(temporary_.c_str());
+  if (lock_fd_ >= 0) ::close(lock_fd_);
+}
+
+bool is_temporary_name(const std::string& name) {
+  static const std::regex pattern(R"(\..+\.[A-Za-z0-9]{6}(\.[A-Za-z0-9]+)?)");
+  return std::regex_match(name, pattern);
+}
+
+bool remove_if_abandoned(const std::string& path) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC | O_NOFOLLOW);
+  if (fd < 0) return false;
+  struct stat info {};
+  // A live writer holds LOCK_EX until its rename; the lock is released when a writer dies.
+  const bool abandoned = ::fstat(fd, &info) == 0 && S_ISREG(info.st_mode) && ::flock(fd, LOCK_EX | LOCK_NB) == 0;
+  const bool removed = abandoned && ::unlink(path.c_str()) == 0;
+  ::close(fd);
+  return removed;
+}
+
+void remove_temporaries_on_signals() {
+  struct sigaction action {};
+  action.sa_handler = remove_temporaries_and_exit;
+  sigemptyset(&action.sa_mask);
+  for (int signal : {SIGINT, SIGTERM, SIGHUP}) ::sigaction(signal, &action, nullptr);
 }
 
 void AtomicFile::close_stream() {
@@ -60,6 +127,7 @@ void AtomicFile::commit() {
         fmt::format("{}: cannot move the finished file into place ({})", path_, std::strerror(errno)));
   }
   committed_ = true;
+  untrack(temporary_.c_str());
 }
 
 void write_stdout(const std::string& text) {

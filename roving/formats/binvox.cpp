@@ -9,12 +9,14 @@
 #include <sstream>
 
 #include "roving/core/error.h"
+#include "roving/formats/file_bytes.h"
 #include "roving/core/memory_budget.h"
 #include "roving/formats/atomic_file.h"
 
 namespace roving {
 
 VoxelGrid read_binvox(const std::string& path) {
+  require_regular_file(path, "a .binvox voxel model");
   std::ifstream file(path, std::ios::binary);
   if (!file) throw Error(fmt::format("{}: cannot open for reading", path));
   const auto fail = [&](const std::string& what) { return Error(fmt::format("{}: {}", path, what)); };

@@ -7,10 +7,12 @@
 #include <sstream>
 
 #include "roving/core/error.h"
+#include "roving/formats/file_bytes.h"
 
 namespace roving {
 
 BezierSurface read_bpt(const std::string& path) {
+  require_regular_file(path, "a .bpt Bezier patch file");
   std::ifstream file(path);
   if (!file) throw Error(fmt::format("{}: cannot open for reading", path));
   std::string line;

@@ -10,19 +10,71 @@
 #include <cerrno>
 #include <charconv>
 #include <cstring>
+#include <filesystem>
 
 #include "roving/core/error.h"
 
 namespace roving {
 
+namespace {
+
+const char* file_kind(mode_t mode) {
+  if (S_ISDIR(mode)) return "a directory";
+  if (S_ISFIFO(mode)) return "a named pipe (FIFO)";
+  if (S_ISSOCK(mode)) return "a socket";
+  if (S_ISCHR(mode)) return "a character device";
+  if (S_ISBLK(mode)) return "a block device";
+  return "not a regular file";
+}
+
+bool trusted_references = false;
+
+}  // namespace
+
+void require_regular_file(const std::string& path, const std::string& what) {
+  struct stat info {};
+  if (::stat(path.c_str(), &info) != 0) {
+    throw Error(fmt::format("{}: cannot open for reading ({})", path, std::strerror(errno)));
+  }
+  if (!S_ISREG(info.st_mode)) {
+    throw Error(fmt::format("{}: is {}; expected a file holding {}", path, file_kind(info.st_mode), what));
+  }
+}
+
+void references_may_leave_folder(bool allowed) {
+  trusted_references = allowed;
+}
+
+std::string resolve_reference(const std::string& referrer, const std::string& reference, const std::string& what) {
+  namespace fs = std::filesystem;
+  const fs::path folder = fs::path(referrer).parent_path();
+  const fs::path resolved = (folder / reference).lexically_normal();
+  if (trusted_references) return resolved.string();
+  const auto refuse = [&](const char* why) {
+    return Error(fmt::format("{}: {} '{}' {}; references must stay in the model's folder (--trust-references "
+                             "allows it for inputs you trust)",
+                             referrer, what, reference, why));
+  };
+  if (fs::path(reference).is_absolute()) throw refuse("is an absolute path");
+  const fs::path relative = resolved.lexically_relative(folder.empty() ? fs::path(".") : folder);
+  if (relative.empty() || *relative.begin() == "..") throw refuse("leads out of the folder");
+  std::error_code error;
+  const fs::path real_folder = fs::weakly_canonical(folder.empty() ? fs::path(".") : folder, error);
+  const fs::path real = fs::weakly_canonical(resolved, error);
+  const fs::path inside = real.lexically_relative(real_folder);
+  if (!error && (inside.empty() || *inside.begin() == "..")) throw refuse("is a symbolic link leading out of the folder");
+  return resolved.string();
+}
+
 FileBytes::FileBytes(const std::string& path, const std::string& what) {
-  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  require_regular_file(path, what);
+  // O_NONBLOCK: should the path have become a FIFO since the check, open() still returns at once.
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
   if (fd < 0) throw Error(fmt::format("{}: cannot open for reading ({})", path, std::strerror(errno)));
   struct stat info {};
   if (::fstat(fd, &info) != 0 || !S_ISREG(info.st_mode)) {
     ::close(fd);
-    throw Error(fmt::format("{}: is {}; expected a file holding {}", path,
-                            S_ISDIR(info.st_mode) ? "a directory" : "not a regular file", what));
+    throw Error(fmt::format("{}: is {}; expected a file holding {}", path, file_kind(info.st_mode), what));
   }
   size_ = static_cast<std::size_t>(info.st_size);
   if (size_ == 0) {

@@ -10,6 +10,18 @@
 
 namespace roving {
 
+// Throws roving::Error naming `path` unless it is a regular file: a named pipe, socket or device
+// could block a read forever or never end, a directory holds no model. Checked by stat(), without
+// opening the file. `what` says what was expected ("a .ply mesh").
+void require_regular_file(const std::string& path, const std::string& what);
+
+// Throws roving::Error unless `reference`, a file that `referrer` names (a glTF buffer or image, an
+// OBJ's mtllib, a texture), resolved relative to `referrer`'s folder, stays inside that folder:
+// no absolute path, no '..' out of it, no symbolic link pointing out. Returns the resolved path.
+// references_may_leave_folder(true) (the CLI's --trust-references) lifts the rule for trusted inputs.
+std::string resolve_reference(const std::string& referrer, const std::string& reference, const std::string& what);
+void references_may_leave_folder(bool allowed);
+
 class FileBytes {
  public:
   // Throws roving::Error naming `path` when it cannot be opened, is not a regular file, or is

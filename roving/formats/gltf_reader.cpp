@@ -196,10 +196,15 @@ class GltfReader {
         if (!decoded) fail(where + ": expected a base64 data URI");
         storage_.push_back(std::move(*decoded));
       } else {
-        if (text.find("://") != std::string::npos || fs::path(text).is_absolute()) {
+        if (text.find("://") != std::string::npos) {
           fail(fmt::format("{}: expected a data URI or a file beside the .gltf, found '{}'", where, text));
         }
-        const fs::path file = fs::path(path_).parent_path() / text;
+        const fs::path file = resolve_reference(path_, text, where + "'s uri");
+        try {
+          require_regular_file(file.string(), where + "'s bytes");
+        } catch (const Error& e) {
+          fail(fmt::format("{}: {}", where, e.what()));
+        }
         std::ifstream in(file, std::ios::binary);
         std::error_code error;
         const auto size = fs::file_size(file, error);

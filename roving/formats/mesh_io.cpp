@@ -23,6 +23,7 @@
 #include "ply_reader.h"
 #include "roving/core/error.h"
 #include "roving/formats/atomic_file.h"
+#include "roving/formats/file_bytes.h"
 #include "stl_reader.h"
 
 namespace roving {
@@ -97,6 +98,7 @@ void require_known_format(const std::string& path, const std::string& ext, bool 
 LoadedMesh load_mesh(const std::string& path) {
   const std::string ext = lower_extension(path);
   if (ext != "gltf" && ext != "glb" && ext != "3mf") require_known_format(path, ext, true);
+  require_regular_file(path, "a ." + ext + " mesh");  // a FIFO or device would block the reader
   LoadedMesh loaded;
   if (ext == "obj") loaded = read_obj(path);
   if (ext == "ply") loaded = std::move(read_ply(path).mesh);

@@ -10,6 +10,7 @@
 
 #include "ply_reader.h"
 #include "roving/core/error.h"
+#include "roving/formats/file_bytes.h"
 #include "roving/formats/atomic_file.h"
 
 namespace roving {
@@ -32,6 +33,7 @@ void validate(PointCloud& cloud, const std::string& path) {
 }
 
 PointCloud read_xyz(const std::string& path) {
+  require_regular_file(path, "a .xyz point cloud");
   std::ifstream file(path);
   if (!file) throw Error(fmt::format("{}: cannot open for reading", path));
   PointCloud cloud;

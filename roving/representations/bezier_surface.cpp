@@ -243,6 +243,9 @@ SampleSet bezier_samples(const BezierSurface& surface, const SampleSpec& spec, i
     samples.weights.push_back(weight);
     samples.elements.push_back(static_cast<std::uint32_t>(patch));
   };
+  if (spec.kind == SampleSpec::Kind::Area && spec.count == 0) {
+    throw Error("--samples area:auto: the sample count is chosen by `roving measure` for --precision; give area:N here");
+  }
   if (spec.kind == SampleSpec::Kind::Area) {
     require_memory("sampling", 85.0 * spec.count, fmt::format("{} samples", spec.count));
     // Patch by its (tessellated) area, then (u, v) uniform, accepted with probability
