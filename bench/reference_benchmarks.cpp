@@ -9,11 +9,14 @@
 #include <cstdlib>
 #include <filesystem>
 
+#include "data_folder.h"
 #include "decimate.h"
 #include "roving/core/normalise.h"
 #include "roving/formats/mesh_io.h"
 #include "roving/gl/depth_renderer.h"
 #include "roving/gl_methods/agreement.h"
+#include "roving/reference_cgal/cgal_reference.h"
+#include "roving/reference_embree/certified_hausdorff.h"
 #include "roving/registry/method_registry.h"
 
 namespace {
@@ -28,8 +31,7 @@ struct Pair {
 
 const Pair& bunny_pair() {
   static const Pair pair = [] {
-    const char* env = std::getenv("ROVING_DATA");
-    const std::string folder = env && *env ? env : ROVING_SOURCE_DIR "/../shared/data";
+    const std::string folder = default_data_folder();
     Pair p;
     p.reference = normalised(load_mesh(folder + "/stanford-bunny.obj").mesh);
     p.test = decimate_quadric(p.reference, 10459);
@@ -152,7 +154,32 @@ void BM_RovingCameras(benchmark::State& state) {
   state.SetItemsProcessed(static_cast<int64_t>(state.iterations() * p.samples.size()));
 }
 
+// The Hausdorff distance from the bunny to its 10,459-triangle mesh within 1e-4 of the diagonal:
+// our certified interval and CGAL's bounded-error value, each checked against the other first
+// (CGAL's value within its bound of our interval).
+void BM_Hausdorff(benchmark::State& state, bool ours) {
+  const Pair& p = bunny_pair();
+  const double bound = 1e-4 * p.reference.bounding_box().diagonal();
+  const HausdorffInterval h = certified_hausdorff(p.reference, p.test, bound);
+  const double cgal = cgal_bounded_hausdorff(p.reference, p.test, bound);
+  if (!(h.upper - h.lower <= bound && cgal >= h.lower - bound && cgal <= h.upper + bound)) {
+    state.SkipWithError("the certified interval and CGAL's value disagree");
+    return;
+  }
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(ours ? certified_hausdorff(p.reference, p.test, bound).upper
+                                  : cgal_bounded_hausdorff(p.reference, p.test, bound));
+  }
+  state.counters["lower"] = h.lower;
+  state.counters["upper"] = h.upper;
+  state.counters["cgal"] = cgal;
+}
+
 void register_all() {
+  benchmark::RegisterBenchmark("hausdorff/certified-1e-4", BM_Hausdorff, true)->Unit(benchmark::kMillisecond)->UseRealTime();
+  benchmark::RegisterBenchmark("hausdorff/cgal-bounded-1e-4", BM_Hausdorff, false)
+      ->Unit(benchmark::kMillisecond)
+      ->UseRealTime();
   benchmark::RegisterBenchmark("gl/view-1024px", BM_GlView)->Unit(benchmark::kMillisecond)->UseRealTime();
   benchmark::RegisterBenchmark("gl/roving-cameras", BM_RovingCameras)
       ->Unit(benchmark::kMillisecond)

@@ -10,6 +10,7 @@ struct ReportTable {
   std::string title;
   std::vector<std::string> header;
   std::vector<std::vector<std::string>> rows;
+  std::string settings;  // one line above the table: what was measured, how
 
   std::string markdown() const;
   // Writes `path` (CSV, RFC 4180 quoting); throws roving::Error when it cannot.

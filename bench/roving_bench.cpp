@@ -12,11 +12,12 @@
 #include <map>
 #include <thread>
 
+#include "data_folder.h"
 #include "analytic.h"
 #include "decimate.h"
 #include "paper_models.h"
-#include "reference_cgal/cgal_reference.h"
-#include "reference_embree/embree_reference.h"
+#include "roving/reference_cgal/cgal_reference.h"
+#include "roving/reference_embree/embree_reference.h"
 #include "report_table.h"
 #include "roving/core/error.h"
 #include "roving/core/normalise.h"
@@ -120,6 +121,11 @@ class Bench {
   std::string renderer_;
 };
 
+// The samples every table takes on its reference, in words.
+std::string samples_text(const Bench& bench) {
+  return bench.options().quick ? "8,000 area samples" : "face samples (centroids)";
+}
+
 // Table 1: observations of exact roving and of the cooperative method at three spacings.
 void table1(Bench& bench) {
   // The cooperative columns keep the paper's reading (accepted within h along the view line,
@@ -129,7 +135,13 @@ void table1(Bench& bench) {
       "Table 1: observations (views rendered + per-sample cameras)",
       {"model", "samples", "roving", "coop 36x18", "coop 24x12", "coop 12x6", "24x12, default reading",
        "paper model", "paper roving", "paper 36x18", "paper 24x12", "paper 12x6"},
-      {}};
+      {}, {}};
+  t.settings = fmt::format(
+      "Each model's {} against the model decimated to a quarter of its triangles (quadric error), h = 5% of its "
+      "diagonal, first hit; views of 1024 px read the paper's way (the view's depth at the sample, "
+      "cos-corrected), but for the last column, which reads along the normal line as the tool does by default. "
+      "Exact roving takes one camera per sample.",
+      samples_text(bench));
   struct Model {
     const char* file;
     const char* label;
@@ -204,7 +216,11 @@ void observation_dependence(Bench& bench) {
       "Table 1b: bunny observations (views + cameras) at 24x12, by test model, view resolution and "
       "acceptance threshold h",
       {"test model", "resolution"},
-      {}};
+      {}, {}};
+  t.settings = fmt::format(
+      "The bunny's {} against each test model; cooperative 24x12 read the paper's way, as Table 1; h as a "
+      "percentage of the bunny's diagonal.",
+      samples_text(bench));
   for (double h : thresholds) t.header.push_back(fmt::format("h = {:g}% of diagonal", 100 * h));
   const std::size_t quarter = bunny.triangle_count() / 4 / 2 * 2;
   for (const auto& [triangles, resolutions] : {std::pair{quarter, std::vector{512, 1024, 2048}},
@@ -333,10 +349,18 @@ void tables23(Bench& bench) {
   }
   ReportTable t2{"Table 2: SiAD / USiAD / STD, paper units (longest side 128), h = 5% of the diagonal",
                  {"test model", "method", "SiAD", "USiAD", "STD", "no-hits"},
-                 {}};
+                 {}, {}};
+  t2.settings = fmt::format(
+      "The bunny's {} against each test model, h = 5% of the diagonal ({:.4g} paper units); first-hit "
+      "semantics but for the closest-point rows and the baselines; a no-hit counts as d = +h.",
+      samples_text(bench), h);
   ReportTable t3{"Table 3: seconds (build + query), and the speed-up over naive vertex-to-plane in this run",
                  {"test model", "method", "build s", "query s", "total s", "naive v2p / this", "paper s"},
-                 {}};
+                 {}, {}};
+  t3.settings =
+      "The runs of Table 2, timed on this machine (2 cores; GL on llvmpipe): build (the method's acceleration "
+      "structure or GL upload) and query apart; naive v2p / this = naive vertex-to-plane's total seconds over "
+      "the method's, in the same run.";
   const std::vector<std::pair<std::string, std::string>> methods = {
       {"cooperative", "cooperative GL 24x12"},
       {"roving", "exact GL roving"},
@@ -405,12 +429,17 @@ void hv_study(Bench& bench) {
   ReportTable t{"H x V study: bunny vs middle mesh, cooperative method",
                 {"views", "resolution", "views rendered", "cameras", "observations", "query s", "USiAD",
                  "abs USiAD error vs Embree", "relative"},
-                {}};
+                {}, {}};
   std::vector<std::pair<int, int>> spacings = {{6, 3}, {12, 6}, {24, 12}, {36, 18}, {48, 24}, {72, 36}};
   std::vector<int> resolutions = {512, 2048, 4096};
   if (bench.options().quick) spacings = {{12, 6}, {24, 12}}, resolutions = {512};
   std::string csv =
       "views_h,views_v,resolution,views_rendered,cameras,observations,query_s,usiad,embree_usiad\n";
+  t.settings = fmt::format(
+      "The bunny's {} against its 10,459-triangle mesh, h = 5% of the diagonal, first hit; the cooperative "
+      "method with the tool's default (normal-line) reading; error = |USiAD - Embree's USiAD| on the same "
+      "samples, in paper units.",
+      samples_text(bench));
   const auto measure = [&](int vh, int vv, int resolution) {
     bench.progress.step(fmt::format("H x V study: {}x{} at {} px", vh, vv, resolution));
     GlMethodOptions gl;
@@ -421,7 +450,7 @@ void hv_study(Bench& bench) {
     t.rows.push_back({fmt::format("{}x{}", vh, vv), std::to_string(resolution),
                       std::to_string(g.views_rendered), std::to_string(g.sample_cameras),
                       std::to_string(g.observations()), figure(r.result.query_seconds, 3),
-                      figure(r.stats.usiad, 5), figure(err, 5),
+                      figure(r.stats.usiad, 5), fmt::format("{:.2e}", err),
                       fmt::format("{:.3f}%", 100 * err / embree.stats.usiad)});
     csv += fmt::format("{},{},{},{},{},{},{},{},{}\n", vh, vv, resolution, g.views_rendered, g.sample_cameras,
                        g.observations(), r.result.query_seconds, r.stats.usiad, embree.stats.usiad);
@@ -440,7 +469,11 @@ void surfel_study(Bench& bench) {
   ReportTable t{"Surfels: point clouds as the test model, against the surface they were sampled from",
                 {"points from", "points", "median r", "rim bound kappa r^2 / 2", "SiAD (Embree)",
                  "USiAD (Embree)", "max d", "holes (no-hits)", "roving vs Embree: USiAD", "same hit flag"},
-                {}};
+                {}, {}};
+  t.settings =
+      "Each point cloud, drawn as surfels (a disk per point reaching its 8th nearest neighbour), is TEST; REF is "
+      "the surface the points were taken from (an exact sphere, the bunny's mesh), first hit; r is a disk's "
+      "radius, kappa the surface's curvature.";
   const auto row = [&](const std::string& label, const PointCloud& cloud, const SampleSet& truth, double h,
                        double curvature) {
     bench.progress.step(fmt::format("surfels: {}, {} points", label, cloud.positions.size()));
@@ -504,7 +537,12 @@ void gates(Bench& bench) {
   const ViewAgreement views =
       view_agreement(embree.result, cooperative.result, samples, *cooperative.result.gl);
   ReportTable t{
-      "Accuracy gates: bunny vs its middle mesh perturbed by 1.5% of the diagonal", {"gate", "result"}, {}};
+      "Accuracy gates: bunny vs its middle mesh perturbed by 1.5% of the diagonal", {"gate", "result"}, {}, {}};
+  t.settings = fmt::format(
+      "The bunny's {} against its 10,459-triangle mesh with every vertex moved along its normal by up to 1.5% "
+      "of the diagonal (a smooth wave), h = 5%, first hit: exact GL roving and the cooperative method (24x12, "
+      "1024 px) against Embree on the same samples.",
+      samples_text(bench));
   const auto gate = [&](bool ok, const std::string& what) {
     if (!ok) bench.failures.push_back("gate failed: " + what);
     t.rows.push_back({what, ok ? "pass" : "FAIL"});
@@ -541,7 +579,8 @@ std::string command_output(const char* command) {
 
 std::string machine_section(const Bench& bench) {
   return fmt::format(
-      "## Machine\n\n- CPU: {} ({} hardware threads)\n- GL: {}\n- CGAL {}, Embree {}\n- commit {}\n- mode: "
+      "## Machine\n\n- CPU: {} ({} hardware threads)\n- GL: {}\n- CGAL {}, Embree {}\n- built from commit {} "
+      "(these results are committed on top of it)\n- mode: "
       "{}\n",
       command_output("sed -n 's/^model name[^:]*: //p' /proc/cpuinfo | head -n 1"),
       std::thread::hardware_concurrency(), bench.renderer(), cgal_version(), embree_version(),
@@ -599,10 +638,23 @@ void write_results(Bench& bench, const fs::path& out) {
       "models are "
       "voxelised here (thin, as the paper's, and conservative). The paper ran on a 1.7 GHz Pentium IV with a "
       "GeForce3; "
-      "our GL is {}, a software rasteriser on 2 cores, so GL timings are not the paper's hardware story.\n\n",
+      "our GL is {}, a software rasteriser on 2 cores, so GL timings are not the paper's hardware story.\n\n"
+      "## What the tables measure\n\n"
+      "For each sample x of the reference REF (with its unit normal n), d is the signed distance along n to "
+      "the test model TEST: the first crossing of the normal line within h of x (the paper's semantics), "
+      "positive where TEST lies outside REF. A sample with no crossing within h is a *no-hit* and counts as "
+      "d = +h (the paper's MAX_ERROR). Over the N samples:\n\n"
+      "- **SiAD**, the mean signed distance (1/N) sum d (the paper's eq. 2): its sign says on which side TEST "
+      "lies on average;\n"
+      "- **USiAD**, the mean unsigned distance (1/N) sum |d|: the size of the error;\n"
+      "- **STD**, the standard deviation of the signed d about SiAD;\n"
+      "- **observations** (Table 1), the paper's measure of GL work: views rendered by viewpoint sampling "
+      "plus per-sample cameras of surface roving, written `total (views + cameras)`.\n\n"
+      "Lengths are in paper units: each model normalised to longest side 128. Every table states its samples, "
+      "test models, h and reading in the line above it.\n\n",
       bench.options().quick ? " --quick" : "", bench.renderer());
   for (const ReportTable& t : bench.tables) {
-    markdown += "## " + t.title + "\n\n" + t.markdown() + "\n";
+    markdown += "## " + t.title + "\n\n" + (t.settings.empty() ? "" : t.settings + "\n\n") + t.markdown() + "\n";
     std::string name = t.title.substr(0, t.title.find(':'));
     for (char& c : name) c = std::isalnum(static_cast<unsigned char>(c)) ? std::tolower(c) : '-';
     t.write_csv((out / (name + ".csv")).string());
@@ -689,8 +741,7 @@ void write_results(Bench& bench, const fs::path& out) {
 int main(int argc, char** argv) {
   CLI::App app{"roving-bench: regenerate the paper's tables and figures into results/"};
   Options options;
-  options.data = std::getenv("ROVING_DATA") && *std::getenv("ROVING_DATA") ? std::getenv("ROVING_DATA")
-                                                                           : "../shared/data";
+  options.data = default_data_folder();
   app.add_option("--data", options.data, "folder of the real models")->capture_default_str();
   app.add_option("--out", options.out, "results folder (quick mode uses its quick/ subfolder)")
       ->capture_default_str();

@@ -1,6 +1,6 @@
 // Exact reference distances on CGAL's AABB tree (DESIGN.md "Definitions"), and the accelerated
 // vertex-to-plane baseline, which is its closest-point query.
-#include "reference_cgal/cgal_reference.h"
+#include "roving/reference_cgal/cgal_reference.h"
 
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>

@@ -1,7 +1,7 @@
 // Vertex-to-plane baseline (the paper's Table 3): distance to the nearest point of M_C's
 // triangles. The naive form tests every triangle, as the paper timed it.
 #include "closest_point_baseline.h"
-#include "reference_cgal/cgal_reference.h"
+#include "roving/reference_cgal/cgal_reference.h"
 
 namespace roving {
 namespace {

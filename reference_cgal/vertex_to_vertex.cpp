@@ -4,7 +4,7 @@
 #include <CGAL/Search_traits_3.h>
 
 #include "closest_point_baseline.h"
-#include "reference_cgal/cgal_reference.h"
+#include "roving/reference_cgal/cgal_reference.h"
 
 namespace roving {
 namespace {

@@ -1,5 +1,5 @@
 // Exact reference distances by Embree ray casting and point queries (DESIGN.md "Definitions").
-#include "reference_embree/embree_reference.h"
+#include "roving/reference_embree/embree_reference.h"
 
 #include <embree3/rtcore.h>
 #include <fmt/format.h>
@@ -14,6 +14,7 @@
 #include "roving/core/geometry.h"
 #include "roving/core/normal_line.h"
 #include "roving/core/stopwatch.h"
+#include "embree_queries.h"
 
 namespace roving {
 namespace {
@@ -192,12 +193,7 @@ class EmbreeReference final : public DistanceMethod {
     const Vec3 pad = Vec3::Constant(2 * self->tolerance_);
     low -= self->origin_ + pad;
     high += pad - self->origin_;
-    const auto down = [](double v) { return std::nextafter(static_cast<float>(v), -INFINITY); };
-    const auto up = [](double v) { return std::nextafter(static_cast<float>(v), INFINITY); };
-    args->bounds_o->lower_x = down(low.x()), args->bounds_o->lower_y = down(low.y());
-    args->bounds_o->lower_z = down(low.z());
-    args->bounds_o->upper_x = up(high.x()), args->bounds_o->upper_y = up(high.y());
-    args->bounds_o->upper_z = up(high.z());
+    write_bounds(low, high, args->bounds_o);
   }
 
   // A candidate triangle: decided by the shared rule; for first-hit the ray is then shortened
@@ -221,13 +217,7 @@ class EmbreeReference final : public DistanceMethod {
   // The point of TEST closest to x, given a bound on its distance (infinity for none).
   Vec3 closest_point(const Vec3& x, double bound) const {
     PointQueryState state{test_, x, x};
-    RTCPointQuery query;
-    const Vec3 centred = x - origin_;
-    query.x = static_cast<float>(centred.x());
-    query.y = static_cast<float>(centred.y());
-    query.z = static_cast<float>(centred.z());
-    query.time = 0.0f;
-    query.radius = search_radius(bound);
+    RTCPointQuery query = point_query(x - origin_, search_radius(bound));
     RTCPointQueryContext context;
     rtcInitPointQueryContext(&context);
     rtcPointQuery(scene_, &query, &context, nullptr, &state);

@@ -15,21 +15,6 @@ namespace {
 
 using namespace roving::testing::cli;
 
-// An OBJ cube [-s, s]^3 moved by `shift` along x, outward-facing unless `inside_out`.
-std::string cube_obj(double s, double shift = 0, bool inside_out = false) {
-  std::string obj;
-  for (int i = 0; i < 8; ++i) {
-    obj += fmt::format("v {} {} {}\n", (i & 1 ? s : -s) + shift, i & 2 ? s : -s, i & 4 ? s : -s);
-  }
-  const int faces[12][3] = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6}, {0, 1, 4}, {1, 5, 4},
-                            {2, 6, 3}, {3, 6, 7}, {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
-  for (const auto& f : faces) {
-    obj += inside_out ? fmt::format("f {} {} {}\n", f[0] + 1, f[2] + 1, f[1] + 1)
-                      : fmt::format("f {} {} {}\n", f[0] + 1, f[1] + 1, f[2] + 1);
-  }
-  return obj;
-}
-
 struct Cubes {
   Folder folder;
   std::string small = folder.file("small.obj", cube_obj(0.5));
@@ -39,6 +24,79 @@ struct Cubes {
 
 // Embree's closest point is computed in float: 0.05 to about 1e-7.
 constexpr double kFloatTolerance = 1e-6;
+
+// Cubes of half-sides 0.5 and 0.55: every point of the small one is 0.05 from the large one; the
+// large one's corners are 0.05 sqrt(3) from the small one. The certified interval holds both.
+TEST(CliReport, CertifiedHausdorffIntervalHoldsTheClosedForm) {
+  const Cubes cubes;
+  const CliRun run = run_cli("measure " + cubes.pair + " --symmetric --hausdorff-bound 1e-6 --json -");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const auto json = nlohmann::json::parse(run.out);
+  const double truths[2] = {0.05, 0.05 * std::sqrt(3.0)};
+  for (int k = 0; k < 2; ++k) {
+    const auto& h = json["directions"][k]["hausdorff_certified"];
+    EXPECT_LE(h["lower"].get<double>(), truths[k] + 1e-12);
+    EXPECT_GE(h["upper"].get<double>(), truths[k] - 1e-12);
+    EXPECT_LE(h["upper"].get<double>() - h["lower"].get<double>(), 1e-6 * (1 + 1e-9));
+  }
+  EXPECT_GE(json["two_sided"]["hausdorff_certified"]["upper"].get<double>(), truths[1] - 1e-12);
+  // The sampled Hausdorff distance (face centroids) sees only 0.05: the corners lie between samples.
+  EXPECT_NEAR(json["two_sided"]["hausdorff"].get<double>(), 0.05, kFloatTolerance);
+  // Not asked for under first-hit without --symmetric; refused when absurd.
+  EXPECT_FALSE(nlohmann::json::parse(run_cli("measure " + cubes.pair + " --json -").out).contains("hausdorff_certified"));
+  EXPECT_EQ(run_cli("measure " + cubes.pair + " --symmetric --hausdorff-bound -1").exit_code, 2);
+  EXPECT_FALSE(nlohmann::json::parse(run_cli("measure " + cubes.pair + " --symmetric --hausdorff-bound none --json -").out)
+                   ["two_sided"]
+                       .contains("hausdorff_certified"));
+}
+
+// Gates on figures with intervals: by default the figure decides and a note says when its interval
+// straddles the limit (or lies wholly above it); --gate-on upper decides on the interval's top.
+TEST(CliReport, GatesOnTheUpperEndOfAnIntervalAndSayWhenTheDecisionRestsInsideIt) {
+  const Cubes cubes;
+  // Sampled Hausdorff 0.05 (face centroids); certified ~0.0866 (the large cube's corners).
+  const std::string symmetric = "measure " + cubes.pair + " --symmetric --fail-above hausdorff=0.07";
+  const CliRun estimate = run_cli(symmetric);
+  EXPECT_EQ(estimate.exit_code, 0) << estimate.err;
+  EXPECT_NE(estimate.err.find("lies wholly above it"), std::string::npos) << estimate.err;
+  const CliRun upper = run_cli(symmetric + " --gate-on upper");
+  EXPECT_EQ(upper.exit_code, 3) << upper.err;
+  EXPECT_NE(upper.err.find("its interval reaching"), std::string::npos) << upper.err;
+  // REF a unit square, TEST the plane z = 0.1 x: USiAD's surface mean is 0.05, and 500 random
+  // samples' interval is about +-0.0025 wide around its estimate.
+  const std::string square = cubes.folder.file("square.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 2 4 3\n");
+  const std::string tilted =
+      cubes.folder.file("tilted.obj", "v -1 -1 -0.1\nv 2 -1 0.2\nv -1 2 -0.1\nv 2 2 0.2\nf 1 2 3\nf 2 4 3\n");
+  const std::string sampled = "measure " + square + " " + tilted + " --samples area:500 --max-error 0.5 --fail-above usiad=0.05";
+  const CliRun inside = run_cli(sampled);
+  EXPECT_NE(inside.err.find("gate usiad: the limit 0.05 lies inside the interval"), std::string::npos) << inside.err;
+  EXPECT_EQ(run_cli(sampled + " --gate-on upper").exit_code, 3);
+  EXPECT_EQ(run_cli(sampled + " --gate-on both").exit_code, 2);
+}
+
+// area:auto draws samples until USiAD's interval is as narrow as asked: square against the plane
+// z = 0.1 x, where |d| has standard deviation 0.1 / sqrt(12) and USiAD's surface mean is 0.05, so a
+// half-width of 0.5% of it needs N >= (1.96 * 0.0289 / 0.00025)^2 = 51,300: a second round.
+TEST(CliReport, AreaAutoSamplesUntilThePrecisionAsked) {
+  const Cubes cubes;
+  const std::string square = cubes.folder.file("square.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 2 4 3\n");
+  const std::string tilted =
+      cubes.folder.file("tilted.obj", "v -1 -1 -0.1\nv 2 -1 0.2\nv -1 2 -0.1\nv 2 2 0.2\nf 1 2 3\nf 2 4 3\n");
+  const CliRun run =
+      run_cli("measure " + square + " " + tilted + " --samples area:auto --precision 0.5% --max-error 0.5 --json -");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const auto json = nlohmann::json::parse(run.out);
+  const auto& aim = json["samples"]["auto"];
+  EXPECT_TRUE(aim["met"].get<bool>());
+  EXPECT_EQ(aim["rounds"], 2);
+  EXPECT_LE(aim["usiad_half_width_reached"].get<double>(), aim["usiad_half_width_asked"].get<double>());
+  EXPECT_GE(json["samples"]["count"].get<std::size_t>(), 51300u * 9 / 10);
+  EXPECT_LE(json["samples"]["count"].get<std::size_t>(), 80000u);
+  const auto& usiad = json["sampling_error"]["usiad"];
+  EXPECT_LE(usiad["lower"].get<double>(), 0.05 * (1 + 0.01));  // the truth, within twice the half-width
+  EXPECT_GE(usiad["upper"].get<double>(), 0.05 * (1 - 0.01));
+  expect_error("measure " + square + " " + tilted + " --samples area:auto --precision 0", {"--precision", "USiAD"});
+}
 
 TEST(CliReport, SymmetricGivesBothDirectionsAndMetrosSummary) {
   const Cubes cubes;
@@ -277,13 +335,35 @@ TEST(CliReport, HeatMapPictureIsAPngOfThreeViewsAndALegend) {
   const std::string points = cubes.folder.file("points.png");
   ASSERT_EQ(run_cli("measure " + xyz + " " + cubes.large + " --method roving --heatmap-png " + points).exit_code, 0);
   EXPECT_EQ(png_size(points).first, 16 + 3 * 416 + 250);
-  expect_error("measure " + cubes.pair + " --symmetric --heatmap-png " + faces, {"--heatmap-png", "--symmetric"});
+  // Under --symmetric, one picture per direction, each named so.
+  const std::string both = cubes.folder.file("both.png");
+  ASSERT_EQ(run_cli("measure " + cubes.pair + " --symmetric --heatmap-png " + both).exit_code, 0);
+  EXPECT_FALSE(std::filesystem::exists(both));
+  for (const char* name : {"both.A-to-B.png", "both.B-to-A.png"}) {
+    EXPECT_EQ(png_size(cubes.folder.file(name)).first, 16 + 3 * 416 + 250) << name;
+  }
   expect_error("measure " + cubes.pair + " --heatmap-png " + cubes.folder.path.string(), {"--heatmap-png", "directory"});
   // A picture that cannot be written fails the run, and the other outputs are not written either.
   const std::string json = cubes.folder.file("never.json");
   const std::string unwritable = cubes.folder.file("no-such-folder/h.png");
   expect_error("measure " + cubes.pair + " --json " + json + " --heatmap-png " + unwritable, {unwritable.c_str()});
   EXPECT_FALSE(std::filesystem::exists(json));
+}
+
+// A bad option value or combination is a usage error, exit 2 like a parse error, before any file
+// is read; an error in an input file is exit 1.
+TEST(CliReport, BadOptionValuesExitTwoAndBadFilesOne) {
+  const Cubes cubes;
+  for (const std::string& options :
+       std::vector<std::string>{"--seed 3", "--views 0x3", "--max-error bogus", "--samples area:0", "--method nope", "--semantics far",
+        "--heatmap-range -1", "--json " + cubes.folder.path.string()}) {
+    const CliRun run = run_cli("measure " + cubes.pair + " " + options);
+    EXPECT_EQ(run.exit_code, 2) << options << ": " << run.err;
+    EXPECT_NE(run.err.find("see roving measure --help"), std::string::npos) << run.err;
+  }
+  EXPECT_EQ(run_cli("batch " + cubes.folder.path.string() + " " + cubes.folder.path.string() + " --shard 5/2").exit_code,
+            2);
+  EXPECT_EQ(run_cli("measure " + cubes.small + " " + cubes.folder.file("missing.obj")).exit_code, 1);
 }
 
 TEST(CliReport, TyposGetSuggestionsAndHelpListsEveryFormat) {
@@ -299,10 +379,35 @@ TEST(CliReport, TyposGetSuggestionsAndHelpListsEveryFormat) {
   }
 }
 
-TEST(CliReport, SymmetricRefusesWhatHasOneDirection) {
+// The quality column (signed d) of a heat map's faces.
+std::vector<double> heatmap_face_quality(const std::string& path) {
+  std::ifstream file(path);
+  std::string line;
+  std::size_t vertices = 0, faces = 0;
+  while (std::getline(file, line) && line != "end_header") {
+    std::sscanf(line.c_str(), "element vertex %zu", &vertices);
+    std::sscanf(line.c_str(), "element face %zu", &faces);
+  }
+  for (std::size_t i = 0; i < vertices; ++i) std::getline(file, line);
+  std::vector<double> quality;
+  for (std::size_t i = 0; i < faces && std::getline(file, line); ++i) {
+    quality.push_back(std::stod(line.substr(line.find_last_of(' ') + 1)));
+  }
+  return quality;
+}
+
+TEST(CliReport, SymmetricHeatMapsOnePerDirectionAndRefusesWhatHasOneDirection) {
   const Cubes cubes;
-  expect_error("measure " + cubes.pair + " --symmetric --heatmap " + cubes.folder.file("h.ply"),
-               {"--heatmap", "--symmetric"});
+  const std::string h = cubes.folder.file("h.ply");
+  ASSERT_EQ(run_cli("measure " + cubes.pair + " --symmetric --heatmap " + h).exit_code, 0);
+  EXPECT_FALSE(std::filesystem::exists(h));
+  // A -> B on the small cube: the large one lies outside (+0.05); B -> A on the large: inside.
+  const auto a_to_b = heatmap_face_quality(cubes.folder.file("h.A-to-B.ply"));
+  const auto b_to_a = heatmap_face_quality(cubes.folder.file("h.B-to-A.ply"));
+  ASSERT_EQ(a_to_b.size(), 12u);
+  ASSERT_EQ(b_to_a.size(), 12u);
+  for (double d : a_to_b) EXPECT_NEAR(d, 0.05, kFloatTolerance);
+  for (double d : b_to_a) EXPECT_NEAR(d, -0.05, kFloatTolerance);
   const std::string xyz = cubes.folder.file("points.xyz", "0 0 0.5 0 0 1\n0.1 0 0.5 0 0 1\n0 0.1 0.5 0 0 1\n");
   // A point cloud as A is also B's test model: drawn as surfels, which 3 points cannot make.
   expect_error("measure " + xyz + " " + cubes.large + " --symmetric", {"points.xyz", "more than 8 points", "found 3"});
@@ -358,7 +463,7 @@ TEST(CliReport, JsonLayoutIsTheDocumentedOne) {
   const std::string grid = cubes.folder.file("grid.xyz", grid_points);
   std::set<std::string> written;
   for (const std::string& arguments :
-       {cubes.pair, cubes.pair + " --symmetric", cubes.pair + " --method cooperative --views 4x2 --resolution 64",
+       {cubes.pair, cubes.pair + " --symmetric", cubes.pair + " --semantics closest", cubes.pair + " --samples area:auto", cubes.pair + " --method cooperative --views 4x2 --resolution 64",
         teapot + " " + teapot + " --samples area:100", points + " " + cubes.small, cubes.small + " " + grid}) {
     const CliRun run = run_cli("measure " + arguments + " --json -");
     ASSERT_EQ(run.exit_code, 0) << arguments << ": " << run.err;

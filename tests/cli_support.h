@@ -2,6 +2,7 @@
 // checks; scratch folders.
 #pragma once
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -54,6 +55,21 @@ inline void expect_error(const std::string& arguments, std::initializer_list<con
 inline int& serial() {
   static int count = 0;
   return count;
+}
+
+// An OBJ cube [-s, s]^3 moved by `shift` along x, outward-facing unless `inside_out`.
+inline std::string cube_obj(double s, double shift = 0, bool inside_out = false) {
+  std::string obj;
+  for (int i = 0; i < 8; ++i) {
+    obj += fmt::format("v {} {} {}\n", (i & 1 ? s : -s) + shift, i & 2 ? s : -s, i & 4 ? s : -s);
+  }
+  const int faces[12][3] = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6}, {0, 1, 4}, {1, 5, 4},
+                            {2, 6, 3}, {3, 6, 7}, {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
+  for (const auto& f : faces) {
+    obj += inside_out ? fmt::format("f {} {} {}\n", f[0] + 1, f[2] + 1, f[1] + 1)
+                      : fmt::format("f {} {} {}\n", f[0] + 1, f[1] + 1, f[2] + 1);
+  }
+  return obj;
 }
 
 // A scratch folder removed at the end of a test.

@@ -6,10 +6,12 @@
 #include <cmath>
 #include <random>
 
+#include "roving/core/confidence.h"
 #include "roving/core/error.h"
 #include "roving/core/mesh_orientation.h"
 #include "roving/core/sample_set.h"
 #include "roving/core/statistics.h"
+#include "roving/registry/method_registry.h"
 #include "test_support.h"
 
 namespace roving {
@@ -142,3 +144,39 @@ TEST(Orientation, ClosedOutwardInsideOutAndOpen) {
 
 }  // namespace
 }  // namespace roving
+
+namespace {
+
+// REF: the unit square at z = 0 (normal +z); TEST: the plane z = a x over a wider square. Along the
+// normal d(x, y) = a x, so over REF the surface means are SiAD = USiAD = a / 2 and RMS = a / sqrt(3).
+TEST(SamplingIntervals, CoverTheClosedFormSurfaceMeansNinetyFivePercentOfTheTime) {
+  const double a = 0.1;
+  const roving::TriangleMesh square({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}}, {{0, 1, 2}, {1, 3, 2}});
+  const roving::TriangleMesh tilted({{-1, -1, -a}, {2, -1, 2 * a}, {-1, 2, -a}, {2, 2, 2 * a}}, {{0, 1, 2}, {1, 3, 2}});
+  const auto embree = roving::make_method("embree");
+  embree->build(tilted);
+  int covered[3] = {0, 0, 0};
+  const int runs = 200;
+  for (int seed = 1; seed <= runs; ++seed) {
+    const roving::SampleSet samples =
+        roving::make_samples(square, {roving::SampleSpec::Kind::Area, 500, static_cast<std::uint64_t>(seed)});
+    const roving::DistanceResult r = embree->measure(samples, {roving::Semantics::FirstHit, 0.5});
+    const roving::SamplingIntervals i = roving::sampling_intervals(r.signed_distance, r.hit, 0.5);
+    covered[0] += i.siad.lower <= a / 2 && a / 2 <= i.siad.upper;
+    covered[1] += i.usiad.lower <= a / 2 && a / 2 <= i.usiad.upper;
+    covered[2] += i.rms.lower <= a / std::sqrt(3.0) && a / std::sqrt(3.0) <= i.rms.upper;
+    EXPECT_NEAR(i.siad.standard_error, a / std::sqrt(12.0) / std::sqrt(500.0), 0.1 * a / std::sqrt(12.0 * 500));
+  }
+  // 95% of 200: 190, with a binomial standard deviation of 3.1; [180, 199] is about +-3 of them.
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_GE(covered[k], 180) << "statistic " << k;
+    EXPECT_LE(covered[k], 199) << "statistic " << k;
+  }
+}
+
+TEST(SamplingIntervals, RefuseTooFewSamples) {
+  EXPECT_THROW(roving::sampling_intervals({1.0}, {1}, 1.0), roving::Error);
+  EXPECT_THROW(roving::sampling_intervals({1.0, 2.0}, {1}, 1.0), roving::Error);
+}
+
+}  // namespace

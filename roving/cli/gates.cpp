@@ -47,17 +47,56 @@ Gate parse_gate(const std::string& text, bool symmetric) {
   return gate;
 }
 
-std::vector<std::string> breached_gates(const std::vector<Gate>& gates, const std::vector<MetricValue>& values) {
+namespace {
+
+double limit_of(const Gate& gate, const MetricValue& v) {
+  return gate.percent ? gate.limit / 100 * v.percent_base : gate.limit;
+}
+
+std::string where(const MetricValue& v) {
+  return v.where.empty() ? "" : " (" + v.where + ")";
+}
+
+}  // namespace
+
+std::vector<std::string> breached_gates(const std::vector<Gate>& gates, const std::vector<MetricValue>& values,
+                                        GateOn on) {
   std::vector<std::string> lines;
   for (const Gate& gate : gates) {
     for (const MetricValue& v : values) {
       if (v.metric != gate.metric) continue;
-      const double limit = gate.percent ? gate.limit / 100 * v.percent_base : gate.limit;
-      if (!(std::abs(v.value) <= limit)) {
-        lines.push_back(fmt::format("gate breached: {}{} = {:.6g} is above the limit {:.6g} (--fail-above {})",
-                                    gate.metric, v.where.empty() ? "" : " (" + v.where + ")", v.value, limit,
+      const double limit = limit_of(gate, v);
+      const bool upper = on == GateOn::Upper && !std::isnan(v.high);
+      const double compared = upper ? v.high : std::abs(v.value);
+      if (!(compared <= limit)) {
+        lines.push_back(fmt::format("gate breached: {}{} = {:.6g}{} is above the limit {:.6g} (--fail-above {})",
+                                    gate.metric, where(v), v.value,
+                                    upper ? fmt::format(", its interval reaching {:.6g},", v.high) : "", limit,
                                     gate.text));
       }
+    }
+  }
+  return lines;
+}
+
+std::vector<std::string> undecided_gates(const std::vector<Gate>& gates, const std::vector<MetricValue>& values) {
+  std::vector<std::string> lines;
+  for (const Gate& gate : gates) {
+    for (const MetricValue& v : values) {
+      const double limit = limit_of(gate, v);
+      if (v.metric != gate.metric || std::isnan(v.low)) continue;
+      if (std::abs(v.value) <= limit && limit <= v.low) {  // a sampled maximum below a certified interval
+        lines.push_back(fmt::format(
+            "gate {}{}: {:.6g} passes the limit {:.6g}, but the interval [{:.6g}, {:.6g}] lies wholly above it: the "
+            "samples missed the farthest points (--gate-on upper decides on the interval)",
+            gate.metric, where(v), std::abs(v.value), limit, v.low, v.high));
+        continue;
+      }
+      if (!(v.low < limit && limit < v.high)) continue;
+      lines.push_back(fmt::format(
+          "gate {}{}: the limit {:.6g} lies inside the interval [{:.6g}, {:.6g}] of {:.6g}: the decision rests on "
+          "sampling (more samples narrow it; --gate-on upper decides on the interval's upper end)",
+          gate.metric, where(v), limit, v.low, v.high, std::abs(v.value)));
     }
   }
   return lines;

@@ -3,6 +3,7 @@
 // `roving` exit with kGateExitCode and print one line naming the metric, the limit and the value.
 #pragma once
 
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -24,7 +25,13 @@ struct MetricValue {
   std::string where;
   double value = 0;
   double percent_base = 0;
+  // Where the value is uncertain: the range of its magnitude that the interval allows (a 95%
+  // sampling interval, or the certified Hausdorff interval); both NaN otherwise.
+  double low = std::nan(""), high = std::nan("");
 };
+
+// What a gate compares with its limit: the estimate, or the upper end of its interval.
+enum class GateOn { Estimate, Upper };
 
 // The metrics a gate may name: the report's statistics, and with --symmetric the two-sided
 // summary (hausdorff, mean_both, rms_both).
@@ -36,6 +43,13 @@ Gate parse_gate(const std::string& text, bool symmetric);
 
 // One line per breached gate and value: magnitudes are compared (a signed mean of -0.3
 // breaches siad=0.2), and a metric measured in both directions is checked in each.
-std::vector<std::string> breached_gates(const std::vector<Gate>& gates, const std::vector<MetricValue>& values);
+// Under GateOn::Upper a value with an interval is compared by its interval's upper end.
+std::vector<std::string> breached_gates(const std::vector<Gate>& gates, const std::vector<MetricValue>& values,
+                                        GateOn on = GateOn::Estimate);
+
+// One line per gate whose decision rests inside an interval (its limit lies between the interval's
+// ends, so other samples could decide the other way), or whose figure passes while its whole
+// interval does not (a sampled Hausdorff distance below the certified one).
+std::vector<std::string> undecided_gates(const std::vector<Gate>& gates, const std::vector<MetricValue>& values);
 
 }  // namespace roving

@@ -12,6 +12,8 @@
 #include "measure.h"
 #include "provenance.h"
 #include "roving/core/memory_budget.h"
+#include "roving/formats/atomic_file.h"
+#include "roving/formats/file_bytes.h"
 #include "roving/registry/method_registry.h"
 
 namespace {
@@ -74,7 +76,10 @@ std::string unknown_argument(int argc, char** argv, const CLI::App& app) {
 }
 
 // The options that say how to measure, shared by `measure` and `batch`.
-void add_measurement_options(CLI::App& app, roving::MeasureArguments& args) {
+void add_measurement_options(CLI::App& app, roving::MeasureArguments& args, bool& trust_references) {
+  app.add_flag("--trust-references", trust_references,
+               "let files a model names (glTF buffers) lie outside the model's folder: absolute paths, '..', "
+               "symbolic links out (by default refused, for models from elsewhere)");
   app.add_option("--method", args.method, fmt::format("distance method: {}", fmt::join(roving::method_names(), ", ")))
       ->capture_default_str();
   app.add_option("--semantics", args.semantics,
@@ -83,12 +88,16 @@ void add_measurement_options(CLI::App& app, roving::MeasureArguments& args) {
   app.add_flag("--symmetric", args.symmetric,
                "measure REF -> TEST and TEST -> REF, with Metro's two-sided summary (Hausdorff, mean, RMS) "
                "relative to the diagonal of both models' box");
-  app.add_option("--samples", args.samples, "faces, vertices or area:N")->capture_default_str();
+  app.add_option("--samples", args.samples, "faces, vertices, area:N, or area:auto (as many random samples as --precision needs)")->capture_default_str();
+  app.add_option("--precision", args.precision,
+                 "with --samples area:auto: the half-width asked of USiAD's 95% interval, P% of USiAD or a length; "
+                 "samples are drawn (from 10,000, at most 20,000,000) until it is reached")
+      ->capture_default_str();
   app.add_option("--seed", args.seed, "seed of area:N sampling (default 12345; reported either way)");
   app.add_option("--max-error", args.max_error, "h, the view volume's half-height: a length or P% of the diagonal")
       ->capture_default_str();
   app.add_option("--ref-type", args.reference_type, "mesh, points, voxels or bezier (default: by extension)");
-  app.add_option("--test-type", args.test_type, "mesh, voxels or bezier (default: by extension)");
+  app.add_option("--test-type", args.test_type, "mesh, points, voxels or bezier (default: by extension)");
   app.add_option("--views", args.views,
                  "viewpoint sampling: H x V directions; for cooperative also auto or auto:HxV (a view only where "
                  "it costs less than the cameras it saves)")
@@ -97,10 +106,17 @@ void add_measurement_options(CLI::App& app, roving::MeasureArguments& args) {
       ->check(CLI::Range(1, 16384))
       ->capture_default_str();
   app.add_option("--backend", args.backend, "GL backend: osmesa or egl")->capture_default_str();
+  app.add_option("--hausdorff-bound", args.hausdorff_bound,
+                 "with --symmetric or --semantics closest: the Hausdorff distance is also bounded over every point "
+                 "of the surfaces, as a certified interval [lower, upper] at most this wide (a length or P% of the "
+                 "diagonal), or none")
+      ->capture_default_str();
   app.add_option("--histogram-bins", args.histogram_bins, "bins of the signed-d histogram")
       ->check(CLI::Range(1, 100000))
       ->capture_default_str();
-  app.add_flag("--quiet", args.quiet, "no progress on stderr (it is shown only on a terminal anyway)");
+  app.add_flag("--quiet", args.quiet,
+               "no progress and no warnings on stderr (progress is shown only on a terminal anyway; warnings stay in "
+               "the report and the JSON); errors are always printed");
 }
 
 }  // namespace
@@ -112,6 +128,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(0, 1);
   bool version = false;
   app.add_flag("--version", version, "print the version and the commit built, and exit");
+  bool trust_references = false;
   roving::MeasureArguments args;
   args.command_line = roving::command_line(argc, argv);
   CLI::App* measure = app.add_subcommand(
@@ -123,20 +140,28 @@ int main(int argc, char** argv) {
                    "reference model M_R: mesh (.obj .ply .off .stl .gltf .glb .3mf), Bezier patches (.bpt), point cloud "
                    "(.ply without faces, .xyz) or voxels (.binvox)")
       ->required();
-  measure->add_option("TEST", args.test_path, "test model M_C: mesh (.obj .ply .off .stl .gltf .glb .3mf), .bpt or .binvox")
+  measure->add_option("TEST", args.test_path,
+                      "test model M_C: mesh (.obj .ply .off .stl .gltf .glb .3mf), Bezier patches (.bpt), voxels "
+                      "(.binvox) or point cloud (.ply without faces, .xyz; drawn as surfels)")
       ->required();
-  add_measurement_options(*measure, args);
+  add_measurement_options(*measure, args, trust_references);
   measure->add_option("--fail-above", args.gates,
                       fmt::format("METRIC=LIMIT (a length, or P% of the diagonal; no_hits: a count or P% of "
                                   "the samples): exit 3 if METRIC's magnitude exceeds LIMIT; repeatable. "
                                   "Metrics: {}",
                                   fmt::join(roving::gate_metrics(true), ", ")));
+  measure->add_option("--gate-on", args.gate_on,
+                      "estimate (default) or upper: what --fail-above compares where a figure has an interval "
+                      "(area:N means, the certified Hausdorff distance): the figure, or its interval's upper end")
+      ->capture_default_str();
   measure->add_option("--json", args.json_path, "write the report as JSON to FILE, or - for stdout");
   measure->add_option("--samples-out", args.samples_csv_path, "write one CSV row per sample");
   measure->add_option("--heatmap", args.heatmap_path,
-                      "write REF coloured by d as PLY (per face or vertex on a mesh or voxels; points otherwise)");
+                      "write REF coloured by d as PLY (per face or vertex on a mesh or voxels; points otherwise); with "
+                      "--symmetric one file per direction, FILE's name + .A-to-B / .B-to-A");
   measure->add_option("--heatmap-png", args.heatmap_png_path,
-                      "render REF coloured by d from the front, side and top, with a colour bar, as PNG");
+                      "render REF coloured by d from the front, side and top, with a colour bar, as PNG; with --symmetric "
+                      "one picture per direction, named as for --heatmap");
   measure->add_option("--heatmap-range", args.heatmap_range,
                       "the colour map's half-range: a length or P% of the diagonal (default: the 99th percentile of "
                       "|d| over the hits)");
@@ -157,7 +182,10 @@ int main(int argc, char** argv) {
                     "I/N: only the I-th (0-based) of N contiguous slices of the pairs, e.g. "
                     "$SLURM_ARRAY_TASK_ID/$SLURM_ARRAY_TASK_COUNT; pairs already in --out are skipped");
   batch->add_flag("--merge", batch_args.merge_only, "only rebuild --out/summary.csv from the reports there");
-  add_measurement_options(*batch, batch_args.defaults);
+  batch->add_flag("--skip-unpaired", batch_args.skip_unpaired,
+                  "with REF_FOLDER TEST_FOLDER: measure the files found in both and list the others on stderr "
+                  "(without it, a file with no partner of the same name is an error)");
+  add_measurement_options(*batch, batch_args.defaults, trust_references);
 
   try {
     app.parse(argc, argv);
@@ -177,9 +205,14 @@ int main(int argc, char** argv) {
                  subcommand ? (std::string(argv[1]) + " ").c_str() : "");
     return 2;
   }
+  roving::references_may_leave_folder(trust_references);
+  roving::remove_temporaries_on_signals();  // SIGINT, SIGTERM: no temporary file left, exit 130 / 143
   std::string stage = "starting";  // what the run is doing, for the message when memory runs out
   try {
     return batch->parsed() ? roving::run_batch(batch_args, stage) : roving::run_measure(args, stage);
+  } catch (const roving::UsageError& e) {
+    std::fprintf(stderr, "roving: error: %s (see roving %s --help)\n", e.what(), batch->parsed() ? "batch" : "measure");
+    return 2;
   } catch (const std::bad_alloc&) {
     std::fprintf(stderr, "roving: error: out of memory while %s (available: %.3g GiB)\n", stage.c_str(),
                  roving::available_memory() / (1024.0 * 1024 * 1024));

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "gates.h"
+#include "roving/core/error.h"
 #include "progress.h"
 #include "report.h"
 #include "roving/gl_methods/gl_methods.h"
@@ -24,6 +25,9 @@ struct MeasureArguments {
   std::string max_error = "5%";
   std::string json_path, samples_csv_path, heatmap_path, heatmap_png_path;
   std::string heatmap_range;  // empty: the 99th percentile of |d| over the hits
+  std::string hausdorff_bound = "0.01%";  // the certified interval's width, or "none"
+  std::string gate_on = "estimate";       // or "upper": gates compare an interval's upper end
+  std::string precision = "1%";           // area:auto: USiAD's 95% half-width, relative (P%) or a length
   std::size_t histogram_bins = 64;
   std::string views = "24x12", backend = "osmesa";
   std::string reference_type, test_type;  // empty: by extension
@@ -46,10 +50,31 @@ struct MeasurePlan {
   std::optional<ModelType> reference_type, test_type;
   bool symmetric = false;
   std::size_t histogram_bins = 64;
+  std::optional<MaxErrorSpec> hausdorff_bound;  // set where the certified Hausdorff interval is computed
+  GateOn gate_on = GateOn::Estimate;
+  std::optional<MaxErrorSpec> precision;  // area:auto only; P% is of USiAD itself
 };
+
+// A bad option value or combination on the command line: the tool exits 2, as for a parse error.
+class UsageError : public Error {
+ public:
+  using Error::Error;
+};
+
+// --samples area:auto: the first round's samples, and the most it may take.
+constexpr std::size_t kAutoFirstSamples = 10000;
+constexpr std::size_t kAutoMaxSamples = 20000000;
 
 // Throws roving::Error naming the option on any bad value.
 MeasurePlan plan_measurement(const MeasureArguments& args);
+
+// plan_measurement, and the output paths checked, for the command line's own options: any error
+// is a UsageError.
+MeasurePlan plan_command_line(const MeasureArguments& args);
+
+// Where --heatmap FILE or --heatmap-png FILE writes each direction: FILE itself for one direction;
+// FILE's stem + ".A-to-B" / ".B-to-A" + its extension under --symmetric.
+std::vector<std::string> heatmap_paths(const std::string& path, bool symmetric);
 
 using WarnFn = std::function<void(const std::vector<std::string>&)>;
 

@@ -166,12 +166,17 @@ std::string wrapped(const std::string& text, std::size_t width = 100) {
 
 std::string gl_lines(const GlReport& g) {
   std::string out = fmt::format("  GL: {}\n", g.renderer);
-  out += fmt::format(
+  if (g.views_h == 0 && !g.axis_views) {  // exact roving: cameras only
+    out += fmt::format("  observations: {} per-sample cameras (exact roving draws no views); unresolved {}\n",
+                       g.sample_cameras, count(g, Resolution::Unresolved));
+  } else {
+    out += fmt::format(
       "  observations: {} ({} views of {} at {} px + {} per-sample cameras); resolved by views {}, by "
       "cameras {}, unresolved {}\n",
       g.observations(), g.views_rendered, g.axis_views ? "the 6 axes" : fmt::format("{}x{}", g.views_h, g.views_v),
       g.resolution, g.sample_cameras, count(g, Resolution::View), count(g, Resolution::Camera),
       count(g, Resolution::Unresolved));
+  }
   // Only what was rendered: views, cameras, or both.
   std::vector<std::string> precision;
   if (g.views_rendered) {
@@ -191,7 +196,7 @@ nlohmann::json gl_json(const GlReport& g) {
           {"observations", g.observations()},
           {"views_rendered", g.views_rendered},
           {"sample_cameras", g.sample_cameras},
-          {"views", g.axis_views ? "6 axes" : fmt::format("{}x{}", g.views_h, g.views_v)},
+          {"views", g.axis_views ? "6 axes" : g.views_h == 0 ? "none" : fmt::format("{}x{}", g.views_h, g.views_v)},
           {"resolution", g.resolution},
           {"resolved_by_view", count(g, Resolution::View)},
           {"resolved_by_camera", count(g, Resolution::Camera)},
@@ -243,7 +248,47 @@ nlohmann::json direction_json(const DirectionReport& d, const MeasureReport& r) 
       {"seconds", {{"build", d.result.build_seconds}, {"query", d.result.query_seconds}}},
   };
   if (d.result.gl) json["gl"] = gl_json(*d.result.gl);
+  if (d.auto_sampling) {
+    json["samples"]["auto"] = {{"usiad_half_width_asked", d.auto_sampling->target},
+                               {"usiad_half_width_reached", d.auto_sampling->reached},
+                               {"rounds", d.auto_sampling->rounds},
+                               {"met", d.auto_sampling->met}};
+  }
+  if (d.intervals) {
+    const auto interval = [](const MeanInterval& m) {
+      return nlohmann::json{{"estimate", m.estimate}, {"standard_error", m.standard_error}, {"lower", m.lower},
+                             {"upper", m.upper}};
+    };
+    json["sampling_error"] = {
+        {"level", d.intervals->level},
+        {"method", "normal approximation: independent samples uniform by area; mean +- 1.96 standard errors"},
+        {"siad", interval(d.intervals->siad)},
+        {"usiad", interval(d.intervals->usiad)},
+        {"rms", interval(d.intervals->rms)}};
+  } else {
+    json["sampling_error"] = {
+        {"method", "none: the statistics are the exact means (eq. 2) over these samples, not estimates"},
+        {"usiad_minus_usiad_area", s.usiad - s.usiad_area}};
+  }
+  if (d.hausdorff) {
+    const HausdorffInterval& h = *d.hausdorff;
+    const auto point = [](const Vec3& p) { return nlohmann::json::array({p.x(), p.y(), p.z()}); };
+    json["hausdorff_certified"] = {{"lower", h.lower},
+                                   {"upper", h.upper},
+                                   {"bound", r.hausdorff_bound},
+                                   {"farthest_point", point(h.lower_point)},
+                                   {"its_closest_point", point(h.lower_closest)},
+                                   {"distance_queries", h.distance_queries},
+                                   {"triangles_split", h.triangles_split},
+                                   {"seconds", h.seconds}};
+  }
   return json;
+}
+
+// "[lower, upper]" of a certified interval, with its width.
+std::string interval_text(double lower, double upper, double diagonal) {
+  return fmt::format("[{:.6g}, {:.6g}] (/ diagonal [{:.6g}, {:.6g}]; width {:.3g})", lower, upper, lower / diagonal,
+                     upper / diagonal, upper - lower);
 }
 
 }  // namespace
@@ -260,8 +305,13 @@ nlohmann::json statistics_json(const Statistics& s) {
 TwoSided MeasureReport::two_sided() const {
   TwoSided t;
   double weight = 0, sum_abs = 0, sum_squares = 0;
+  t.certified = std::all_of(directions.begin(), directions.end(), [](const DirectionReport& d) { return d.hausdorff; });
   for (const DirectionReport& d : directions) {
     t.max_abs = std::max(t.max_abs, d.statistics.max_abs);
+    if (t.certified) {
+      t.hausdorff_lower = std::max(t.hausdorff_lower, d.hausdorff->lower);
+      t.hausdorff_upper = std::max(t.hausdorff_upper, d.hausdorff->upper);
+    }
     const double w = std::accumulate(d.samples.weights.begin(), d.samples.weights.end(), 0.0);
     weight += w;
     sum_abs += w * d.statistics.usiad_area;
@@ -317,12 +367,16 @@ std::string format_body(const MeasureReport& r) {
   if (r.symmetric()) {
     const TwoSided t = r.two_sided();
     const char* max_name =
-        r.semantics == Semantics::Closest ? "Hausdorff distance" : "max |d|, both directions (not Hausdorff)";
+        r.semantics == Semantics::Closest ? "Hausdorff distance, sampled" : "max |d|, both directions (not Hausdorff)";
     out += fmt::format("\n  {:<40} {:>14} {:>12}\n", "two-sided (Metro)", "model units", "/ diagonal");
     for (const auto& [name, value] : {std::pair<std::string, double>{max_name, t.max_abs},
                                       {"mean |d|, both (area-weighted)", t.mean_abs},
                                       {"RMS, both (area-weighted)", t.rms}}) {
       out += fmt::format("  {:<40} {:>14.6g} {:>12.6g}\n", name, value, value / r.diagonal);
+    }
+    if (t.certified) {
+      out += fmt::format("  {:<40} {}\n", "Hausdorff distance, certified",
+                         interval_text(t.hausdorff_lower, t.hausdorff_upper, r.diagonal));
     }
   }
   for (const DirectionReport& d : r.directions) {
@@ -338,6 +392,42 @@ std::string format_body(const MeasureReport& r) {
                        d.label.empty() ? "" : d.label + ": ", d.result.build_seconds, d.result.query_seconds,
                        d.result.query_seconds > 0 ? d.samples.size() / d.result.query_seconds : 0.0);
   }
+  for (const DirectionReport& d : r.directions) {
+    const std::string label = d.label.empty() ? "" : d.label + ": ";
+    if (d.intervals) {
+      const auto text = [&](const char* name, const MeanInterval& m) {
+        return fmt::format("{} [{:.6g}, {:.6g}]", name, m.lower, m.upper);
+      };
+      out += fmt::format(
+          "  {}95% intervals of the surface means (eq. 1) from {} random samples (normal approximation): {}, {}, {}\n",
+          label, d.samples.size(), text("SiAD", d.intervals->siad), text("USiAD", d.intervals->usiad),
+          text("RMS", d.intervals->rms));
+      if (d.auto_sampling) {
+        out += fmt::format("  {}area:auto: {} samples in {} round(s) {} a half-width of {:.3g} for USiAD (asked {:.3g}){}\n",
+                           label, d.samples.size(), d.auto_sampling->rounds,
+                           d.auto_sampling->met ? "reached" : "did not reach, stopping at", d.auto_sampling->reached,
+                           d.auto_sampling->target, d.auto_sampling->met ? "" : ": the sample cap or round limit came first");
+      }
+    } else {
+      const double difference = d.statistics.usiad - d.statistics.usiad_area;
+      out += fmt::format(
+          "  {}{} samples: SiAD, USiAD, RMS are the exact means over these samples (eq. 2), not estimates; as an "
+          "estimate of the surface mean (eq. 1) USiAD differs from its area-weighted form by {:.3g} ({:.3g}%)\n",
+          label, d.samples.kind, difference, d.statistics.usiad_area > 0 ? 100 * difference / d.statistics.usiad_area : 0.0);
+    }
+  }
+  for (const DirectionReport& d : r.directions) {
+    if (!d.hausdorff) continue;
+    const HausdorffInterval& h = *d.hausdorff;
+    out += fmt::format(
+        "  {}Hausdorff distance from {} to {}, certified (every point of the surface, not only the samples): {}; "
+        "farthest point found ({:.6g}, {:.6g}, {:.6g}); {:.3f} s, {} closest-point queries\n",
+        d.label.empty() ? "" : d.label + ": ", r.symmetric() ? d.label.substr(0, 1) : "REF",
+        r.symmetric() ? d.label.substr(d.label.size() - 1) : "TEST", interval_text(h.lower, h.upper, r.diagonal),
+        h.lower_point.x(), h.lower_point.y(), h.lower_point.z(), h.seconds, h.distance_queries);
+  }
+  // Also printed to stderr as found (unless --quiet); here so that the report keeps them.
+  for (const std::string& line : r.warnings) out += fmt::format("  warning: {}\n", line);
   return out;
 }
 
@@ -366,6 +456,9 @@ nlohmann::json to_json(const MeasureReport& r) {
                                       {"mean_both", t.mean_abs},
                                       {"rms_both", t.rms}};
     json["two_sided"] = two_sided;
+    if (t.certified) {
+      json["two_sided"]["hausdorff_certified"] = {{"lower", t.hausdorff_lower}, {"upper", t.hausdorff_upper}};
+    }
     json["two_sided_relative_to_diagonal"] = relative_json(
         {{"max_abs", t.max_abs}, {"mean_both", t.mean_abs}, {"rms_both", t.rms}}, r.diagonal);
   } else {

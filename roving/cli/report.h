@@ -3,9 +3,12 @@
 #pragma once
 
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "roving/reference_embree/certified_hausdorff.h"
+#include "roving/core/confidence.h"
 #include "roving/core/distance_method.h"
 #include "roving/core/statistics.h"
 #include "roving/representations/model.h"
@@ -24,6 +27,19 @@ struct DirectionReport {
   DistanceResult result;
   Statistics statistics;
   std::string label;  // "A -> B" with --symmetric, empty otherwise
+  // The certified one-sided Hausdorff distance of the reference's surface from the test's, where
+  // asked (closest semantics, or --symmetric) and the reference is a surface.
+  std::optional<HausdorffInterval> hausdorff;
+  // 95% intervals of SiAD, USiAD and RMS as estimates of the surface means, for area:N samples.
+  std::optional<SamplingIntervals> intervals;
+  // area:auto: the half-width asked of USiAD's interval, the one reached, and whether it was met
+  // (or the sample cap was).
+  struct AutoSampling {
+    double target = 0, reached = 0;
+    int rounds = 0;
+    bool met = false;
+  };
+  std::optional<AutoSampling> auto_sampling;
 };
 
 // Metro's two-sided summary, over both directions' samples (closest-point semantics make the
@@ -32,6 +48,9 @@ struct TwoSided {
   double max_abs = 0;    // the larger direction's max |d| over hits
   double mean_abs = 0;   // area-weighted mean |d| over both sample sets
   double rms = 0;        // area-weighted RMS over both
+  // The certified Hausdorff distance, max of both directions' intervals, where both were computed.
+  bool certified = false;
+  double hausdorff_lower = 0, hausdorff_upper = 0;
 };
 
 struct MeasureReport {
@@ -40,6 +59,7 @@ struct MeasureReport {
   Semantics semantics = Semantics::FirstHit;
   double max_error = 0;
   std::string max_error_text;  // as the user gave it, e.g. "5%"
+  double hausdorff_bound = 0;  // the certified interval's largest width, in model units
   double diagonal = 0;         // every relative figure's denominator
   bool diagonal_of_both = false;  // of both models' box (--symmetric), else the reference's
   std::uint64_t seed = 0;

@@ -28,6 +28,11 @@ SampleSpec parse_sample_spec(const std::string& text) {
     spec.kind = SampleSpec::Kind::Vertices;
     return spec;
   }
+  if (text == "area:auto") {
+    spec.kind = SampleSpec::Kind::Area;
+    spec.automatic = true;
+    return spec;
+  }
   if (text.rfind("area:", 0) == 0) {
     const std::string digits = text.substr(5);
     std::size_t count = 0;
@@ -41,7 +46,7 @@ SampleSpec parse_sample_spec(const std::string& text) {
     }
   }
   throw Error(
-      fmt::format("--samples: expected 'faces', 'vertices' or 'area:N' with N in [1, 2^31], "
+      fmt::format("--samples: expected 'faces', 'vertices', 'area:auto' or 'area:N' with N in [1, 2^31], "
                   "found '{}'",
                   text));
 }
@@ -128,6 +133,9 @@ void sample_area(const TriangleMesh& mesh, std::size_t count, std::uint64_t seed
 }  // namespace
 
 SampleSet make_samples(const TriangleMesh& reference, const SampleSpec& spec) {
+  if (spec.kind == SampleSpec::Kind::Area && spec.count == 0) {
+    throw Error("--samples area:auto: the sample count is chosen by `roving measure` for --precision; give area:N here");
+  }
   SampleSet samples;
   samples.kind = spec.to_string();
   switch (spec.kind) {

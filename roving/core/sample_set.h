@@ -17,12 +17,14 @@ struct SampleSpec {
   Kind kind = Kind::Faces;
   std::size_t count = 0;       // Area only
   std::uint64_t seed = 12345;  // Area only
+  bool automatic = false;      // area:auto: the caller chooses count for a precision, then samples
 
   std::string to_string() const;
 };
 
-// Parses "faces", "vertices" or "area:N" (N a positive integer); throws roving::Error naming the
-// option `--samples` and what was found otherwise.
+// Parses "faces", "vertices", "area:N" (N a positive integer) or "area:auto" (automatic, count 0
+// until the caller sets it); throws roving::Error naming the option `--samples` and what was found
+// otherwise.
 SampleSpec parse_sample_spec(const std::string& text);
 
 struct SampleSet {

@@ -7,23 +7,9 @@
 #include <cmath>
 
 #include "roving/core/error.h"
+#include "roving/core/running_moments.h"
 
 namespace roving {
-namespace {
-
-// Running mean and sum of squared deviations (Welford 1962).
-struct Welford {
-  double count = 0, mean = 0, squared_deviations = 0;
-  void add(double x) {
-    count += 1;
-    const double delta = x - mean;
-    mean += delta / count;
-    squared_deviations += delta * (x - mean);
-  }
-  double standard_deviation() const { return count > 0 ? std::sqrt(squared_deviations / count) : 0.0; }
-};
-
-}  // namespace
 
 Statistics compute_statistics(const std::vector<double>& signed_distance,
                               const std::vector<std::uint8_t>& hit, const std::vector<double>& weights,
@@ -50,7 +36,7 @@ Statistics compute_statistics(const std::vector<double>& signed_distance,
   double sum = 0, sum_abs = 0, sum_sq = 0;
   // Variances by Welford's update: no cancellation (E[d^2] - E[d]^2 lost all digits when the
   // spread is small against the mean), and exactly 0 for equal values.
-  Welford signed_spread, unsigned_spread;
+  RunningMoments signed_spread, unsigned_spread;
   double w_sum = 0, w_d = 0, w_abs = 0, w_sq = 0;
   double hit_sum = 0, hit_abs = 0;
   for (std::size_t k = 0; k < n; ++k) {

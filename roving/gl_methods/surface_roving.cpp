@@ -117,6 +117,7 @@ class SurfaceRoving final : public GlMethod {
   void resolve(const SampleSet& samples, double max_error, GlReport& report, const Record& record) override {
     std::vector<std::uint32_t> all(samples.size());
     for (std::uint32_t k = 0; k < all.size(); ++k) all[k] = k;
+    report.views_h = report.views_v = report.resolution = 0;  // cameras only: no view grid applies
     rove(scene_, samples, all, max_error, report, progress_,
          [&](std::uint32_t k, double d) { record(k, d, Resolution::Camera); });
   }

@@ -7,8 +7,8 @@
 #include <functional>
 #include <utility>
 
-#include "reference_cgal/cgal_reference.h"
-#include "reference_embree/embree_reference.h"
+#include "roving/reference_cgal/cgal_reference.h"
+#include "roving/reference_embree/embree_reference.h"
 #include "roving/core/error.h"
 
 namespace roving {

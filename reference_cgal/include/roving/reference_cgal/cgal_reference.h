@@ -29,6 +29,11 @@ std::unique_ptr<DistanceMethod> make_vertex_to_vertex(Search search);
 // Semantics: closest. Always a hit.
 std::unique_ptr<DistanceMethod> make_vertex_to_plane(Search search);
 
+// CGAL's Polygon_mesh_processing::bounded_error_Hausdorff_distance from A to B (one-sided, within
+// error_bound of the true value, parallel): the independent check of certified_hausdorff() and
+// the speed it is compared with. Faces a CGAL Surface_mesh cannot hold are left out.
+double cgal_bounded_hausdorff(const TriangleMesh& a, const TriangleMesh& b, double error_bound);
+
 // CGAL's version, for reports.
 std::string cgal_version();
 

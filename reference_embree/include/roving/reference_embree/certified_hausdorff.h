@@ -1,0 +1,32 @@
+// The one-sided Hausdorff distance between two triangle surfaces, certified: an interval that
+// contains the true value, as narrow as asked. Embree's headers stay inside the .cpp.
+#pragma once
+
+#include <cstddef>
+
+#include "roving/core/triangle_mesh.h"
+
+namespace roving {
+
+struct HausdorffInterval {
+  double lower = 0;  // a distance attained: |lower_point - lower_closest|
+  double upper = 0;  // no point of A is farther than this from B
+  Vec3 lower_point = Vec3::Zero();    // the point of A found farthest from B
+  Vec3 lower_closest = Vec3::Zero();  // its closest point on B
+  std::size_t distance_queries = 0;   // closest-point queries on B made
+  std::size_t triangles_split = 0;    // subdivisions of A's triangles the bound needed
+  double seconds = 0;
+};
+
+// h(A, B) = max over points a of A's triangles of the distance from a to B's triangles, bracketed
+// as lower <= h(A, B) <= upper with upper - lower <= max_gap (> 0). Branch and bound over A's
+// triangles: a triangle's lower bound is the largest distance at its vertices (points of A); its
+// upper bound is, for each candidate triangle T of B (the closest ones of its vertices and its
+// parent's), the largest distance from its vertices to T, the smallest over T: the distance to one
+// triangle is convex, so over a triangle of A it peaks at a vertex, and the distance to B is at
+// most that. The triangle with the largest upper bound is split in four until every upper bound is
+// within max_gap of the best lower bound. Closest points by Embree's BVH (boxes padded against its
+// float rounding), distances in double; both cores (TBB). Throws roving::Error on an empty mesh.
+HausdorffInterval certified_hausdorff(const TriangleMesh& a, const TriangleMesh& b, double max_gap);
+
+}  // namespace roving

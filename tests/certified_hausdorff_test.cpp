@@ -1,0 +1,102 @@
+// The certified Hausdorff interval: closed forms inside it, its width within the bound asked, every
+// sampled closest-point distance below it, CGAL's bounded-error value inside it on real pairs.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "analytic.h"
+#include "decimate.h"
+#include "roving/core/normalise.h"
+#include "roving/core/sample_set.h"
+#include "roving/reference_cgal/cgal_reference.h"
+#include "roving/reference_embree/certified_hausdorff.h"
+#include "roving/registry/method_registry.h"
+#include "test_support.h"
+
+namespace {
+
+using roving::HausdorffInterval;
+using roving::TriangleMesh;
+using roving::Vec3;
+using roving::testing::box;
+
+
+TriangleMesh square(double x0, double z) {
+  return TriangleMesh({{x0, 0, z}, {x0 + 1, 0, z}, {x0, 1, z}, {x0 + 1, 1, z}}, {{0, 1, 2}, {1, 3, 2}});
+}
+
+void expect_certified(const HausdorffInterval& h, double truth, double gap, const char* what) {
+  EXPECT_LE(h.lower, truth * (1 + 1e-12) + 1e-15) << what;
+  EXPECT_GE(h.upper, truth * (1 - 1e-12) - 1e-15) << what;
+  EXPECT_LE(h.upper - h.lower, gap * (1 + 1e-12)) << what;
+  EXPECT_GE(h.lower, 0) << what;
+}
+
+TEST(CertifiedHausdorff, ClosedForms) {
+  // A cube inside a scaled cube: every point of the inner one is s - 1 from the outer; the outer
+  // one's corners are sqrt(3) (s - 1) from the inner one's.
+  const double s = 1.3;
+  for (double gap : {1e-2, 1e-4, 1e-7}) {
+    expect_certified(roving::certified_hausdorff(box(1), box(s), gap), s - 1, gap, "inner cube to outer");
+    expect_certified(roving::certified_hausdorff(box(s), box(1), gap), std::sqrt(3.0) * (s - 1), gap,
+                     "outer cube to inner");
+  }
+  // A unit square against itself moved by (0.3, 0, 0.4): 0.5 either way, attained at an edge.
+  const HausdorffInterval planes = roving::certified_hausdorff(square(0, 0), square(0.3, 0.4), 1e-6);
+  expect_certified(planes, 0.5, 1e-6, "square to moved square");
+  EXPECT_NEAR(planes.lower_point.x(), 0, 1e-6);  // the edge x = 0 is the farthest from the moved square
+  // A surface against itself: 0.
+  const HausdorffInterval same = roving::certified_hausdorff(box(1), box(1), 1e-9);
+  EXPECT_EQ(same.lower, 0);
+  EXPECT_LE(same.upper, 1e-9);
+}
+
+TEST(CertifiedHausdorff, SphereAgainstItsInscribedIcosahedron) {
+  // The icosahedron's vertices lie on the unit sphere; its faces' centres are its points farthest
+  // from the sphere, 1 - r_i away, r_i = sqrt((5 + 2 sqrt 5) / 15) its inradius. The sphere is a
+  // fine tessellation with its vertices on it, whose faces reach `chord` inside: the truth for
+  // the tessellation lies in [1 - r_i - chord, 1 - r_i], and so must the interval.
+  const TriangleMesh icosahedron = roving::icosphere(Vec3::Zero(), 1.0, 0);
+  const TriangleMesh sphere = roving::icosphere(Vec3::Zero(), 1.0, 6);
+  const double inradius = std::sqrt((5 + 2 * std::sqrt(5.0)) / 15);
+  double chord = 0;  // how far inside the unit sphere the fine tessellation's faces reach
+  for (std::size_t f = 0; f < sphere.triangle_count(); ++f) chord = std::max(chord, 1 - sphere.centroid(f).norm());
+  const double gap = 1e-5;
+  const HausdorffInterval h = roving::certified_hausdorff(icosahedron, sphere, gap);
+  EXPECT_LE(h.upper - h.lower, gap * (1 + 1e-12));
+  EXPECT_GE(h.upper, 1 - inradius - chord);
+  EXPECT_LE(h.lower, 1 - inradius + 1e-12);
+}
+
+TEST(CertifiedHausdorff, ContainsCgalsValueAndExceedsEverySampledDistance) {
+  const TriangleMesh bunny = roving::normalised(roving::testing::bunny());
+  const TriangleMesh coarse = roving::decimate_quadric(bunny, 800);
+  const double diagonal = bunny.bounding_box().diagonal();
+  const double gap = 1e-4 * diagonal;
+  for (const auto& [a, b, what] : {std::tuple{&bunny, &coarse, "bunny to 800"}, {&coarse, &bunny, "800 to bunny"}}) {
+    const HausdorffInterval h = roving::certified_hausdorff(*a, *b, gap);
+    EXPECT_LE(h.upper - h.lower, gap * (1 + 1e-12)) << what;
+    // CGAL's value is within its own bound of the truth, which lies in [lower, upper].
+    const double cgal = roving::cgal_bounded_hausdorff(*a, *b, gap);
+    EXPECT_GE(cgal, h.lower - gap) << what;
+    EXPECT_LE(cgal, h.upper + gap) << what;
+    // Every sampled point of A is no farther from B than the upper bound.
+    const roving::SampleSet samples = roving::make_samples(*a, {roving::SampleSpec::Kind::Area, 200000});
+    const auto embree = roving::make_method("embree");
+    embree->build(*b);
+    const roving::DistanceResult r = embree->measure(samples, {roving::Semantics::Closest, diagonal});
+    double sampled = 0;
+    for (double d : r.signed_distance) sampled = std::max(sampled, std::abs(d));
+    EXPECT_LE(sampled, h.upper * (1 + 1e-9)) << what;
+    EXPECT_GE(h.lower, sampled * (1 - 1e-9)) << what << ": the vertices and subdivisions find the sampled maximum or more";
+    EXPECT_NEAR((h.lower_point - h.lower_closest).norm(), h.lower, 1e-12 * diagonal) << what;
+  }
+}
+
+TEST(CertifiedHausdorff, RefusesEmptyMeshesAndBadGaps) {
+  EXPECT_THROW(roving::certified_hausdorff(TriangleMesh(), box(1), 1e-3), roving::Error);
+  EXPECT_THROW(roving::certified_hausdorff(box(1), box(1), 0), roving::Error);
+  EXPECT_THROW(roving::certified_hausdorff(box(1), box(1), std::nan("")), roving::Error);
+}
+
+}  // namespace
