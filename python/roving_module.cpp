@@ -135,8 +135,30 @@ PYBIND11_MODULE(roving, m) {
       py::arg("reference"), py::arg("test"), py::arg("method") = "embree", py::arg("semantics") = "",
       py::arg("samples") = "faces", py::arg("max_error") = "5%", py::arg("views") = "24x12",
       py::arg("resolution") = 1024, py::arg("backend") = "osmesa",
-      "Measures the reference file's samples against the test file, as `roving measure` does.\n"
-      "Returns a dict: statistics (dict), distance and hit (NumPy arrays, one per sample), counts, seconds.");
+      R"doc(Measures the reference model's samples against the test model, as `roving measure REF TEST` does.
+
+Arguments:
+  reference   path of the reference model (REF): .obj .ply .off .stl .gltf .glb .3mf, voxels
+              (.binvox), Bezier patches (.bpt) or a point cloud (.xyz, .ply without faces)
+  test        path of the test model (TEST), the same formats; a point cloud is drawn as surfels
+  method      one of roving.methods: 'embree' and 'cgal' (exact references), 'roving',
+              'viewpoint', 'cooperative' (the paper's GL methods), 'v2v-naive', 'v2v-kdtree',
+              'v2p-naive', 'v2p-aabb' (baselines, closest semantics only)
+  semantics   'first-hit' (the paper's), 'nearest' or 'closest' (Metro style); '' takes the
+              method's default (first-hit, closest for the baselines)
+  samples     'faces' (triangle centroids), 'vertices' or 'area:N' (N points uniform by area)
+  max_error   h, the acceptance threshold along the normal: a length in model units ('0.5') or a
+              percentage of REF's bounding-box diagonal ('5%'); a no-hit counts as d = +h
+  views       the GL methods' view directions 'HxV' (e.g. '24x12'), or 'auto' / 'auto:HxV'
+  resolution  the GL views' size in pixels (viewpoint and cooperative)
+  backend     'osmesa' (Mesa's llvmpipe, always there) or 'egl' (a GPU where a driver exists)
+
+Returns a dict: 'statistics' (siad, usiad, rms, max_abs, the percentiles, the area-weighted forms, ...:
+the JSON report's statistics), 'distance' (signed d per sample; 0 where 'hit' is False), 'hit' (bool per
+sample), 'positions' (the samples, K x 3), 'method', 'semantics', 'max_error' (h in model units),
+'diagonal', 'samples', 'hits', 'no_hits', 'seconds' (build, query), and for the GL methods
+'observations', 'views_rendered' and 'sample_cameras'.
+Raises roving.Error (a ValueError) with a one-line message naming the file or argument.)doc");
 
   m.def(
       "measure_arrays",
@@ -177,6 +199,17 @@ PYBIND11_MODULE(roving, m) {
       py::arg("sample_points") = py::none(), py::arg("sample_normals") = py::none(), py::arg("method") = "embree",
       py::arg("semantics") = "", py::arg("samples") = "faces", py::arg("max_error") = "5%",
       py::arg("views") = "24x12", py::arg("resolution") = 1024, py::arg("backend") = "osmesa",
-      "Measures from NumPy arrays: vertices N x 3, faces M x 3 (vertex indices); samples generated on the\n"
-      "reference ('faces', 'vertices', 'area:N') or given as sample_points and sample_normals (K x 3).");
+      R"doc(Measures a reference mesh against a test mesh given as NumPy arrays.
+
+Arguments:
+  reference_vertices, test_vertices  float arrays N x 3 (finite coordinates)
+  reference_faces, test_faces        integer arrays M x 3 of vertex indices (0-based, in range)
+  sample_points, sample_normals      optional float arrays K x 3: the samples to measure from and
+                                     their normals (non-zero; normalised here); both or neither.
+                                     Without them the samples are made on the reference by 'samples'
+  method, semantics, samples, max_error, views, resolution, backend
+                                     as in roving.measure; max_error's percentage is of the
+                                     reference's bounding-box diagonal
+
+Returns the same dict as roving.measure. Raises roving.Error naming the array and what was wrong.)doc");
 }

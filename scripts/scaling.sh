@@ -6,5 +6,5 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
 bash scripts/build.sh
-./build/datasets_gen/roving-datasets --data "${ROVING_DATA:-../shared/data}" --out build/datasets --scaling
+./build/datasets_gen/roving-datasets --data "${ROVING_DATA:-data}" --out build/datasets --scaling
 /usr/bin/python3 bench/scaling.py --roving build/roving/roving --data build/datasets/scaling --out results "$@"

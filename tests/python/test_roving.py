@@ -9,7 +9,7 @@ import pytest
 
 import roving
 
-DATA = os.environ.get("ROVING_DATA") or os.path.join(os.environ["ROVING_SOURCE_DIR"], "..", "shared", "data")
+DATA = os.environ.get("ROVING_DATA") or os.path.join(os.environ["ROVING_SOURCE_DIR"], "data")
 BUNNY = os.path.join(DATA, "stanford-bunny.obj")
 FANDISK = os.path.join(DATA, "fandisk.obj")
 
