@@ -21,7 +21,7 @@ fi
 step "the GL methods against Embree at full size (gl-accuracy -> results/gl-accuracy.md)" \
   sh -c './build/bench/gl-accuracy --data "$1" > results/gl-accuracy.md' _ "$data"
 step "example reports (results/examples/measure.md)" bash scripts/examples.sh
-step "error bars: sampled figures against their intervals (results/error-bars.md, about 4 minutes)" \
+step "error bars: sampled figures against their intervals (results/error-bars.md, about 2 minutes)" \
   /usr/bin/python3 bench/error_bars.py --roving build/roving/roving --data build/datasets --out results
 # Debian's libbenchmark is itself built without NDEBUG, so it warns "Library was built as DEBUG.
 # Timings may be affected." That is about Google Benchmark's own loop, not the code it times (built
