@@ -151,6 +151,7 @@ TEST(Cli, FailedRunsLeaveOutputsUntouched) {
   // An output that names a directory is refused before any work.
   expect_error("measure " + bunny() + " " + bunny() + " --json " + folder.path.string(),
                {"--json", "directory"});
+  expect_error("measure " + bunny() + " " + bunny() + " --html " + folder.path.string(), {"--html", "directory"});
   // A successful run replaces the file whole and leaves no temporary file.
   const CliRun run = run_cli("measure " + bunny() + " " + bunny() + " --samples area:100 --json " + json);
   ASSERT_EQ(run.exit_code, 0) << run.err;

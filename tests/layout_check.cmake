@@ -2,7 +2,7 @@
 # Embree headers stay where the README's layout table says they are.
 # Run as: cmake -DSOURCE_DIR=<repo> -P tests/layout_check.cmake (CTest does).
 #   cli -> registry -> {gl_methods, reference_cgal, reference_embree} -> representations -> formats -> core
-#   gl_methods -> gl -> core;  cli -> pictures -> {gl, formats}
+#   gl_methods -> gl -> core;  cli -> pictures -> {gl, formats};  cli -> html -> formats
 cmake_minimum_required(VERSION 3.22)
 
 # The parts of roving/ each part may include (itself included).
@@ -11,10 +11,11 @@ set(allowed_formats core formats)
 set(allowed_representations core formats representations)
 set(allowed_gl core gl)
 set(allowed_pictures core formats gl pictures)
+set(allowed_html core formats html)
 set(allowed_gl_methods core formats representations gl gl_methods)
 # The references' headers are installed as roving/reference_cgal/ and roving/reference_embree/.
 set(allowed_registry core formats representations gl gl_methods registry reference_cgal reference_embree)
-set(allowed_cli core formats representations gl gl_methods registry pictures cli reference_cgal reference_embree)
+set(allowed_cli core formats representations gl gl_methods registry pictures html cli reference_cgal reference_embree)
 set(allowed_reference_cgal core formats representations reference_cgal)
 set(allowed_reference_embree core formats representations reference_embree)
 

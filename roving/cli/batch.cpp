@@ -20,7 +20,9 @@
 #include "roving/formats/atomic_file.h"
 #include "roving/formats/file_bytes.h"
 #include "roving/formats/file_hash.h"
+#include "html_output.h"
 #include "provenance.h"
+#include "roving/html/html_index.h"
 
 namespace roving {
 namespace {
@@ -275,13 +277,48 @@ std::size_t sweep_abandoned(const std::string& folder) {
   return removed;
 }
 
+// index.html: the summary's main columns, a row per pair linking to its page where there is one.
+void write_index(const std::string& folder, const std::vector<std::string>& header,
+                 const std::vector<nlohmann::json>& reports, const std::vector<fs::path>& paths) {
+  const std::vector<std::string> shown = {"index", "reference", "test", "status", "method", "semantics", "samples",
+                                          "no_hits", "usiad", "siad", "rms", "max_abs", "p95", "hausdorff",
+                                          "seconds", "warnings"};
+  HtmlIndex index;
+  index.title = fmt::format("surface roving batch: {} pairs", reports.size());
+  index.intro = fmt::format("<p>From the reports in {}; lengths in model units. Click a column's name to sort.</p>",
+                            escape_html(folder));
+  index.header = shown;
+  for (std::size_t r = 0; r < reports.size(); ++r) {
+    const std::vector<std::string> row = summary_row(reports[r]);
+    std::vector<std::string> cells;
+    for (const std::string& name : shown) {
+      const std::size_t column = static_cast<std::size_t>(std::find(header.begin(), header.end(), name) - header.begin());
+      cells.push_back(name == "warnings" && row[4].size() ? "error: " + row[4] : row[column]);
+    }
+    index.rows.push_back(cells);
+    index.failed.push_back(row[3] != "ok");
+    fs::path page = paths[r];
+    page.replace_extension(".html");
+    index.links.push_back(row[3] == "ok" && fs::exists(page) ? page.filename().string() : "");
+  }
+  AtomicFile file((fs::path(folder) / "index.html").string());
+  write_html_index(file.stream(), index);
+  file.close_stream();
+  file.commit();
+}
+
 // summary.csv from the reports in `folder`, one row per pair index in index order (where a pair
 // has two reports, a finished one over a failed one, then the newer); temporary files are never
 // read as reports. Returns (ok, failed) counts.
-std::pair<std::size_t, std::size_t> merge(const std::string& folder) {
+std::pair<std::size_t, std::size_t> merge(const std::string& folder, bool html) {
   if (!fs::is_directory(folder)) throw Error(fmt::format("--merge: expected a batch folder, found '{}'", folder));
   sweep_abandoned(folder);
-  std::map<std::size_t, std::pair<nlohmann::json, fs::file_time_type>> by_index;
+  struct Found {
+    nlohmann::json report;
+    fs::file_time_type written;
+    fs::path path;
+  };
+  std::map<std::size_t, Found> by_index;
   for (const auto& entry : fs::directory_iterator(folder)) {
     const std::string name = entry.path().filename().string();
     if (entry.path().extension() != ".json" || name.front() == '.' || !entry.is_regular_file()) continue;
@@ -298,12 +335,13 @@ std::pair<std::size_t, std::size_t> merge(const std::string& folder) {
     const fs::file_time_type written = entry.last_write_time();
     const auto rank = [](const nlohmann::json& r, fs::file_time_type t) { return std::pair(r["batch"]["status"] == "ok", t); };
     const auto found = by_index.find(index);
-    if (found == by_index.end() || rank(found->second.first, found->second.second) < rank(report, written)) {
-      by_index[index] = {std::move(report), written};
+    if (found == by_index.end() || rank(found->second.report, found->second.written) < rank(report, written)) {
+      by_index[index] = {std::move(report), written, entry.path()};
     }
   }
   std::vector<nlohmann::json> reports;
-  for (auto& [index, report] : by_index) reports.push_back(std::move(report.first));
+  std::vector<fs::path> paths;
+  for (auto& [index, found] : by_index) reports.push_back(std::move(found.report)), paths.push_back(found.path);
   std::vector<std::string> header = {"index", "reference", "test", "status", "error", "method", "semantics",
                                      "samples", "no_hits", "diagonal", "max_error"};
   const nlohmann::json statistics = statistics_json(Statistics());
@@ -319,6 +357,7 @@ std::pair<std::size_t, std::size_t> merge(const std::string& folder) {
     ok += report["batch"]["status"] == "ok";
   }
   summary.close_stream();
+  if (html) write_index(folder, header, reports, paths);
   summary.commit();
   return {ok, reports.size() - ok};
 }
@@ -347,7 +386,7 @@ const Model& cached_model(LoadedModel& cache, const std::string& path, const std
 
 int run_batch(const BatchArguments& args, std::string& stage) {
   if (args.merge_only) {
-    const auto [ok, failed] = merge(args.out);
+    const auto [ok, failed] = merge(args.out, args.html);
     std::printf("batch: %s/summary.csv: %zu pairs measured, %zu failed\n", args.out.c_str(), ok, failed);
     return failed ? kSomePairsFailedExitCode : 0;
   }
@@ -443,6 +482,13 @@ int run_batch(const BatchArguments& args, std::string& stage) {
       nlohmann::json json = to_json(report);
       batch["status"] = "ok";
       json["batch"] = batch;
+      if (args.html) {  // before the report: a pair with a report has its page
+        stage = "writing the web page";
+        AtomicFile page((fs::path(args.out) / (name + ".html")).string());
+        write_html_page(page.stream(), measurement_page(report, format_header(reference, test, report) + format_body(report), json));
+        page.close_stream();
+        page.commit();
+      }
       write_json(done_path, json);
       fs::remove(failed_path);
       ++measured;
@@ -458,7 +504,7 @@ int run_batch(const BatchArguments& args, std::string& stage) {
     }
   }
   progress.clear();
-  merge(args.out);
+  merge(args.out, args.html);
   std::printf("batch: pairs %zu..%zu of %zu: %zu measured, %zu already done, %zu failed in %.1f s; %s/summary.csv\n",
               first, last ? last - 1 : 0, pairs.size(), measured, skipped, failed, watch.seconds(), args.out.c_str());
   return failed ? kSomePairsFailedExitCode : 0;

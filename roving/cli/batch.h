@@ -23,6 +23,7 @@ struct BatchArguments {
   std::string out = "batch-results";
   std::string shard;  // "I/N": the I-th (0-based) of N contiguous slices of the pairs
   bool merge_only = false;
+  bool html = false;           // a page per pair and index.html
   bool skip_unpaired = false;  // folder mode: measure the pairs found even if some files have no partner
   MeasureArguments defaults;  // options for every pair, overridden by the manifest's columns
 };

@@ -162,6 +162,10 @@ int main(int argc, char** argv) {
   measure->add_option("--heatmap-png", args.heatmap_png_path,
                       "render REF coloured by d from the front, side and top, with a colour bar, as PNG; with --symmetric "
                       "one picture per direction, named as for --heatmap");
+  measure->add_option("--html", args.html_path,
+                      "write one self-contained web page (opens offline in a browser): REF in 3D coloured by d as for "
+                      "--heatmap-png, to turn and zoom, a sample's d on hover or click, the figures, histogram, "
+                      "warnings and provenance; both directions with --symmetric");
   measure->add_option("--heatmap-range", args.heatmap_range,
                       "the colour map's half-range: a length or P% of the diagonal (default: the 99th percentile of "
                       "|d| over the hits)");
@@ -182,6 +186,9 @@ int main(int argc, char** argv) {
                     "I/N: only the I-th (0-based) of N contiguous slices of the pairs, e.g. "
                     "$SLURM_ARRAY_TASK_ID/$SLURM_ARRAY_TASK_COUNT; pairs already in --out are skipped");
   batch->add_flag("--merge", batch_args.merge_only, "only rebuild --out/summary.csv from the reports there");
+  batch->add_flag("--html", batch_args.html,
+                  "also write a web page per pair (as measure --html) and --out/index.html, a sortable table of the "
+                  "pairs linking to them");
   batch->add_flag("--skip-unpaired", batch_args.skip_unpaired,
                   "with REF_FOLDER TEST_FOLDER: measure the files found in both and list the others on stderr "
                   "(without it, a file with no partner of the same name is an error)");

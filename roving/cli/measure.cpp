@@ -10,6 +10,7 @@
 
 #include "checks.h"
 #include "gates.h"
+#include "html_output.h"
 #include "progress.h"
 #include "provenance.h"
 #include "report.h"
@@ -52,8 +53,8 @@ std::string file_name(const std::string& path) {
 }
 
 void require_writable_paths(const MeasureArguments& args) {
-  std::vector<std::pair<std::string, std::string>> outputs = {{"--json", args.json_path},
-                                                              {"--samples-out", args.samples_csv_path}};
+  std::vector<std::pair<std::string, std::string>> outputs = {
+      {"--json", args.json_path}, {"--samples-out", args.samples_csv_path}, {"--html", args.html_path}};
   for (const auto& [option, given] : {std::pair{"--heatmap", args.heatmap_path}, {"--heatmap-png", args.heatmap_png_path}}) {
     if (given.empty()) continue;
     for (const std::string& path : heatmap_paths(given, args.symmetric)) outputs.emplace_back(option, path);
@@ -100,20 +101,6 @@ std::vector<MetricValue> gate_values(const MeasureReport& report) {
   return values;
 }
 
-// Which element of the reference's surface carries each sample's value in the heat map.
-HeatmapLayout heatmap_layout(const Model& reference, const SampleSet& samples) {
-  if (reference.type == ModelType::Mesh && samples.kind == "faces") return {HeatmapElement::Faces, 1};
-  if (reference.type == ModelType::Mesh && samples.kind == "vertices") return {HeatmapElement::Vertices, 1};
-  if (reference.type == ModelType::Voxels && samples.kind == "voxel faces") return {HeatmapElement::Faces, 2};
-  return {HeatmapElement::Points, 1};  // area:N, Bezier parameter cells, point clouds
-}
-
-// --heatmap-range as given (a length or P% of the diagonal), else the 99th percentile of |d|.
-double heatmap_range(const std::string& given, const DirectionReport& d, const MeasureReport& report) {
-  if (!given.empty()) return parse_length("--heatmap-range", given).resolve(report.diagonal);
-  return default_heatmap_range(d.result, report.max_error);
-}
-
 }  // namespace
 
 MeasurePlan plan_measurement(const MeasureArguments& args) {
@@ -130,7 +117,7 @@ MeasurePlan plan_measurement(const MeasureArguments& args) {
     plan.sample_spec.seed = *args.seed;
   }
   plan.max_error = parse_max_error(args.max_error);
-  if (!args.heatmap_range.empty()) parse_length("--heatmap-range", args.heatmap_range);
+  if (!args.heatmap_range.empty()) plan.heatmap_range = parse_length("--heatmap-range", args.heatmap_range);
   plan.max_error_text = args.max_error;
   if (!args.semantics.empty()) {
     plan.options.semantics = parse_semantics(args.semantics);
@@ -187,6 +174,14 @@ MeasurePlan plan_command_line(const MeasureArguments& args) {
   } catch (const Error& e) {
     throw UsageError(e.what());
   }
+}
+
+// Which element of the reference's surface carries each sample's value in the heat map.
+HeatmapLayout heatmap_layout(const Model& reference, const SampleSet& samples) {
+  if (reference.type == ModelType::Mesh && samples.kind == "faces") return {HeatmapElement::Faces, 1};
+  if (reference.type == ModelType::Mesh && samples.kind == "vertices") return {HeatmapElement::Vertices, 1};
+  if (reference.type == ModelType::Voxels && samples.kind == "voxel faces") return {HeatmapElement::Faces, 2};
+  return {HeatmapElement::Points, 1};  // area:N, Bezier parameter cells, point clouds
 }
 
 std::vector<std::string> heatmap_paths(const std::string& path, bool symmetric) {
@@ -274,6 +269,8 @@ void measure_models(const Model& a, const Model& b, MeasurePlan& plan, MeasureRe
       progress.stage(fmt::format("{}certified Hausdorff", d.label.empty() ? "" : d.label + ": "));
       d.hausdorff = certified_hausdorff(test_surface(*reference), test_mesh, report.hausdorff_bound);
     }
+    d.heatmap_range = plan.heatmap_range ? plan.heatmap_range->resolve(report.diagonal)
+                                         : default_heatmap_range(d.result, report.max_error);
     std::vector<std::string> found = result_warnings(d.statistics, plan.options.semantics);
     for (std::string& line : found) line = (d.label.empty() ? "" : d.label + ": ") + line;
     warn(found);
@@ -346,7 +343,7 @@ int run_measure(const MeasureArguments& args, std::string& stage) {
     const Model& reference = *d.reference;
     const TriangleMesh* surface = reference.type == ModelType::Points ? nullptr : &reference.mesh.mesh;
     const HeatmapLayout layout = heatmap_layout(reference, d.samples);
-    const double range = heatmap_range(args.heatmap_range, d, report);
+    const double range = d.heatmap_range;
     if (!args.heatmap_path.empty()) {
       outputs.push_back(std::make_unique<AtomicFile>(heatmap_paths(args.heatmap_path, report.symmetric())[i]));
       write_heatmap_ply(outputs.back()->stream(), surface, layout, d.samples, d.result, range);
@@ -377,6 +374,13 @@ int run_measure(const MeasureArguments& args, std::string& stage) {
   if (!args.json_path.empty() && args.json_path != "-") {
     outputs.push_back(std::make_unique<AtomicFile>(args.json_path));
     std::fputs(json.c_str(), outputs.back()->stream());
+    outputs.back()->close_stream();
+  }
+  if (!args.html_path.empty()) {
+    stage = "writing the web page";
+    outputs.push_back(std::make_unique<AtomicFile>(args.html_path));
+    write_html_page(outputs.back()->stream(),
+                    measurement_page(report, format_header(a, b, report) + format_body(report), to_json(report)));
     outputs.back()->close_stream();
   }
   for (const auto& output : outputs) output->commit();

@@ -12,6 +12,7 @@
 #include "roving/core/error.h"
 #include "progress.h"
 #include "report.h"
+#include "roving/formats/heatmap.h"
 #include "roving/gl_methods/gl_methods.h"
 
 namespace roving {
@@ -23,7 +24,7 @@ struct MeasureArguments {
   std::string samples = "faces";
   std::optional<std::uint64_t> seed;  // area:N only
   std::string max_error = "5%";
-  std::string json_path, samples_csv_path, heatmap_path, heatmap_png_path;
+  std::string json_path, samples_csv_path, heatmap_path, heatmap_png_path, html_path;
   std::string heatmap_range;  // empty: the 99th percentile of |d| over the hits
   std::string hausdorff_bound = "0.01%";  // the certified interval's width, or "none"
   std::string gate_on = "estimate";       // or "upper": gates compare an interval's upper end
@@ -53,6 +54,7 @@ struct MeasurePlan {
   std::optional<MaxErrorSpec> hausdorff_bound;  // set where the certified Hausdorff interval is computed
   GateOn gate_on = GateOn::Estimate;
   std::optional<MaxErrorSpec> precision;  // area:auto only; P% is of USiAD itself
+  std::optional<MaxErrorSpec> heatmap_range;  // --heatmap-range; unset: the 99th percentile of |d|
 };
 
 // A bad option value or combination on the command line: the tool exits 2, as for a parse error.
@@ -75,6 +77,9 @@ MeasurePlan plan_command_line(const MeasureArguments& args);
 // Where --heatmap FILE or --heatmap-png FILE writes each direction: FILE itself for one direction;
 // FILE's stem + ".A-to-B" / ".B-to-A" + its extension under --symmetric.
 std::vector<std::string> heatmap_paths(const std::string& path, bool symmetric);
+
+// Which element of the reference's surface carries each sample's value in the heat maps.
+HeatmapLayout heatmap_layout(const Model& reference, const SampleSet& samples);
 
 using WarnFn = std::function<void(const std::vector<std::string>&)>;
 

@@ -220,6 +220,11 @@ std::string samples_line(const SampleSet& samples, std::uint64_t seed) {
   return out;
 }
 
+nlohmann::json sign_counts_json(const DistanceResult& result) {
+  const SignCounts c = sign_counts(result);
+  return {{"positive", c.positive}, {"negative", c.negative}, {"zero", c.zero}};
+}
+
 // One direction's fields, in the layout a one-sided report has always had at its top level.
 nlohmann::json direction_json(const DirectionReport& d, const MeasureReport& r) {
   const Statistics& s = d.statistics;
@@ -246,6 +251,8 @@ nlohmann::json direction_json(const DirectionReport& d, const MeasureReport& r) 
         {"below", s.histogram.below},
         {"above", s.histogram.above}}},
       {"seconds", {{"build", d.result.build_seconds}, {"query", d.result.query_seconds}}},
+      {"signs", sign_counts_json(d.result)},
+      {"heatmap_range", d.heatmap_range},
   };
   if (d.result.gl) json["gl"] = gl_json(*d.result.gl);
   if (d.auto_sampling) {

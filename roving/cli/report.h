@@ -40,6 +40,8 @@ struct DirectionReport {
     bool met = false;
   };
   std::optional<AutoSampling> auto_sampling;
+  // The heat maps' colour range [-range, range]: --heatmap-range, or the 99th percentile of |d|.
+  double heatmap_range = 0;
 };
 
 // Metro's two-sided summary, over both directions' samples (closest-point semantics make the

@@ -56,6 +56,16 @@ std::size_t DistanceResult::hit_count() const {
   return static_cast<std::size_t>(std::count(hit.begin(), hit.end(), std::uint8_t{1}));
 }
 
+SignCounts sign_counts(const DistanceResult& result) {
+  SignCounts counts;
+  for (std::size_t k = 0; k < result.hit.size(); ++k) {
+    if (!result.hit[k]) continue;
+    const double d = result.signed_distance[k];
+    ++(d > 0 ? counts.positive : d < 0 ? counts.negative : counts.zero);
+  }
+  return counts;
+}
+
 bool DistanceMethod::supports(Semantics semantics) const {
   const auto all = supported_semantics();
   return std::find(all.begin(), all.end(), semantics) != all.end();

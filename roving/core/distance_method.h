@@ -91,6 +91,12 @@ struct DistanceResult {
   std::size_t hit_count() const;
 };
 
+// Hits by the sign of d: TEST outside REF along its normal (d > 0), inside (d < 0), on it.
+struct SignCounts {
+  std::size_t positive = 0, negative = 0, zero = 0;
+};
+SignCounts sign_counts(const DistanceResult& result);
+
 class DistanceMethod {
  public:
   virtual ~DistanceMethod() = default;

@@ -1,0 +1,51 @@
+// A measurement as one self-contained web page: the reference drawn in WebGL coloured by d
+// (three.js inlined, the surface as base64 binary), orbit / zoom / pan, picking, the colour bar,
+// and beside it the figures, histogram, warnings, text report and provenance. It opens from
+// disk with no network and no server.
+#pragma once
+
+#include <cstdint>
+#include <cstdio>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "roving/core/statistics.h"
+#include "roving/html/display_surface.h"
+
+namespace roving {
+
+// The most triangles (or points) a page draws per view: about 30 MB of page per million.
+constexpr std::size_t kHtmlMaxTriangles = 1000000;
+
+// One direction's heat map and figures.
+struct HtmlView {
+  std::string label;  // the toggle's name ("A -> B"); empty for a single direction
+  std::string title, subtitle;
+  DisplaySurface surface;
+  std::vector<std::uint8_t> resolution;  // per sample: a GL method's Resolution; empty for exact methods
+  std::string method;
+  double range = 0;      // the colour map's half-range, as the PNG and PLY heat maps use it
+  double diagonal = 0;   // what % figures are of
+  double max_error = 0;  // h
+  std::size_t positive = 0, negative = 0, zero = 0, no_hit = 0;  // samples by the sign of d
+  std::vector<std::pair<std::string, std::string>> figures;      // the table's rows: name, value
+  Histogram histogram;
+};
+
+struct HtmlPage {
+  std::string title;
+  std::vector<HtmlView> views;
+  std::vector<std::string> warnings;
+  std::string report_text;  // the report as the terminal shows it
+  nlohmann::json report;    // the JSON report (embedded whole; its provenance is shown)
+};
+
+// Writes the page. The caller keeps each view's surface within kHtmlMaxTriangles (display_surface()).
+void write_html_page(std::FILE* out, const HtmlPage& page);
+
+// Text made safe inside HTML elements and attribute values.
+std::string escape_html(const std::string& text);
+
+}  // namespace roving

@@ -1,0 +1,165 @@
+// The heat-map page's viewer: the embedded surfaces drawn by three.js, orbit / zoom / pan,
+// the colour bar, picking, and the toggle between directions. Data come from the JSON block
+// #roving-data, written by roving/html/html_page.cpp (arrays as base64 little-endian binary).
+'use strict';
+(function () {
+  const data = JSON.parse(document.getElementById('roving-data').textContent);
+  const RESOLUTION = ['no hit', 'a view (viewpoint sampling)', 'its own camera (surface roving)'];
+
+  function decode(base64, Type) {
+    if (!base64) return null;
+    const text = atob(base64);
+    const bytes = new Uint8Array(text.length);
+    for (let i = 0; i < text.length; ++i) bytes[i] = text.charCodeAt(i);
+    return new Type(bytes.buffer);
+  }
+  function number(x) { return Number(x.toPrecision(4)).toString(); }
+
+  const canvas = document.getElementById('view');
+  let renderer;
+  try {
+    renderer = new THREE.WebGLRenderer({ canvas: canvas, antialias: true, preserveDrawingBuffer: true });
+  } catch (error) {
+    document.getElementById('pick').textContent = 'This page needs WebGL, which this browser does not offer: ' + error.message;
+    throw error;
+  }
+  renderer.setPixelRatio(window.devicePixelRatio || 1);
+  renderer.setClearColor(0xffffff);
+  const scene = new THREE.Scene();
+  const camera = new THREE.PerspectiveCamera(30, 1, 1, 10);
+  // A headlight along the view: a face turned to the viewer shows its colour exactly (0.35 + 0.65).
+  const light = new THREE.DirectionalLight(0xffffff, 0.65);
+  light.position.set(0, 0, 1);
+  camera.add(light, light.target);
+  scene.add(new THREE.AmbientLight(0xffffff, 0.35));
+  scene.add(camera);
+  const controls = new THREE.OrbitControls(camera, canvas);
+  controls.screenSpacePanning = true;
+  const views = data.views.map(function (view) { return { data: view, object: null }; });
+  let current = null;
+
+  function build(view) {
+    const v = view.data;
+    const positions = decode(v.positions, Float32Array);
+    const triangles = decode(v.triangles, Uint32Array);
+    const colours = decode(v.colours, Uint8Array);
+    const geometry = new THREE.BufferGeometry();
+    if (v.element === 'faces') {  // flat colour per triangle: three vertices of its own
+      const count = triangles.length;
+      const p = new Float32Array(count * 3), c = new Uint8Array(count * 3);
+      for (let i = 0; i < count; ++i) {
+        const vertex = triangles[i], face = (i / 3) | 0;
+        for (let k = 0; k < 3; ++k) { p[3 * i + k] = positions[3 * vertex + k]; c[3 * i + k] = colours[3 * face + k]; }
+      }
+      geometry.setAttribute('position', new THREE.BufferAttribute(p, 3));
+      geometry.setAttribute('color', new THREE.BufferAttribute(c, 3, true));
+    } else {
+      geometry.setAttribute('position', new THREE.BufferAttribute(positions, 3));
+      geometry.setAttribute('color', new THREE.BufferAttribute(colours, 3, true));
+      if (triangles) geometry.setIndex(new THREE.BufferAttribute(triangles, 1));
+    }
+    geometry.computeBoundingSphere();
+    if (!triangles) {
+      const size = 1.5 * v.diagonal / Math.sqrt(positions.length / 3);
+      view.pointSize = size;
+      view.object = new THREE.Points(geometry, new THREE.PointsMaterial({ size: size, vertexColors: THREE.VertexColors }));
+    } else {
+      geometry.computeVertexNormals();
+      view.object = new THREE.Mesh(geometry, new THREE.MeshLambertMaterial({ vertexColors: THREE.VertexColors, side: THREE.DoubleSide }));
+    }
+    view.values = decode(v.values, Float32Array);
+    view.samples = decode(v.samples, Int32Array);
+    view.resolution = decode(v.resolution, Uint8Array);
+    view.elements = view.values.length;
+  }
+
+  function frame(view) {  // from +z, as the PNG's front view, the whole surface in sight
+    const sphere = view.object.geometry.boundingSphere;
+    const distance = sphere.radius / Math.sin(camera.fov / 2 * Math.PI / 180) * 1.05;
+    camera.near = distance / 100;
+    camera.far = distance * 100;
+    camera.position.copy(sphere.center).add(new THREE.Vector3(0, 0, distance));
+    camera.up.set(0, 1, 0);
+    controls.target.copy(sphere.center);
+    camera.updateProjectionMatrix();
+    controls.update();
+  }
+
+  function show(index) {
+    const view = views[index];
+    if (!view.object) build(view);
+    if (current) scene.remove(current.object);
+    scene.add(view.object);
+    current = view;
+    frame(view);
+    const v = view.data;
+    document.getElementById('bar-low').textContent = '\u2212' + number(v.range);
+    document.getElementById('bar-high').textContent = '+' + number(v.range);
+    document.getElementById('bar-units').textContent = 'd in model units; \u00b1' + number(v.range) + ' is ' +
+        number(100 * v.range / v.diagonal) + '% of the diagonal (' + number(v.diagonal) + ')';
+    document.getElementById('decimated').textContent = v.decimated;
+    document.querySelectorAll('.direction').forEach(function (section, i) { section.hidden = i !== index; });
+    document.querySelectorAll('#directions button').forEach(function (button, i) { button.classList.toggle('on', i === index); });
+    document.getElementById('pick').textContent = v.pick_hint;
+    render();
+  }
+
+  function render() {
+    const width = canvas.clientWidth, height = canvas.clientHeight;
+    if (canvas.width !== Math.floor(width * renderer.getPixelRatio()) || canvas.height !== Math.floor(height * renderer.getPixelRatio())) {
+      renderer.setSize(width, height, false);
+      camera.aspect = width / Math.max(height, 1);
+      camera.updateProjectionMatrix();
+    }
+    renderer.render(scene, camera);
+  }
+
+  // Picking: what the element under the pointer shows, and the sample behind it.
+  const raycaster = new THREE.Raycaster();
+  function pick(event) {
+    const box = canvas.getBoundingClientRect();
+    const pointer = new THREE.Vector2((event.clientX - box.left) / box.width * 2 - 1, -(event.clientY - box.top) / box.height * 2 + 1);
+    raycaster.setFromCamera(pointer, camera);
+    if (current.pointSize) raycaster.params.Points.threshold = current.pointSize / 2;
+    const hit = raycaster.intersectObject(current.object)[0];
+    const out = document.getElementById('pick');
+    if (!hit) { out.textContent = current.data.pick_hint; return; }
+    const v = current.data;
+    let element;
+    if (v.element === 'faces') element = hit.faceIndex;
+    else if (v.element === 'points') element = hit.index;
+    else {  // the triangle's vertex nearest the pointer's hit
+      const p = current.object.geometry.attributes.position, f = hit.face;
+      let best = Infinity;
+      [f.a, f.b, f.c].forEach(function (i) {
+        const d = hit.point.distanceToSquared(new THREE.Vector3(p.getX(i), p.getY(i), p.getZ(i)));
+        if (d < best) { best = d; element = i; }
+      });
+    }
+    const value = current.values[element], sample = current.samples ? current.samples[element] : element;
+    const where = v.element === 'faces' ? 'triangle ' : v.element === 'vertices' ? 'vertex ' : 'point ';
+    let text = where + element + ': ';
+    if (sample === -1) text += 'no sample here (a zero-area face)';
+    else if (sample === -2) text += isNaN(value) ? 'merged for display; mostly no hit' : 'merged for display; mean d = ' + number(value);
+    else {
+      text += 'sample ' + sample + ', ';
+      text += isNaN(value) ? 'no hit within h = ' + number(v.max_error) : 'd = ' + number(value) + ' (' + number(100 * value / v.diagonal) + '% of the diagonal)';
+      text += current.resolution ? ', resolved by ' + RESOLUTION[current.resolution[sample]] : ', by ' + v.method + ' (exact)';
+    }
+    out.textContent = text;
+  }
+  let pending = null;
+  canvas.addEventListener('pointermove', function (event) {
+    if (current.elements > 300000 || event.buttons) return;  // large surfaces: on click only
+    if (!pending) requestAnimationFrame(function () { pick(pending); pending = null; });
+    pending = event;
+  });
+  canvas.addEventListener('click', pick);
+  controls.addEventListener('change', render);
+  window.addEventListener('resize', render);
+  document.querySelectorAll('#directions button').forEach(function (button, i) {
+    button.addEventListener('click', function () { show(i); });
+  });
+  show(0);
+  document.body.dataset.ready = 'true';
+})();

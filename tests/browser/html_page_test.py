@@ -1,0 +1,158 @@
+#!/usr/bin/python3
+"""`roving measure --html` and `roving batch --html` in a real browser: Debian's headless Chromium
+(software WebGL) loads each page from disk; the test fails on any console error or exception, and
+checks from screenshots that the canvas shows the surface in the report's colours, that the colour
+bar's labels are the report's range, that picking and the direction toggle work, and that the batch
+index sorts and links. Run by CTest: html_page_test.py ROVING WORKDIR. Exit 77 (skipped) without
+chromium.
+
+The pair is made so that every colour's share is known: REF is the square [-1, 1]^2 at z = 0 in
+40 x 40 cells (face samples, all of equal area); TEST is the half x < 0 at z = -0.02 (d = -0.02,
+blue), the quarter 0 < x < 0.5 at z = +0.02 (d = +0.02, red), and nothing over x > 0.5 (no hit,
+grey). Seen head-on, each colour's share of the surface's pixels is its share of the samples."""
+import io
+import json
+import os
+import pathlib
+import re
+import subprocess
+import sys
+
+import numpy as np
+from matplotlib import image
+
+sys.path.insert(0, str(pathlib.Path(__file__).parent))
+import chromium  # noqa: E402
+
+roving, work = sys.argv[1], pathlib.Path(sys.argv[2])
+if not chromium.find():
+    print("skipped: chromium is not installed (apt install chromium; scripts/setup.sh browser does)")
+    sys.exit(77)
+work.mkdir(parents=True, exist_ok=True)
+failures = []
+
+
+def check(condition, what):
+    print(("ok    " if condition else "FAIL  ") + what)
+    if not condition:
+        failures.append(what)
+
+
+def grid(path, x0, x1, z, cells_x, cells_y=40):
+    """A rectangle [x0, x1] x [-1, 1] at height z, facing +z, as an OBJ of cells_x x cells_y quads."""
+    lines = []
+    for j in range(cells_y + 1):
+        for i in range(cells_x + 1):
+            lines.append(f"v {x0 + (x1 - x0) * i / cells_x:.9g} {-1 + 2 * j / cells_y:.9g} {z}")
+    at = lambda i, j: j * (cells_x + 1) + i + 1  # noqa: E731
+    for j in range(cells_y):
+        for i in range(cells_x):
+            lines.append(f"f {at(i, j)} {at(i + 1, j)} {at(i + 1, j + 1)}")
+            lines.append(f"f {at(i, j)} {at(i + 1, j + 1)} {at(i, j + 1)}")
+    path.write_text("\n".join(lines) + "\n")
+
+
+grid(work / "ref.obj", -1, 1, 0, 40)
+grid(work / "low.obj", -1, 0, -0.02, 20)
+grid(work / "high.obj", 0, 0.5, 0.02, 10)
+# TEST: both pieces in one OBJ (the second's indices shifted past the first's vertices).
+first = (work / "low.obj").read_text().splitlines()
+second = (work / "high.obj").read_text().splitlines()
+shift = sum(1 for l in first if l.startswith("v "))
+second = [l if not l.startswith("f ") else "f " + " ".join(str(int(i) + shift) for i in l.split()[1:]) for l in second]
+(work / "test.obj").write_text("\n".join(first + second) + "\n")
+
+RED, BLUE, GREY = (103, 0, 31), (5, 48, 97), (128, 128, 128)  # the map's ends and the no-hit grey
+
+
+def colour_shares(png):
+    pixels = np.round(image.imread(io.BytesIO(png))[:, :, :3] * 255).astype(int)
+    near = lambda c: np.all(np.abs(pixels - np.array(c)) <= 4, axis=2)  # noqa: E731
+    counts = {name: int(near(c).sum()) for name, c in (("red", RED), ("blue", BLUE), ("grey", GREY))}
+    return counts, pixels.shape[0] * pixels.shape[1]
+
+
+def check_view(browser, view, report_direction, expected, what):
+    """The canvas in the report's colours and shares; the colour bar's labels its range."""
+    rect = browser.evaluate("(() => { const r = document.getElementById('view').getBoundingClientRect();"
+                            " return {x: r.x, y: r.y, width: r.width, height: r.height}; })()")
+    counts, total = colour_shares(browser.screenshot(rect))
+    surface = sum(counts.values())
+    check(surface > 0.1 * total, f"{what}: the surface covers {surface} of {total} canvas pixels (> 10%)")
+    signs = report_direction["signs"]
+    samples = report_direction["samples"]["count"]
+    shares = {"red": signs["positive"] / samples, "blue": signs["negative"] / samples,
+              "grey": report_direction["no_hits"] / samples}
+    for name, share in shares.items():
+        check(abs(share - expected[name]) < 1e-9, f"{what}: the report's {name} share {share:.4f} is the pair's {expected[name]}")
+        seen = counts[name] / max(surface, 1)
+        # Pixels on the boundaries between colours are blended by antialiasing: a few per cent.
+        check(abs(seen - share) < 0.02, f"{what}: {name} pixels {seen:.4f} of the surface's, samples {share:.4f}")
+    range_ = report_direction["heatmap_range"]
+    labels = browser.evaluate("[document.getElementById('bar-low').textContent, document.getElementById('bar-high').textContent]")
+    low, high = (float(l.replace("\u2212", "-")) for l in labels)
+    check(abs(low + range_) <= 5e-4 * range_ and abs(high - range_) <= 5e-4 * range_,
+          f"{what}: colour bar labels {labels} are -+ the report's heatmap_range {range_:.6g} (4 digits)")
+    check(view["range"] == range_, f"{what}: the page's range {view['range']} is the report's")
+
+
+def pick(browser, rect, colour):
+    """Clicks a pixel of the given colour; returns what the page says about it."""
+    pixels = np.round(image.imread(io.BytesIO(browser.screenshot(rect)))[:, :, :3] * 255).astype(int)
+    ys, xs = np.nonzero(np.all(np.abs(pixels - np.array(colour)) <= 4, axis=2))
+    middle = len(xs) // 2
+    browser.click(rect["x"] + xs[middle] + 0.5, rect["y"] + ys[middle] + 0.5)
+    return browser.evaluate("document.getElementById('pick').textContent")
+
+
+def run(*args):
+    done = subprocess.run([roving, *map(str, args)], capture_output=True, text=True)
+    check(done.returncode == 0, f"roving {' '.join(map(str, args))}: exit {done.returncode} {done.stderr.strip()[-300:]}")
+
+
+page = work / "pair.html"
+run("measure", work / "ref.obj", work / "test.obj", "--symmetric", "--semantics", "first-hit", "--html", page,
+    "--json", work / "pair.json", "--quiet")
+report = json.loads((work / "pair.json").read_text())
+embedded = re.search(r'<script id="roving-report" type="application/json">(.*?)</script>', page.read_text(), re.S)
+check(embedded and json.loads(embedded.group(1))["directions"][0]["statistics"] == report["directions"][0]["statistics"],
+      "the page embeds the JSON report")
+data = json.loads(re.search(r'<script id="roving-data" type="application/json">(.*?)</script>', page.read_text(), re.S).group(1))
+
+with chromium.Browser() as browser:
+    browser.open(page)
+    rect = browser.evaluate("(() => { const r = document.getElementById('view').getBoundingClientRect();"
+                            " return {x: r.x, y: r.y, width: r.width, height: r.height}; })()")
+    check_view(browser, data["views"][0], report["directions"][0], {"red": 0.25, "blue": 0.5, "grey": 0.25}, "A -> B")
+    text = pick(browser, rect, BLUE)
+    check(re.search(r"sample \d+, d = -0\.02 ", text) is not None, f"clicking blue shows d = -0.02: '{text}'")
+    text = pick(browser, rect, GREY)
+    check("no hit" in text, f"clicking grey shows a no-hit: '{text}'")
+    browser.evaluate("document.querySelectorAll('#directions button')[1].click()")
+    # B -> A: the pieces against the square: the low piece (2/3 of B's area) sees it above (red).
+    check_view(browser, data["views"][1], report["directions"][1], {"red": 2 / 3, "blue": 1 / 3, "grey": 0}, "B -> A")
+    check(browser.evaluate("document.querySelectorAll('section.direction')[1].hidden") is False,
+          "the toggle shows B -> A's figures")
+    check(not browser.errors, f"no console error or exception: {browser.errors}")
+    outside = [u for u in browser.requests if not u.startswith(("file://", "data:", "about:"))]
+    check(browser.requests and not outside, f"the page loads nothing but itself ({len(browser.requests)} requests): {outside}")
+    (work / "screenshot.png").write_bytes(browser.screenshot())
+
+# A batch of two pairs, one of which fails: the index lists both, sorts, and links to the page.
+manifest = work / "pairs.csv"
+manifest.write_text("reference,test\nref.obj,test.obj\nref.obj,missing.obj\n")
+done = subprocess.run([roving, "batch", manifest, "--out", work / "batch", "--html", "--quiet"], capture_output=True, text=True)
+check(done.returncode == 4, f"roving batch --html with a failing pair: exit 4, found {done.returncode}")
+with chromium.Browser() as browser:
+    browser.open(work / "batch" / "index.html")
+    rows = browser.evaluate("Array.from(document.querySelectorAll('tbody tr')).map(r => [r.cells[0].textContent, r.className, r.querySelector('a') ? r.querySelector('a').getAttribute('href') : ''])")
+    check([r[0] for r in rows] == ["0", "1"] and rows[1][1] == "failed", f"the index lists both pairs, the failed one marked: {rows}")
+    check(rows[0][2].endswith(".html") and (work / "batch" / rows[0][2]).exists(), f"the measured pair links to its page: {rows[0][2]}")
+    browser.evaluate("document.querySelector('thead th').click(); document.querySelector('thead th').click()")
+    order = browser.evaluate("Array.from(document.querySelectorAll('tbody tr')).map(r => r.cells[0].textContent)")
+    check(order == ["1", "0"], f"clicking the index column twice sorts it descending: {order}")
+    browser.open(work / "batch" / rows[0][2])
+    check(not browser.errors, f"no console error or exception on the index and the pair page: {browser.errors}")
+
+print(f"{len(failures)} failures")
+sys.exit(1 if failures else 0)
