@@ -28,6 +28,8 @@
 #include "roving/formats/atomic_file.h"
 #include "roving/formats/mesh_io.h"
 #include "roving/gl_methods/agreement.h"
+#include "roving/html/distance_view.h"
+#include "roving/html/html_index.h"
 #include "roving/pictures/heatmap_picture.h"
 #include "roving/registry/method_registry.h"
 #include "roving/representations/surfels.h"
@@ -116,6 +118,7 @@ class Bench {
     Picture picture;
   };
   std::vector<PictureJob> pictures;  // rendered into results/pictures/ by write_results()
+  std::vector<HtmlView> figure8_views;  // results/figure8.html: the same heat maps, in 3D
 
  private:
   Options options_;
@@ -297,6 +300,14 @@ void figure8_picture(Bench& bench, const TriangleMesh& bunny, const SampleSet& s
       heatmap_values(&bunny, faces, samples, distances_or_nan(cooperative.result));
   std::string file = pair.label.substr(0, pair.label.find(" ("));
   for (char& c : file) c = c == ' ' ? '-' : c;
+  const double h = 0.05 * bunny.bounding_box().diagonal();
+  HtmlView view = distance_view(&bunny, faces, samples, cooperative.result, cooperative.stats, range,
+                                bunny.bounding_box().diagonal(), h);
+  view.label = pair.label.substr(0, pair.label.find(" ("));
+  view.title = picture.title;
+  view.subtitle = picture.subtitle;
+  view.method = "cooperative";
+  bench.figure8_views.push_back(std::move(view));
   bench.pictures.push_back({"figure8-" + file + ".png", picture.title,
                             coloured_surface(&bunny, faces, samples, distance_colours(values, range)),
                             picture});
@@ -699,6 +710,44 @@ int check(Bench& bench, const fs::path& accuracy) {
   return bench.failures.empty() ? 0 : 1;
 }
 
+// The HTML version of the results: index.html with every table (sortable) and the charts, and
+// figure8.html, the Figure 8 heat maps in 3D (one page, a button per test model).
+void write_html(Bench& bench, const fs::path& out) {
+  HtmlIndex index;
+  index.title = "surface roving: the paper's tables, regenerated";
+  index.intro = fmt::format(
+      "<p>The tables of <a href=\"README.md\">README.md</a> (which says what each measures and how ours differ "
+      "from the paper's), written by <code>roving-bench{}</code>; click a column's name to sort. {}"
+      "Charts: <a href=\"charts/figure6.png\">Figure 6</a>, <a href=\"charts/h-x-v.png\">the H x V study</a>.</p>",
+      bench.options().quick ? " --quick" : "",
+      bench.figure8_views.empty() ? ""
+                                  : "<a href=\"figure8.html\">Figure 8 in 3D</a>: the bunny coloured by d against "
+                                    "each of its test models, to turn and zoom. ");
+  for (const ReportTable& t : bench.tables) {
+    std::vector<std::vector<std::string>> rows = t.rows;
+    for (auto& row : rows) {
+      for (std::string& cell : row) {  // the markdown's bold (the paper's rows) is plain text here
+        for (std::size_t at = cell.find("**"); at != std::string::npos; at = cell.find("**")) cell.erase(at, 2);
+      }
+    }
+    index.tables.push_back({t.title, "<p>" + escape_html(t.settings) + "</p>", t.header, rows, {}, {}});
+  }
+  AtomicFile file((out / "index.html").string());
+  write_html_index(file.stream(), index);
+  file.close_stream();
+  file.commit();
+  if (bench.figure8_views.empty()) return;
+  bench.progress.step("figure8.html");
+  HtmlPage page;
+  page.title = "Figure 8: the bunny against its test models, d by the cooperative method";
+  page.views = bench.figure8_views;
+  page.report_text = "Written by roving-bench with results/README.md; the tables are in index.html.";
+  AtomicFile figure((out / "figure8.html").string());
+  write_html_page(figure.stream(), page);
+  figure.close_stream();
+  figure.commit();
+}
+
 void write_results(Bench& bench, const fs::path& out) {
   fs::create_directories(out);
   std::string markdown = fmt::format(
@@ -802,6 +851,7 @@ void write_results(Bench& bench, const fs::path& out) {
     }
   }
   std::ofstream(out / "README.md") << markdown + machine_section(bench);
+  write_html(bench, out);
   std::ofstream csv(out / "accuracy.csv");
   csv << "figure,value\n";
   csv.precision(12);

@@ -5,7 +5,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 source scripts/step.sh
-bash scripts/setup.sh
+bash scripts/setup.sh browser  # chromium photographs the example web page
 bash scripts/build.sh
 data="${ROVING_DATA:-data}"
 step "the derived models (roving-datasets -> build/datasets)" \
@@ -21,6 +21,7 @@ fi
 step "the GL methods against Embree at full size (gl-accuracy -> results/gl-accuracy.md)" \
   sh -c './build/bench/gl-accuracy --data "$1" > results/gl-accuracy.md' _ "$data"
 step "example reports (results/examples/measure.md)" bash scripts/examples.sh
+step "the example web page and its screenshot (results/examples/report.html, report.png)" bash scripts/html-example.sh
 step "error bars: sampled figures against their intervals (results/error-bars.md, about 2 minutes)" \
   /usr/bin/python3 bench/error_bars.py --roving build/roving/roving --data build/datasets --out results
 # Debian's libbenchmark is itself built without NDEBUG, so it warns "Library was built as DEBUG.

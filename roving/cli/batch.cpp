@@ -283,10 +283,11 @@ void write_index(const std::string& folder, const std::vector<std::string>& head
   const std::vector<std::string> shown = {"index", "reference", "test", "status", "method", "semantics", "samples",
                                           "no_hits", "usiad", "siad", "rms", "max_abs", "p95", "hausdorff",
                                           "seconds", "warnings"};
-  HtmlIndex index;
-  index.title = fmt::format("surface roving batch: {} pairs", reports.size());
-  index.intro = fmt::format("<p>From the reports in {}; lengths in model units. Click a column's name to sort.</p>",
-                            escape_html(folder));
+  HtmlIndex page;
+  page.title = fmt::format("surface roving batch: {} pairs", reports.size());
+  page.intro = fmt::format("<p>From the reports in {}; lengths in model units. Click a column's name to sort.</p>",
+                           escape_html(folder));
+  HtmlTable& index = page.tables.emplace_back();
   index.header = shown;
   for (std::size_t r = 0; r < reports.size(); ++r) {
     const std::vector<std::string> row = summary_row(reports[r]);
@@ -302,7 +303,7 @@ void write_index(const std::string& folder, const std::vector<std::string>& head
     index.links.push_back(row[3] == "ok" && fs::exists(page) ? page.filename().string() : "");
   }
   AtomicFile file((fs::path(folder) / "index.html").string());
-  write_html_index(file.stream(), index);
+  write_html_index(file.stream(), page);
   file.close_stream();
   file.commit();
 }

@@ -44,19 +44,27 @@ void write_html_index(std::FILE* out, const HtmlIndex& index) {
   fmt::print(out,
              "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
              "<meta name=\"generator\" content=\"surface roving\">\n<title>{}</title>\n<style>\n{}{}</style>\n"
-             "</head>\n<body>\n<div id=\"panel\">\n<h1>{}</h1>\n{}\n<table class=\"sortable\">\n<thead><tr>",
+             "</head>\n<body>\n<div id=\"panel\">\n<h1>{}</h1>\n{}\n",
              escape_html(index.title), html_assets::page_css, kIndexStyle, escape_html(index.title), index.intro);
-  for (const std::string& name : index.header) fmt::print(out, "<th>{}</th>", escape_html(name));
-  fmt::print(out, "<th>page</th></tr></thead>\n<tbody>\n");
-  for (std::size_t r = 0; r < index.rows.size(); ++r) {
-    const bool failed = r < index.failed.size() && index.failed[r];
-    fmt::print(out, "<tr{}>", failed ? " class=\"failed\"" : "");
-    for (const std::string& cell : index.rows[r]) fmt::print(out, "<td>{}</td>", escape_html(cell));
-    const std::string link = r < index.links.size() ? index.links[r] : "";
-    fmt::print(out, "<td>{}</td></tr>\n",
-               link.empty() ? "" : fmt::format("<a href=\"{}\">view</a>", escape_html(link)));
+  for (const HtmlTable& table : index.tables) {
+    if (!table.title.empty()) fmt::print(out, "<h2>{}</h2>\n", escape_html(table.title));
+    const bool links = !table.links.empty();
+    fmt::print(out, "{}\n<table class=\"sortable\">\n<thead><tr>", table.intro);
+    for (const std::string& name : table.header) fmt::print(out, "<th>{}</th>", escape_html(name));
+    fmt::print(out, "{}</tr></thead>\n<tbody>\n", links ? "<th>page</th>" : "");
+    for (std::size_t r = 0; r < table.rows.size(); ++r) {
+      const bool failed = r < table.failed.size() && table.failed[r];
+      fmt::print(out, "<tr{}>", failed ? " class=\"failed\"" : "");
+      for (const std::string& cell : table.rows[r]) fmt::print(out, "<td>{}</td>", escape_html(cell));
+      const std::string link = r < table.links.size() ? table.links[r] : "";
+      if (links) {
+        fmt::print(out, "<td>{}</td>", link.empty() ? "" : fmt::format("<a href=\"{}\">view</a>", escape_html(link)));
+      }
+      fmt::print(out, "</tr>\n");
+    }
+    fmt::print(out, "</tbody>\n</table>\n");
   }
-  fmt::print(out, "</tbody>\n</table>\n</div>\n<script>{}</script>\n</body>\n</html>\n", kSortScript);
+  fmt::print(out, "</div>\n<script>{}</script>\n</body>\n</html>\n", kSortScript);
 }
 
 }  // namespace roving

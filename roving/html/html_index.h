@@ -8,12 +8,17 @@
 
 namespace roving {
 
-struct HtmlIndex {
+struct HtmlTable {
   std::string title, intro;  // intro: HTML, shown above the table
   std::vector<std::string> header;
   std::vector<std::vector<std::string>> rows;  // cells as text; numbers sort as numbers
   std::vector<std::string> links;              // per row: its page (relative), or empty
   std::vector<bool> failed;                    // per row: shown highlighted
+};
+
+struct HtmlIndex {
+  std::string title, intro;  // intro: HTML
+  std::vector<HtmlTable> tables;
 };
 
 void write_html_index(std::FILE* out, const HtmlIndex& index);

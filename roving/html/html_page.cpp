@@ -78,7 +78,9 @@ std::string histogram_svg(const Histogram& h, double range) {
   return svg + "</svg>";
 }
 
-nlohmann::json view_json(const HtmlView& view) {
+// `view`'s JSON; `shared`: the index of an earlier view with the same surface, whose positions and
+// triangles it uses (-1: none), so that pages of one reference against many tests carry it once.
+nlohmann::json view_json(const HtmlView& view, int shared) {
   const DisplaySurface& s = view.surface;
   std::vector<unsigned char> colours;
   colours.reserve(3 * s.values.size());
@@ -109,8 +111,9 @@ nlohmann::json view_json(const HtmlView& view) {
   for (std::size_t e = 0; e < s.samples.size() && identity; ++e) identity = s.samples[e] == static_cast<std::int32_t>(e);
   return {{"label", view.label},
           {"element", element},
-          {"positions", base64(s.positions)},
-          {"triangles", base64(s.triangles)},
+          {"geometry_of", shared},
+          {"positions", shared < 0 ? base64(s.positions) : ""},
+          {"triangles", shared < 0 ? base64(s.triangles) : ""},
           {"values", base64(s.values)},
           {"colours", base64(colours)},
           {"samples", identity ? "" : base64(s.samples)},
@@ -198,7 +201,15 @@ void write_html_page(std::FILE* out, const HtmlPage& page) {
   fmt::print(out, "<details open><summary>Report</summary><pre>{}</pre></details>\n{}\n</aside>\n</div>\n",
              escape_html(page.report_text), provenance_html(page.report));
   nlohmann::json data = {{"views", nlohmann::json::array()}};
-  for (const HtmlView& view : page.views) data["views"].push_back(view_json(view));
+  for (std::size_t i = 0; i < page.views.size(); ++i) {
+    const DisplaySurface& s = page.views[i].surface;
+    int shared = -1;
+    for (std::size_t j = 0; j < i && shared < 0; ++j) {
+      const DisplaySurface& other = page.views[j].surface;
+      if (other.positions == s.positions && other.triangles == s.triangles) shared = static_cast<int>(j);
+    }
+    data["views"].push_back(view_json(page.views[i], shared));
+  }
   fmt::print(out, "<script id=\"roving-data\" type=\"application/json\">{}</script>\n", script_json(data));
   fmt::print(out, "<script id=\"roving-report\" type=\"application/json\">{}</script>\n", script_json(page.report));
   fmt::print(out, "<script>{}</script>\n<script>{}</script>\n<script>{}</script>\n</body>\n</html>\n",

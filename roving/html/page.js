@@ -40,8 +40,9 @@
 
   function build(view) {
     const v = view.data;
-    const positions = decode(v.positions, Float32Array);
-    const triangles = decode(v.triangles, Uint32Array);
+    const source = v.geometry_of >= 0 ? data.views[v.geometry_of] : v;  // a surface shared with another view
+    const positions = decode(source.positions, Float32Array);
+    const triangles = decode(source.triangles, Uint32Array);
     const colours = decode(v.colours, Uint8Array);
     const geometry = new THREE.BufferGeometry();
     if (v.element === 'faces') {  // flat colour per triangle: three vertices of its own
