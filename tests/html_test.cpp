@@ -97,6 +97,9 @@ TEST(DisplaySurface, PointsAreSubsampledEvenlyToTheBudget) {
   EXPECT_GE(s.values.size(), 2500u);
   EXPECT_TRUE(s.triangles.empty());
   EXPECT_EQ(s.source_elements, samples.size());
+  // Disks of the area each shown point stands for (the square's 4 over 2,500 to 3,000 points).
+  const double radius = 1.25 * std::sqrt(4.0 / s.values.size() / M_PI);
+  EXPECT_NEAR(s.point_size, 2 * radius, 1e-6);
   for (std::size_t i = 1; i < s.samples.size(); ++i) EXPECT_EQ(s.samples[i] - s.samples[i - 1], s.samples[1] - s.samples[0]);
 }
 

@@ -106,12 +106,16 @@ DisplaySurface display_surface(const TriangleMesh* surface, const HeatmapLayout&
     DisplaySurface out;
     out.source_elements = samples.size();
     const std::size_t stride = (samples.size() + max_triangles - 1) / max_triangles;
+    double area = 0;
     for (std::size_t k = 0; k < samples.size(); k += std::max<std::size_t>(stride, 1)) {
       const Vec3& p = samples.positions[k];
       out.positions.insert(out.positions.end(), {float(p.x()), float(p.y()), float(p.z())});
       out.values.push_back(per_sample[k]);
       out.samples.push_back(static_cast<std::int32_t>(k));
     }
+    for (double w : samples.weights) area += w;
+    // Disks of the area each point shown stands for, a quarter wider so that neighbours overlap.
+    if (area > 0 && !out.values.empty()) out.point_size = static_cast<float>(2.5 * std::sqrt(area / out.values.size() / M_PI));
     return out;
   }
   const std::vector<float> value = heatmap_values(surface, layout, samples, per_sample);

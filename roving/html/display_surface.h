@@ -23,6 +23,7 @@ struct DisplaySurface {
   std::vector<std::uint32_t> triangles;             // 3 vertex indices per triangle; empty for Points
   std::vector<float> values;                        // per element; NaN: no value (a no-hit)
   std::vector<std::int32_t> samples;                // per element: its sample, kNoSample or kMerged
+  float point_size = 0;                             // Points: a disk's diameter that covers the surface
   std::size_t source_elements = 0;                  // before decimation
   std::size_t source_triangles = 0;
   bool decimated() const { return values.size() < source_elements; }

@@ -122,6 +122,7 @@ nlohmann::json view_json(const HtmlView& view, int shared) {
           {"range", view.range},
           {"diagonal", view.diagonal},
           {"max_error", view.max_error},
+          {"point_size", s.point_size},
           {"signs", {{"positive", view.positive}, {"negative", view.negative}, {"zero", view.zero}, {"no_hit", view.no_hit}}},
           {"decimated", decimated},
           {"pick_hint", std::string(s.values.size() > 300000 ? "Click" : "Hover over or click") +

@@ -61,9 +61,12 @@
     }
     geometry.computeBoundingSphere();
     if (!triangles) {
-      const size = 1.5 * v.diagonal / Math.sqrt(positions.length / 3);
+      const size = v.point_size > 0 ? v.point_size : 1.5 * v.diagonal / Math.sqrt(positions.length / 3);
       view.pointSize = size;
-      view.object = new THREE.Points(geometry, new THREE.PointsMaterial({ size: size, vertexColors: THREE.VertexColors }));
+      // three.js scales a point by half the canvas height over its depth, leaving out the field of
+      // view: divide by tan(fov / 2) for disks of `size` model units.
+      const drawn = size / Math.tan(camera.fov / 2 * Math.PI / 180);
+      view.object = new THREE.Points(geometry, new THREE.PointsMaterial({ size: drawn, vertexColors: THREE.VertexColors }));
     } else {
       geometry.computeVertexNormals();
       view.object = new THREE.Mesh(geometry, new THREE.MeshLambertMaterial({ vertexColors: THREE.VertexColors, side: THREE.DoubleSide }));
@@ -91,6 +94,8 @@
     if (!view.object) build(view);
     if (current) scene.remove(current.object);
     scene.add(view.object);
+    // Points are drawn unlit: near-white ones (d near 0) need a background they stand out from.
+    renderer.setClearColor(view.data.element === 'points' ? 0xd0d0d0 : 0xffffff);
     current = view;
     frame(view);
     const v = view.data;
