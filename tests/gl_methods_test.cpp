@@ -553,3 +553,66 @@ TEST(ViewCulling, CooperativeIsIdenticalWithAndWithout) {
 
 }  // namespace
 }  // namespace roving
+
+namespace roving {
+namespace {
+
+// --camera-geometry gpu builds each camera's triangles in a compute shader, in double, operation
+// for operation as the CPU does: the same hit on every sample, d within the method's depth
+// tolerance of the CPU-built cameras' (a GPU may round its double division or square root
+// differently), and bit for bit where the GL is llvmpipe, whose doubles are the CPU's. Pairs
+// where the rule's edge cases abound: lines through every vertex (a model against itself and
+// against a copy moved along its normals), creases, and a model 10^5 of its size from the origin
+// (where float coordinates would lose the camera's width).
+TEST_P(EachBackend, GpuCamerasGiveTheCpuCamerasAnswers) {
+  REQUIRE_GL_CONTEXT(GetParam());
+  struct Case {
+    std::string name, method;
+    TriangleMesh reference, test;
+    const char* samples;
+  };
+  std::vector<Case> cases;
+  for (const char* file : {"stanford-bunny.obj", "fandisk.obj"}) {
+    const TriangleMesh mesh = load_mesh(testing::data_file(file)).mesh;
+    cases.push_back({std::string(file) + " itself", "roving", mesh, mesh, "vertices"});
+  }
+  const TriangleMesh rocker = load_mesh(testing::data_file("rocker-arm.obj")).mesh;
+  const double rocker_diagonal = rocker.bounding_box().diagonal();
+  cases.push_back({"rocker arm moved along its normals", "roving", rocker,
+                   smoothly_perturbed(rocker, 0.002 * rocker_diagonal, 0.2 * rocker_diagonal), "faces"});
+  const TriangleMesh bunny = normalised(testing::bunny());
+  const double diagonal = bunny.bounding_box().diagonal();
+  const auto far_away = [&](const TriangleMesh& mesh) {
+    std::vector<Vec3> positions = mesh.positions();
+    for (Vec3& p : positions) p += Vec3(1e5, -2e5, 3e5) * diagonal;
+    return TriangleMesh(positions, mesh.triangles());
+  };
+  const TriangleMesh decimated = smoothly_perturbed(decimate_quadric(bunny, 10459), 0.01 * diagonal, 0.5 * diagonal);
+  cases.push_back({"bunny far from the origin", "roving", far_away(bunny), far_away(decimated), "area:6000"});
+  cases.push_back({"bunny, cooperative", "cooperative", bunny, decimated, "area:6000"});
+
+  const bool llvmpipe = make_depth_renderer(GetParam())->info().renderer.find("llvmpipe") != std::string::npos;
+  for (const Case& c : cases) {
+    const SampleSet samples = make_samples(c.reference, parse_sample_spec(c.samples));
+    const DistanceOptions options{Semantics::FirstHit, 0.02 * c.test.bounding_box().diagonal()};
+    GlMethodOptions gl = EachBackend::options();
+    gl.views_h = 12, gl.views_v = 6, gl.resolution = 512;
+    const DistanceResult cpu = measure_distances(*make_method(c.method, gl), c.test, samples, options);
+    gl.gpu_cameras = true;
+    const DistanceResult gpu = measure_distances(*make_method(c.method, gl), c.test, samples, options);
+    ASSERT_TRUE(gpu.gl->gpu_cameras);
+    EXPECT_GT(gpu.gl->sample_cameras, samples.size() / 20) << c.name;
+    EXPECT_EQ(cpu.hit, gpu.hit) << c.name;
+    EXPECT_EQ(cpu.gl->resolved_by, gpu.gl->resolved_by) << c.name;
+    const Agreement a = agreement(cpu, gpu, roving_tolerance(*gpu.gl));
+    EXPECT_EQ(a.close, a.common_hits) << c.name;
+    std::size_t differ = 0;
+    for (std::size_t k = 0; k < samples.size(); ++k) differ += cpu.signed_distance[k] != gpu.signed_distance[k];
+    if (llvmpipe) {
+      EXPECT_EQ(differ, 0u) << c.name << ": " << differ << " of " << samples.size();
+    }
+  }
+}
+
+}  // namespace
+}  // namespace roving

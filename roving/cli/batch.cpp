@@ -31,7 +31,8 @@ namespace fs = std::filesystem;
 
 // The manifest columns a pair may set, and the option each stands for.
 const std::vector<std::string> kPairColumns = {"method", "semantics", "samples", "seed",
-                                               "max_error", "views", "resolution", "backend"};
+                                               "max_error", "views", "resolution", "backend",
+                                               "camera_geometry"};
 
 struct Pair {
   std::size_t index = 0;  // in the list, 0-based
@@ -201,6 +202,7 @@ MeasureArguments arguments_for(const Pair& pair, const MeasureArguments& default
     if (column == "max_error") a.max_error = value;
     if (column == "views") a.views = value;
     if (column == "backend") a.backend = value;
+    if (column == "camera_geometry") a.camera_geometry = value;
     if (column == "resolution" || column == "seed") {
       long long number = 0;
       if (!parse_number(value, number) || number < 0) {
@@ -218,9 +220,9 @@ MeasureArguments arguments_for(const Pair& pair, const MeasureArguments& default
 std::string pair_key(const MeasureArguments& a, const std::string& reference_sha, const std::string& test_sha) {
   const std::string identity = fmt::format(
       "{}|{}|method={}|semantics={}|samples={}|seed={}|max_error={}|views={}|resolution={}|backend={}|"
-      "symmetric={}|ref_type={}|test_type={}|bins={}|hausdorff_bound={}",
+      "camera_geometry={}|symmetric={}|ref_type={}|test_type={}|bins={}|hausdorff_bound={}",
       reference_sha, test_sha, a.method, a.semantics, a.samples, a.seed ? std::to_string(*a.seed) : "", a.max_error,
-      a.views, a.resolution, a.backend, a.symmetric, a.reference_type, a.test_type, a.histogram_bins, a.hausdorff_bound);
+      a.views, a.resolution, a.backend, a.camera_geometry, a.symmetric, a.reference_type, a.test_type, a.histogram_bins, a.hausdorff_bound);
   unsigned char digest[EVP_MAX_MD_SIZE];
   unsigned int length = 0;
   EVP_Digest(identity.data(), identity.size(), digest, &length, EVP_sha256(), nullptr);

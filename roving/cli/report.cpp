@@ -185,7 +185,8 @@ std::string gl_lines(const GlReport& g) {
   }
   if (g.sample_cameras) {
     precision.push_back(
-        fmt::format("camera half-width {:.3g}, camera depth step {:.3g}", g.camera_half_width, g.camera_depth_step));
+        fmt::format("camera half-width {:.3g}, camera depth step {:.3g} (cameras built on the {})", g.camera_half_width,
+                    g.camera_depth_step, g.gpu_cameras ? "GPU" : "CPU"));
   }
   if (!precision.empty()) out += fmt::format("  precision (model units): {}\n", fmt::join(precision, "; "));
   return out;
@@ -204,7 +205,10 @@ nlohmann::json gl_json(const GlReport& g) {
           {"view_pixel_size", g.view_pixel_size},
           {"view_depth_step", g.view_depth_step},
           {"camera_half_width", g.camera_half_width},
-          {"camera_depth_step", g.camera_depth_step}};
+          {"camera_depth_step", g.camera_depth_step},
+          {"camera_geometry", g.gpu_cameras ? "gpu" : "cpu"},
+          {"camera_build_seconds", g.camera_build_seconds},
+          {"camera_render_seconds", g.camera_render_seconds}};
 }
 
 std::string samples_line(const SampleSet& samples, std::uint64_t seed) {

@@ -76,6 +76,10 @@ struct GlReport {
   double view_depth_step = 0;    // model units per ulp of float depth near 1 in a view
   double camera_half_width = 0;  // half-width of a roving camera's view volume (one pixel)
   double camera_depth_step = 0;  // model units per ulp of float depth near 1 in a roving camera
+  bool gpu_cameras = false;      // the cameras' triangles were built on the GPU (compute shader)
+  // Where the cameras' time went: building their batches (CPU threads, beside the draws) and
+  // rendering them (GL thread: upload, any compute stage, draw, read back).
+  double camera_build_seconds = 0, camera_render_seconds = 0;
 
   std::size_t observations() const { return views_rendered + sample_cameras; }
 };

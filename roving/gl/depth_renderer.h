@@ -40,6 +40,12 @@ struct TileVertex {
   std::uint32_t tile;
 };
 
+// One candidate of a roving batch built on the GPU: the uploaded model's triangle `face`, drawn
+// in tile `tile` through that tile's camera.
+struct TileFace {
+  std::uint32_t tile, face;
+};
+
 // A rectangle of pixels [x0, x1) x [y0, y1) of a view (x along `right`, y along `up`).
 struct PixelRect {
   int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
@@ -58,8 +64,9 @@ class DepthRenderer {
   // Largest framebuffer side the context allows (GL_MAX_RENDERBUFFER_SIZE / viewport limit).
   virtual int max_framebuffer_size() const = 0;
 
-  // Uploads M_C once for whole-model views.
-  virtual void upload_model(const TriangleMesh& mesh) = 0;
+  // Uploads M_C once: for whole-model views, and with `for_tile_faces` also its positions in
+  // double and its triangles, for render_tile_faces().
+  virtual void upload_model(const TriangleMesh& mesh, bool for_tile_faces = false) = 0;
   // Draws the uploaded model through `camera` into a resolution x resolution 32-bit float depth
   // buffer and returns it row by row from the bottom (x along `right`); 1 where nothing was drawn.
   virtual void render_view(const OrthoCamera& camera, int resolution, std::vector<float>& depth) = 0;
@@ -78,6 +85,12 @@ class DepthRenderer {
   // central ray, so the depth read back is that ray's first crossing of what was drawn.
   virtual void render_tiles(const std::vector<TileVertex>& vertices, std::size_t tile_count,
                             std::vector<float>& depth) = 0;
+  // The same tiles (one per camera), their geometry built on the GPU from `faces`: for each, the
+  // uploaded model's triangle in its tile's camera frame, with its edges and corners widened as
+  // surface roving's CPU builds them (roving/gl_methods/surface_roving.cpp), in double as there.
+  // Needs upload_model(mesh, true).
+  virtual void render_tile_faces(const std::vector<OrthoCamera>& cameras, const std::vector<TileFace>& faces,
+                                 std::vector<float>& depth) = 0;
 };
 
 // Creates an offscreen context and its renderer. OSMesa gives Mesa's llvmpipe; EGL tries the

@@ -50,19 +50,26 @@ namespace roving::gl {
   X(PFNGLDELETEPROGRAMPROC, DeleteProgram)                     \
   X(PFNGLGETUNIFORMLOCATIONPROC, GetUniformLocation)           \
   X(PFNGLUNIFORM1FPROC, Uniform1f)                             \
+  X(PFNGLUNIFORM1UIPROC, Uniform1ui)                           \
   X(PFNGLUNIFORM2IPROC, Uniform2i)                             \
   X(PFNGLUNIFORM3FPROC, Uniform3f)                             \
+  X(PFNGLUNIFORM2DVPROC, Uniform2dv)                           \
   X(PFNGLGENVERTEXARRAYSPROC, GenVertexArrays)                 \
   X(PFNGLBINDVERTEXARRAYPROC, BindVertexArray)                 \
   X(PFNGLDELETEVERTEXARRAYSPROC, DeleteVertexArrays)           \
   X(PFNGLGENBUFFERSPROC, GenBuffers)                           \
   X(PFNGLBINDBUFFERPROC, BindBuffer)                           \
   X(PFNGLBUFFERDATAPROC, BufferData)                           \
+  X(PFNGLBUFFERSUBDATAPROC, BufferSubData)                     \
+  X(PFNGLBINDBUFFERBASEPROC, BindBufferBase)                   \
   X(PFNGLDELETEBUFFERSPROC, DeleteBuffers)                     \
   X(PFNGLVERTEXATTRIBPOINTERPROC, VertexAttribPointer)         \
   X(PFNGLVERTEXATTRIBIPOINTERPROC, VertexAttribIPointer)       \
   X(PFNGLENABLEVERTEXATTRIBARRAYPROC, EnableVertexAttribArray) \
   X(PFNGLDRAWARRAYSPROC, DrawArrays)                           \
+  X(PFNGLDRAWARRAYSINDIRECTPROC, DrawArraysIndirect)           \
+  X(PFNGLDISPATCHCOMPUTEPROC, DispatchCompute)                 \
+  X(PFNGLMEMORYBARRIERPROC, MemoryBarrier)                     \
   X(PFNGLDRAWELEMENTSPROC, DrawElements)
 
 struct Api {

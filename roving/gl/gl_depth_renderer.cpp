@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <utility>
 
 #include "gl_api.h"
 #include "gl_context.h"
@@ -47,6 +49,139 @@ void main() {
 }
 )";
 
+// Roving tiles built on the GPU: one invocation per (tile, face) candidate appends what
+// surface_roving.cpp's emit_triangles() and widen_edge() append on the CPU for it (the triangle
+// in the tile camera's normalised frame; per edge, an octagon of radius 1 around its first
+// corner where that is near, and a strip of half-width 1 along the part of it near the pixel),
+// computed in double with the same operations in the same order (`precise`: no fused
+// multiply-adds), rounded to float and appended to the tile vertices that kTileVertexShader
+// draws; the draw's vertex count is kept in an indirect draw command.
+constexpr const char* kTileFaceComputeShader = R"(#version 450 core
+layout(local_size_x = 64) in;
+struct Camera {
+  dvec4 centre;   // w: half_width
+  dvec4 right;    // w: half_height
+  dvec4 up;       // w: 2 half_depth
+  dvec4 forward;
+};
+struct TileVertex {
+  float x, y, z;
+  uint tile;
+};
+layout(std430, binding = 0) readonly buffer Positions { double positions[]; };
+layout(std430, binding = 1) readonly buffer Corners { uint corners[]; };
+layout(std430, binding = 2) readonly buffer Cameras { Camera cameras[]; };
+layout(std430, binding = 3) readonly buffer TileFaces { uvec2 tile_faces[]; };
+layout(std430, binding = 4) writeonly buffer Vertices { TileVertex vertices[]; };
+layout(std430, binding = 5) buffer Command { uint vertex_count, instance_count, first_vertex, base_instance; };
+uniform uint first_face, face_count;
+uniform dvec2 ring[8];  // the octagon's corners around a point, as the CPU computes them
+
+dvec3 to_normalised(Camera camera, uint vertex) {
+  precise dvec3 q = dvec3(positions[3u * vertex], positions[3u * vertex + 1u], positions[3u * vertex + 2u]) -
+                    camera.centre.xyz;
+  precise double x = q.x * camera.right.x + q.y * camera.right.y + q.z * camera.right.z;
+  precise double y = q.x * camera.up.x + q.y * camera.up.y + q.z * camera.up.z;
+  precise double z = q.x * camera.forward.x + q.y * camera.forward.y + q.z * camera.forward.z;
+  precise double nx = x / camera.centre.w;
+  precise double ny = y / camera.right.w;
+  precise double nz = z / camera.up.w + 0.5LF;
+  return dvec3(nx, ny, nz);
+}
+
+uint tile;
+uint next_vertex;
+void emit(dvec3 p) {
+  vertices[next_vertex++] = TileVertex(float(p.x), float(p.y), float(p.z), tile);
+}
+
+const double kWindow = 2.0LF;
+
+bool octagon_needed(dvec3 p) { return abs(p.x) <= kWindow && abs(p.y) <= kWindow; }
+
+void emit_octagon(dvec3 p) {
+  dvec3 corner[8];
+  for (int i = 0; i < 8; ++i) {
+    precise double x = p.x + ring[i].x;
+    precise double y = p.y + ring[i].y;
+    corner[i] = dvec3(x, y, p.z);
+  }
+  for (int i = 1; i + 1 < 8; ++i) {
+    emit(corner[0]);
+    emit(corner[i]);
+    emit(corner[i + 1]);
+  }
+}
+
+// Liang-Barsky: the part of p -> q inside the window, as the strip's four corners; false where
+// there is none, or it is seen end-on.
+bool strip(dvec3 p, dvec3 q, out dvec3 corner[4]) {
+  precise dvec3 delta = q - p;
+  double enter = 0.0LF, leave = 1.0LF;
+  for (int axis = 0; axis < 2; ++axis) {
+    for (int side = 0; side < 2; ++side) {
+      const double bound = side == 0 ? -kWindow : kWindow;
+      precise double distance = bound - p[axis];
+      if (delta[axis] == 0.0LF) {
+        if ((bound < 0.0LF && distance > 0.0LF) || (bound > 0.0LF && distance < 0.0LF)) return false;
+        continue;
+      }
+      precise double t = distance / delta[axis];
+      if ((bound < 0.0LF) == (delta[axis] > 0.0LF)) {
+        enter = max(enter, t);
+      } else {
+        leave = min(leave, t);
+      }
+    }
+  }
+  if (enter >= leave) return false;
+  precise dvec3 start = p + enter * delta;
+  precise dvec3 end = p + leave * delta;
+  precise double dx = end.x - start.x;
+  precise double dy = end.y - start.y;
+  precise double length = sqrt(dx * dx + dy * dy);
+  if (!(length > 1e-9LF)) return false;
+  precise dvec3 across = dvec3((start.y - end.y) / length, (end.x - start.x) / length, 0.0LF);
+  corner[0] = start + across;
+  corner[1] = end + across;
+  corner[2] = end - across;
+  corner[3] = start - across;
+  return true;
+}
+
+void main() {
+  if (gl_GlobalInvocationID.x >= face_count) return;
+  const uvec2 tile_face = tile_faces[first_face + gl_GlobalInvocationID.x];
+  tile = tile_face.x;
+  const Camera camera = cameras[tile];
+  dvec3 q[3];
+  for (uint c = 0u; c < 3u; ++c) q[c] = to_normalised(camera, corners[3u * tile_face.y + c]);
+  for (int axis = 0; axis < 3; ++axis) {
+    const double low = axis == 2 ? 0.0LF : -1.0LF;
+    if ((q[0][axis] > 1.0LF && q[1][axis] > 1.0LF && q[2][axis] > 1.0LF) ||
+        (q[0][axis] < low && q[1][axis] < low && q[2][axis] < low)) {
+      return;
+    }
+  }
+  bool octagon[3], has_strip[3];
+  dvec3 strip_corner[3][4];
+  uint count = 3u;
+  for (int e = 0; e < 3; ++e) {
+    octagon[e] = octagon_needed(q[e]);
+    has_strip[e] = strip(q[e], q[(e + 1) % 3], strip_corner[e]);
+    count += (octagon[e] ? 18u : 0u) + (has_strip[e] ? 6u : 0u);
+  }
+  next_vertex = atomicAdd(vertex_count, count);
+  for (int c = 0; c < 3; ++c) emit(q[c]);
+  for (int e = 0; e < 3; ++e) {
+    if (octagon[e]) emit_octagon(q[e]);
+    if (has_strip[e]) {
+      for (int i = 0; i < 6; ++i) emit(strip_corner[e][int[6](0, 1, 2, 0, 2, 3)[i]]);
+    }
+  }
+}
+)";
+
 // Depth 1 (the far plane, as a clear leaves it) over rectangles given in pixels.
 constexpr const char* kFarVertexShader = R"(#version 450 core
 layout(location = 0) in vec2 pixel;
@@ -74,10 +209,13 @@ class GlDepthRenderer final : public DepthRenderer {
     max_size_ = std::min({renderbuffer, viewport[0], viewport[1]});
     view_program_ = link(kViewVertexShader, "view");
     tile_program_ = link(kTileVertexShader, "tile");
+    tile_face_program_ = gl::link_compute_program(gl_, info_.backend, "tile faces", kTileFaceComputeShader);
     far_program_ = link(kFarVertexShader, "far");
     gl_.GenVertexArrays(1, &model_vao_);
     gl_.GenVertexArrays(1, &tile_vao_);
+    gl_.GenVertexArrays(1, &tile_face_vao_);
     gl_.GenVertexArrays(1, &far_vao_);
+    gl_.GenBuffers(kStorageBuffers, tile_face_buffers_);
     gl_.GenBuffers(1, &model_vertices_);
     gl_.GenBuffers(1, &model_indices_);
     gl_.GenBuffers(1, &tile_vertices_);
@@ -87,13 +225,16 @@ class GlDepthRenderer final : public DepthRenderer {
     gl_.BindBuffer(GL_ARRAY_BUFFER, far_vertices_);
     gl_.VertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 2 * sizeof(float), nullptr);
     gl_.EnableVertexAttribArray(0);
-    gl_.BindVertexArray(tile_vao_);
-    gl_.BindBuffer(GL_ARRAY_BUFFER, tile_vertices_);
-    gl_.VertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(TileVertex), nullptr);
-    gl_.VertexAttribIPointer(1, 1, GL_UNSIGNED_INT, sizeof(TileVertex),
-                             reinterpret_cast<void*>(offsetof(TileVertex, tile)));
-    gl_.EnableVertexAttribArray(0);
-    gl_.EnableVertexAttribArray(1);
+    // Tile vertices from the CPU, and from the compute stage (render_tile_faces()).
+    for (const auto& [vao, buffer] : {std::pair(tile_vao_, tile_vertices_), std::pair(tile_face_vao_, tile_face_buffers_[kVertices])}) {
+      gl_.BindVertexArray(vao);
+      gl_.BindBuffer(GL_ARRAY_BUFFER, buffer);
+      gl_.VertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(TileVertex), nullptr);
+      gl_.VertexAttribIPointer(1, 1, GL_UNSIGNED_INT, sizeof(TileVertex),
+                               reinterpret_cast<void*>(offsetof(TileVertex, tile)));
+      gl_.EnableVertexAttribArray(0);
+      gl_.EnableVertexAttribArray(1);
+    }
     gl_.Enable(GL_DEPTH_TEST);
     gl_.DepthFunc(GL_LESS);
     gl_.PixelStorei(GL_PACK_ALIGNMENT, 4);
@@ -113,10 +254,13 @@ class GlDepthRenderer final : public DepthRenderer {
     gl_.DeleteBuffers(1, &far_vertices_);
     gl_.DeleteVertexArrays(1, &model_vao_);
     gl_.DeleteVertexArrays(1, &tile_vao_);
+    gl_.DeleteVertexArrays(1, &tile_face_vao_);
     gl_.DeleteVertexArrays(1, &far_vao_);
+    gl_.DeleteBuffers(kStorageBuffers, tile_face_buffers_);
     gl_.DeleteProgram(view_program_);
     gl_.DeleteProgram(tile_program_);
     gl_.DeleteProgram(far_program_);
+    gl_.DeleteProgram(tile_face_program_);
     if (framebuffer_) gl_.DeleteFramebuffers(1, &framebuffer_);
     if (depth_buffer_) gl_.DeleteRenderbuffers(1, &depth_buffer_);
   }
@@ -124,7 +268,7 @@ class GlDepthRenderer final : public DepthRenderer {
   RendererInfo info() const override { return info_; }
   int max_framebuffer_size() const override { return max_size_; }
 
-  void upload_model(const TriangleMesh& mesh) override {
+  void upload_model(const TriangleMesh& mesh, bool for_tile_faces) override {
     context_->make_current();
     model_origin_ = mesh.bounding_box().centre();
     std::vector<float> positions;
@@ -147,6 +291,16 @@ class GlDepthRenderer final : public DepthRenderer {
                    GL_STATIC_DRAW);
     model_index_count_ = static_cast<GLsizei>(indices.size());
     model_vertex_count_ = mesh.vertex_count();
+    model_triangle_count_ = for_tile_faces ? mesh.triangle_count() : 0;
+    if (for_tile_faces) {
+      // The positions as they are, in double: the cameras' frames are computed from them as the
+      // CPU computes them.
+      std::vector<double> exact;
+      exact.reserve(3 * mesh.vertex_count());
+      for (const Vec3& p : mesh.positions()) exact.insert(exact.end(), {p.x(), p.y(), p.z()});
+      upload_storage(kPositions, exact);
+      upload_storage(kCorners, indices);
+    }
     check("uploading the test model");
   }
 
@@ -212,12 +366,7 @@ class GlDepthRenderer final : public DepthRenderer {
   void render_tiles(const std::vector<TileVertex>& vertices, std::size_t tile_count,
                     std::vector<float>& depth) override {
     context_->make_current();
-    const std::size_t max_tiles = static_cast<std::size_t>(max_size_) * max_size_;
-    if (tile_count == 0 || tile_count > max_tiles) {
-      throw Error(fmt::format("gl: a tile batch must hold 1..{} tiles, found {}", max_tiles, tile_count));
-    }
-    const int columns = std::min<int>(max_size_, static_cast<int>(std::ceil(std::sqrt(double(tile_count)))));
-    const int rows = static_cast<int>((tile_count + columns - 1) / columns);
+    const auto [columns, rows] = tile_grid(tile_count);
     bind_framebuffer(columns, rows);
     if (!vertices.empty()) {
       gl_.UseProgram(tile_program_);
@@ -234,7 +383,99 @@ class GlDepthRenderer final : public DepthRenderer {
     check("rendering a tile batch");
   }
 
+  void render_tile_faces(const std::vector<OrthoCamera>& cameras, const std::vector<TileFace>& faces,
+                         std::vector<float>& depth) override {
+    context_->make_current();
+    if (model_triangle_count_ == 0) throw Error("gl: render_tile_faces() before upload_model(mesh, true)");
+    const auto [columns, rows] = tile_grid(cameras.size());
+    const bool faces_valid = std::all_of(faces.begin(), faces.end(), [&](const TileFace& f) {
+      return f.tile < cameras.size() && f.face < model_triangle_count_;
+    });
+    if (!faces_valid) {
+      throw Error(fmt::format("gl: a tile face must name one of {} tiles and one of {} triangles", cameras.size(),
+                              model_triangle_count_));
+    }
+    bind_framebuffer(columns, rows);
+    if (!faces.empty()) {
+      // std430 layout of the shader's Camera: four dvec4, the extents in their w.
+      std::vector<double> frames;
+      frames.reserve(16 * cameras.size());
+      for (const OrthoCamera& c : cameras) {
+        frames.insert(frames.end(), {c.centre.x(), c.centre.y(), c.centre.z(), c.half_width,  //
+                                     c.right.x(), c.right.y(), c.right.z(), c.half_height,    //
+                                     c.up.x(), c.up.y(), c.up.z(), 2 * c.half_depth,          //
+                                     c.forward.x(), c.forward.y(), c.forward.z(), 0.0});
+      }
+      upload_storage(kCameras, frames);
+      upload_storage(kTileFaces, faces);
+      gl_.UseProgram(tile_face_program_);
+      double ring[2 * kOctagonSides];
+      for (int i = 0; i < kOctagonSides; ++i) {
+        const double angle = 2 * M_PI * i / kOctagonSides;  // as surface_roving.cpp's widen_edge()
+        ring[2 * i] = std::cos(angle), ring[2 * i + 1] = std::sin(angle);
+      }
+      gl_.Uniform2dv(gl_.GetUniformLocation(tile_face_program_, "ring"), kOctagonSides, ring);
+      // The compute stage's output: at most kMaxVerticesPerFace a face, kFacesPerDispatch faces
+      // a pass, in a buffer made once (a fresh one each batch costs its pages again).
+      if (!face_vertices_ready_) {
+        gl_.BindBuffer(GL_ARRAY_BUFFER, tile_face_buffers_[kVertices]);
+        gl_.BufferData(GL_ARRAY_BUFFER, kFacesPerDispatch * kMaxVerticesPerFace * sizeof(TileVertex), nullptr,
+                       GL_DYNAMIC_COPY);
+        gl_.BindBuffer(GL_DRAW_INDIRECT_BUFFER, tile_face_buffers_[kCommand]);
+        gl_.BufferData(GL_DRAW_INDIRECT_BUFFER, 4 * sizeof(GLuint), nullptr, GL_DYNAMIC_COPY);
+        face_vertices_ready_ = true;
+      }
+      gl_.BindBufferBase(GL_SHADER_STORAGE_BUFFER, kVertices, tile_face_buffers_[kVertices]);
+      gl_.BindBufferBase(GL_SHADER_STORAGE_BUFFER, kCommand, tile_face_buffers_[kCommand]);
+      gl_.BindBuffer(GL_DRAW_INDIRECT_BUFFER, tile_face_buffers_[kCommand]);
+      for (int plane = 0; plane < 4; ++plane) gl_.Enable(GL_CLIP_DISTANCE0 + plane);
+      for (std::size_t first = 0; first < faces.size(); first += kFacesPerDispatch) {
+        const std::size_t count = std::min(kFacesPerDispatch, faces.size() - first);
+        const GLuint command[4] = {0, 1, 0, 0};  // vertex count (appended to), instances, first, base
+        gl_.BufferSubData(GL_DRAW_INDIRECT_BUFFER, 0, sizeof command, command);
+        gl_.UseProgram(tile_face_program_);
+        gl_.Uniform1ui(gl_.GetUniformLocation(tile_face_program_, "first_face"), GLuint(first));
+        gl_.Uniform1ui(gl_.GetUniformLocation(tile_face_program_, "face_count"), GLuint(count));
+        gl_.DispatchCompute(GLuint((count + 63) / 64), 1, 1);
+        gl_.MemoryBarrier(GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+        gl_.UseProgram(tile_program_);
+        gl_.Uniform2i(gl_.GetUniformLocation(tile_program_, "grid"), columns, rows);
+        gl_.BindVertexArray(tile_face_vao_);
+        gl_.DrawArraysIndirect(GL_TRIANGLES, nullptr);
+      }
+      for (int plane = 0; plane < 4; ++plane) gl_.Disable(GL_CLIP_DISTANCE0 + plane);
+    }
+    read_depth(columns, rows, depth);
+    depth.resize(cameras.size());
+    check("rendering a tile batch built on the GPU");
+  }
+
  private:
+  // The storage buffers of render_tile_faces(), at the compute shader's bindings.
+  enum StorageBuffer { kPositions, kCorners, kCameras, kTileFaces, kVertices, kCommand, kStorageBuffers };
+  static constexpr int kOctagonSides = 8;
+  // A face's triangle, and per edge an octagon (kOctagonSides - 2 triangles) and a strip (two).
+  static constexpr std::size_t kMaxVerticesPerFace = 3 + 3 * (3 * (kOctagonSides - 2) + 6);
+  static constexpr std::size_t kFacesPerDispatch = 1 << 14;
+
+  template <class T>
+  void upload_storage(StorageBuffer binding, const std::vector<T>& data) {
+    gl_.BindBuffer(GL_SHADER_STORAGE_BUFFER, tile_face_buffers_[binding]);
+    gl_.BufferData(GL_SHADER_STORAGE_BUFFER, data.size() * sizeof(T), data.data(),
+                   binding == kPositions || binding == kCorners ? GL_STATIC_DRAW : GL_STREAM_DRAW);
+    gl_.BindBufferBase(GL_SHADER_STORAGE_BUFFER, binding, tile_face_buffers_[binding]);
+  }
+
+  // The columns and rows of a batch of one-pixel tiles: about square, within the framebuffer.
+  std::pair<int, int> tile_grid(std::size_t tile_count) const {
+    const std::size_t max_tiles = static_cast<std::size_t>(max_size_) * max_size_;
+    if (tile_count == 0 || tile_count > max_tiles) {
+      throw Error(fmt::format("gl: a tile batch must hold 1..{} tiles, found {}", max_tiles, tile_count));
+    }
+    const int columns = std::min<int>(max_size_, static_cast<int>(std::ceil(std::sqrt(double(tile_count)))));
+    return {columns, static_cast<int>((tile_count + columns - 1) / columns)};
+  }
+
   void require_view(int resolution) const {
     if (model_index_count_ == 0) throw Error("gl: render_view() before upload_model()");
     if (resolution < 1 || resolution > max_size_) {
@@ -329,6 +570,9 @@ class GlDepthRenderer final : public DepthRenderer {
   GLuint view_program_ = 0, tile_program_ = 0, far_program_ = 0;
   GLuint model_vao_ = 0, tile_vao_ = 0, model_vertices_ = 0, model_indices_ = 0, tile_vertices_ = 0;
   GLuint far_vao_ = 0, far_vertices_ = 0;
+  GLuint tile_face_program_ = 0, tile_face_vao_ = 0, tile_face_buffers_[kStorageBuffers] = {};
+  bool face_vertices_ready_ = false;
+  std::size_t model_triangle_count_ = 0;  // with positions in double, for render_tile_faces()
   GLsizei model_index_count_ = 0;
   std::size_t model_vertex_count_ = 0;
   GLuint part_buffer_ = 0;

@@ -3,10 +3,17 @@
 
 #include <fmt/format.h>
 
+#include <initializer_list>
+#include <utility>
+
 #include "roving/core/error.h"
 
 namespace roving::gl {
 namespace {
+
+const char* stage_name(GLenum type) {
+  return type == GL_VERTEX_SHADER ? "vertex" : type == GL_FRAGMENT_SHADER ? "fragment" : "compute";
+}
 
 GLuint compile(const Api& gl, const std::string& backend, GLenum type, const char* source, const char* name) {
   const GLuint shader = gl.CreateShader(type);
@@ -18,24 +25,26 @@ GLuint compile(const Api& gl, const std::string& backend, GLenum type, const cha
     char log[2048] = {};
     gl.GetShaderInfoLog(shader, sizeof log, nullptr, log);
     gl.DeleteShader(shader);
-    throw Error(fmt::format("gl ({}): the {} {} shader does not compile: {}", backend, name,
-                            type == GL_VERTEX_SHADER ? "vertex" : "fragment", log));
+    throw Error(fmt::format("gl ({}): the {} {} shader does not compile: {}", backend, name, stage_name(type), log));
   }
   return shader;
 }
 
-}  // namespace
-
-GLuint link_program(const Api& gl, const std::string& backend, const char* name, const char* vertex_source,
-                    const char* fragment_source) {
-  const GLuint vertex = compile(gl, backend, GL_VERTEX_SHADER, vertex_source, name);
-  const GLuint fragment = compile(gl, backend, GL_FRAGMENT_SHADER, fragment_source, name);
+GLuint link(const Api& gl, const std::string& backend, const char* name,
+            std::initializer_list<std::pair<GLenum, const char*>> stages) {
   const GLuint program = gl.CreateProgram();
-  gl.AttachShader(program, vertex);
-  gl.AttachShader(program, fragment);
+  for (const auto& [type, source] : stages) {
+    GLuint shader = 0;
+    try {
+      shader = compile(gl, backend, type, source, name);
+    } catch (const Error&) {
+      gl.DeleteProgram(program);
+      throw;
+    }
+    gl.AttachShader(program, shader);
+    gl.DeleteShader(shader);  // freed with the program
+  }
   gl.LinkProgram(program);
-  gl.DeleteShader(vertex);
-  gl.DeleteShader(fragment);
   GLint ok = 0;
   gl.GetProgramiv(program, GL_LINK_STATUS, &ok);
   if (!ok) {
@@ -45,6 +54,17 @@ GLuint link_program(const Api& gl, const std::string& backend, const char* name,
     throw Error(fmt::format("gl ({}): the {} program does not link: {}", backend, name, log));
   }
   return program;
+}
+
+}  // namespace
+
+GLuint link_program(const Api& gl, const std::string& backend, const char* name, const char* vertex_source,
+                    const char* fragment_source) {
+  return link(gl, backend, name, {{GL_VERTEX_SHADER, vertex_source}, {GL_FRAGMENT_SHADER, fragment_source}});
+}
+
+GLuint link_compute_program(const Api& gl, const std::string& backend, const char* name, const char* source) {
+  return link(gl, backend, name, {{GL_COMPUTE_SHADER, source}});
 }
 
 void check_error(const Api& gl, const std::string& backend, const char* what) {

@@ -11,6 +11,8 @@ namespace roving::gl {
 // the driver's log when a shader does not compile or the program does not link.
 GLuint link_program(const Api& gl, const std::string& backend, const char* name, const char* vertex_source,
                     const char* fragment_source);
+// The same for a compute program.
+GLuint link_compute_program(const Api& gl, const std::string& backend, const char* name, const char* source);
 
 // glGetError after `what`; throws roving::Error naming it and the code.
 void check_error(const Api& gl, const std::string& backend, const char* what);

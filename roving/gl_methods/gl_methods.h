@@ -36,6 +36,12 @@ struct GlMethodOptions {
   // Otherwise it is exact roving, in the same pipeline. Its observations are reported as they
   // happened.
   bool auto_views = false;
+  // `--camera-geometry gpu`: surface roving's cameras get their triangles in the camera's frame,
+  // and the edges and corners widened, in a compute shader (in double, from storage buffers, one
+  // invocation per candidate triangle) rather than on the CPU; the CPU only finds the
+  // candidates. The same geometry either way (tests/gl_methods_test.cpp); which is faster
+  // depends on the hardware (results/gpu-cameras.md).
+  bool gpu_cameras = false;
 };
 
 // Parses "HxV" (each 1..720); throws roving::Error naming `--views` otherwise.

@@ -24,8 +24,9 @@ struct GlScene {
   std::unique_ptr<TriangleGrid> grid;
   std::unique_ptr<TriangleClusters> clusters;
   const TriangleMesh* test = nullptr;
+  bool gpu_cameras = false;  // GlMethodOptions::gpu_cameras
 
-  void build(GlBackend backend, const TriangleMesh& test_model);
+  void build(GlBackend backend, const TriangleMesh& test_model, bool cameras_on_gpu);
   // Frees the culling structures (the renderer and its context stay, to be reused).
   void release();
   std::string renderer_name() const;

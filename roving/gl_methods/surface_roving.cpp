@@ -16,7 +16,8 @@ namespace {
 // If the segment p-q (normalised camera frame) passes within the pixel, a strip of half-width 1
 // around its part near the pixel (two triangles, depth varying along it), and an octagon of
 // radius 1 around p if p is near (six triangles at p's depth): the points within one
-// half-width of the edge, as the shared rule widens it.
+// half-width of the edge, as the shared rule widens it. The GPU builds the same in
+// gl_depth_renderer.cpp's kTileFaceVertexShader, operation for operation: change both.
 template <class Emit>
 void widen_edge(const Vec3& p, const Vec3& q, const Emit& emit) {
   constexpr double kWindow = 2;  // clip to this square first: small, exact coordinates
@@ -53,7 +54,8 @@ void widen_edge(const Vec3& p, const Vec3& q, const Emit& emit) {
   }
   if (enter >= leave) return;
   const Vec3 start = p + enter * delta, end = p + leave * delta;
-  const double length = std::hypot(end.x() - start.x(), end.y() - start.y());
+  const double dx = end.x() - start.x(), dy = end.y() - start.y();
+  const double length = std::sqrt(dx * dx + dy * dy);  // not hypot: GLSL has only sqrt
   if (!(length > 1e-9)) return;  // seen end-on: the octagons at its ends cover it
   const Vec3 across((start.y() - end.y()) / length, (end.x() - start.x()) / length, 0);
   const Vec3 corners[4] = {start + across, end + across, end - across, start - across};
@@ -65,28 +67,19 @@ void widen_edge(const Vec3& p, const Vec3& q, const Emit& emit) {
 constexpr std::size_t kTilesPerBatch = 64 * 64;
 constexpr std::size_t kSamplesPerChunk = 512;
 
-// Appends, for sample camera `camera` in tile `tile`, every triangle of the grid cells along its
-// view volume that can reach the volume, in the camera's normalised frame (x, y in units of the
-// camera half-width, which is the shared rule's tolerance: normal_line.h). Beside each triangle,
-// its edges and vertices that pass within the pixel are widened into thin strips and small
-// octagons one half-width across (built in double, here), so that the rasteriser covers the
-// pixel centre wherever the central ray passes through the closed triangle or within the
-// tolerance of it, whatever its fill rule decides on an edge.
+// Calls visit(face) for each triangle of the grid cells along the camera's view volume that is
+// not wholly to one side of it across (right or up). The view volume is a pixel across, so most
+// triangles of a cell are: they are passed over on the corners' offsets, before any division.
 // `stamp` marks triangles already seen for this camera (cells share triangles).
-void emit_triangles(const TriangleMesh& test, const TriangleGrid& grid, const OrthoCamera& camera,
-                    std::uint32_t tile, std::vector<std::uint32_t>& stamp, std::uint32_t mark,
-                    std::vector<TileVertex>& out) {
+template <class Visit>
+void for_each_candidate(const TriangleMesh& test, const TriangleGrid& grid, const OrthoCamera& camera,
+                        std::vector<std::uint32_t>& stamp, std::uint32_t mark, const Visit& visit) {
   const Vec3 a = camera.centre - camera.half_depth * camera.forward;
   const Vec3 b = camera.centre + camera.half_depth * camera.forward;
-  const auto emit = [&](const Vec3& p) { out.push_back({float(p.x()), float(p.y()), float(p.z()), tile}); };
   grid.for_each_along(a, b, [&](std::uint32_t face) {
     if (stamp[face] == mark) return;
     stamp[face] = mark;
     const Triangle& t = test.triangles()[face];
-    // The view volume is a pixel across, so most triangles of a cell lie wholly to one side of it:
-    // those are passed over on the corners' offsets across it, before any division. The others
-    // get their corners in the camera's frame (as camera.to_normalised computes them) and the
-    // test on all three axes.
     const Vec3 offset[3] = {test.positions()[t[0]] - camera.centre, test.positions()[t[1]] - camera.centre,
                             test.positions()[t[2]] - camera.centre};
     const auto misses = [&](const Vec3& axis, double half) {
@@ -94,7 +87,23 @@ void emit_triangles(const TriangleMesh& test, const TriangleGrid& grid, const Or
       const double bound = half * (1 + 1e-9);  // beyond it, a / half > 1 whatever the rounding
       return (a0 > bound && a1 > bound && a2 > bound) || (a0 < -bound && a1 < -bound && a2 < -bound);
     };
-    if (misses(camera.right, camera.half_width) || misses(camera.up, camera.half_height)) return;
+    if (!misses(camera.right, camera.half_width) && !misses(camera.up, camera.half_height)) visit(face);
+  });
+}
+
+// Appends, for sample camera `camera` in tile `tile`, every candidate triangle that reaches the
+// view volume, in the camera's normalised frame (x, y in units of the camera half-width, which is
+// the shared rule's tolerance: normal_line.h). Beside each triangle, its edges and vertices that
+// pass within the pixel are widened into thin strips and small octagons one half-width across
+// (built in double, here), so that the rasteriser covers the pixel centre wherever the central
+// ray passes through the closed triangle or within the tolerance of it, whatever its fill rule
+// decides on an edge.
+void emit_triangles(const TriangleMesh& test, const TriangleGrid& grid, const OrthoCamera& camera,
+                    std::uint32_t tile, std::vector<std::uint32_t>& stamp, std::uint32_t mark,
+                    std::vector<TileVertex>& out) {
+  const auto emit = [&](const Vec3& p) { out.push_back({float(p.x()), float(p.y()), float(p.z()), tile}); };
+  for_each_candidate(test, grid, camera, stamp, mark, [&](std::uint32_t face) {
+    const Triangle& t = test.triangles()[face];
     Vec3 q[3];
     for (int c = 0; c < 3; ++c) q[c] = camera.to_normalised(test.positions()[t[c]]);
     for (int axis = 0; axis < 3; ++axis) {
@@ -108,6 +117,14 @@ void emit_triangles(const TriangleMesh& test, const TriangleGrid& grid, const Or
     for (int e = 0; e < 3; ++e) widen_edge(q[e], q[(e + 1) % 3], emit);
   });
 }
+
+// One batch of cameras, as the renderer takes it: built on the CPU, the tiles' vertices; built
+// on the GPU, each tile's camera and its candidate triangles.
+struct TileBatch {
+  std::vector<TileVertex> vertices;
+  std::vector<OrthoCamera> cameras;
+  std::vector<TileFace> faces;
+};
 
 class SurfaceRoving final : public GlMethod {
  public:
@@ -139,11 +156,15 @@ std::size_t rove(GlScene& scene, const SampleSet& samples, const std::vector<std
   const double half_depth = max_error + half_width;
   report.camera_depth_step = 2 * half_depth * std::ldexp(1.0, -24);
 
-  // The triangles of batch `first` .. first + kTilesPerBatch of `indices`, tile by tile.
-  const auto emit_batch = [&](std::size_t first, std::vector<TileVertex>& vertices) {
+  // The batch `first` .. first + kTilesPerBatch of `indices`, tile by tile: chunks of tiles in
+  // parallel, then joined in order.
+  const bool on_gpu = scene.gpu_cameras;
+  const auto emit_batch = [&](std::size_t first, TileBatch& batch) {
+    const Stopwatch building;
     const std::size_t count = std::min(kTilesPerBatch, indices.size() - first);
     const std::size_t chunks = (count + kSamplesPerChunk - 1) / kSamplesPerChunk;
-    std::vector<std::vector<TileVertex>> chunk_vertices(chunks);
+    std::vector<TileBatch> chunk_batches(chunks);
+    batch.cameras.resize(on_gpu ? count : 0);
     tbb::parallel_for(
         tbb::blocked_range<std::size_t>(0, chunks), [&](const tbb::blocked_range<std::size_t>& range) {
           thread_local std::vector<std::uint32_t> stamp;
@@ -158,21 +179,33 @@ std::size_t rove(GlScene& scene, const SampleSet& samples, const std::vector<std
               // h n).
               const OrthoCamera camera = OrthoCamera::looking_along(-samples.normals[k], samples.positions[k],
                                                                     half_width, half_width, half_depth);
-              emit_triangles(test, *scene.grid, camera, static_cast<std::uint32_t>(tile), stamp, mark,
-                             chunk_vertices[chunk]);
+              const auto t = static_cast<std::uint32_t>(tile);
+              if (on_gpu) {
+                batch.cameras[tile] = camera;
+                for_each_candidate(test, *scene.grid, camera, stamp, mark,
+                                   [&](std::uint32_t face) { chunk_batches[chunk].faces.push_back({t, face}); });
+              } else {
+                emit_triangles(test, *scene.grid, camera, t, stamp, mark, chunk_batches[chunk].vertices);
+              }
             }
           }
         });
-    std::size_t total = 0;
-    for (const auto& v : chunk_vertices) total += v.size();
-    vertices.clear();
-    vertices.reserve(total);
-    for (const auto& v : chunk_vertices) vertices.insert(vertices.end(), v.begin(), v.end());
+    const auto join = [&](auto member) {
+      auto& all = batch.*member;
+      std::size_t total = 0;
+      for (const TileBatch& c : chunk_batches) total += (c.*member).size();
+      all.clear();
+      all.reserve(total);
+      for (const TileBatch& c : chunk_batches) all.insert(all.end(), (c.*member).begin(), (c.*member).end());
+    };
+    join(&TileBatch::vertices);
+    join(&TileBatch::faces);
+    report.camera_build_seconds += building.seconds();
   };
 
   // A pipeline of two batches: while the GL thread (this one) draws a batch, the other cores
   // build the next one.
-  std::vector<TileVertex> batch[2];
+  TileBatch batch[2];
   std::vector<float> depth;
   CameraCost cost;
   std::size_t end = indices.size();  // where last_batch stops it
@@ -188,8 +221,13 @@ std::size_t rove(GlScene& scene, const SampleSet& samples, const std::vector<std
         },
         [&] {
           const Stopwatch draw;
-          scene.renderer->render_tiles(batch[b % 2], count, depth);
+          if (on_gpu) {
+            scene.renderer->render_tile_faces(batch[b % 2].cameras, batch[b % 2].faces, depth);
+          } else {
+            scene.renderer->render_tiles(batch[b % 2].vertices, count, depth);
+          }
           draw_seconds = draw.seconds();
+          report.camera_render_seconds += draw_seconds;
         });
     for (std::size_t tile = 0; tile < count; ++tile) {
       // Depth z is t / 2h along the ray from x + h n; d = h - t. 1 is the cleared, empty tile.
