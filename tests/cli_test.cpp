@@ -69,7 +69,8 @@ TEST(Cli, BadOptionsGiveOneLineErrors) {
   expect_error("measure " + pair + " --method cooperative --views auto:7", {"--views", "'auto:7'"});
   expect_error("measure " + pair + " --method viewpoint --views auto", {"--views auto", "cooperative"});
   expect_error("measure " + pair + " --method roving --backend vulkan", {"--backend", "'vulkan'"});
-  expect_error("measure " + pair + " --method roving --camera-geometry shader", {"--camera-geometry", "'shader'"});
+  expect_error("measure " + pair + " --method roving --camera-geometry shader",
+               {"--camera-geometry", "'shader'"});
   expect_error("measure " + pair + " --method viewpoint --resolution 0", {"--resolution"});
   expect_error("measure " + pair + " --method roving --semantics nearest", {"--semantics", "roving"});
 }

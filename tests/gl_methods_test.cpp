@@ -587,11 +587,13 @@ TEST_P(EachBackend, GpuCamerasGiveTheCpuCamerasAnswers) {
     for (Vec3& p : positions) p += Vec3(1e5, -2e5, 3e5) * diagonal;
     return TriangleMesh(positions, mesh.triangles());
   };
-  const TriangleMesh decimated = smoothly_perturbed(decimate_quadric(bunny, 10459), 0.01 * diagonal, 0.5 * diagonal);
+  const TriangleMesh decimated =
+      smoothly_perturbed(decimate_quadric(bunny, 10459), 0.01 * diagonal, 0.5 * diagonal);
   cases.push_back({"bunny far from the origin", "roving", far_away(bunny), far_away(decimated), "area:6000"});
   cases.push_back({"bunny, cooperative", "cooperative", bunny, decimated, "area:6000"});
 
-  const bool llvmpipe = make_depth_renderer(GetParam())->info().renderer.find("llvmpipe") != std::string::npos;
+  const bool llvmpipe =
+      make_depth_renderer(GetParam())->info().renderer.find("llvmpipe") != std::string::npos;
   for (const Case& c : cases) {
     const SampleSet samples = make_samples(c.reference, parse_sample_spec(c.samples));
     const DistanceOptions options{Semantics::FirstHit, 0.02 * c.test.bounding_box().diagonal()};
@@ -607,7 +609,8 @@ TEST_P(EachBackend, GpuCamerasGiveTheCpuCamerasAnswers) {
     const Agreement a = agreement(cpu, gpu, roving_tolerance(*gpu.gl));
     EXPECT_EQ(a.close, a.common_hits) << c.name;
     std::size_t differ = 0;
-    for (std::size_t k = 0; k < samples.size(); ++k) differ += cpu.signed_distance[k] != gpu.signed_distance[k];
+    for (std::size_t k = 0; k < samples.size(); ++k)
+      differ += cpu.signed_distance[k] != gpu.signed_distance[k];
     if (llvmpipe) {
       EXPECT_EQ(differ, 0u) << c.name << ": " << differ << " of " << samples.size();
     }

@@ -30,9 +30,9 @@ namespace {
 namespace fs = std::filesystem;
 
 // The manifest columns a pair may set, and the option each stands for.
-const std::vector<std::string> kPairColumns = {"method", "semantics", "samples", "seed",
-                                               "max_error", "views", "resolution", "backend",
-                                               "camera_geometry"};
+const std::vector<std::string> kPairColumns = {"method",     "semantics", "samples",
+                                               "seed",       "max_error", "views",
+                                               "resolution", "backend",   "camera_geometry"};
 
 struct Pair {
   std::size_t index = 0;  // in the list, 0-based
@@ -221,8 +221,9 @@ std::string pair_key(const MeasureArguments& a, const std::string& reference_sha
   const std::string identity = fmt::format(
       "{}|{}|method={}|semantics={}|samples={}|seed={}|max_error={}|views={}|resolution={}|backend={}|"
       "camera_geometry={}|symmetric={}|ref_type={}|test_type={}|bins={}|hausdorff_bound={}",
-      reference_sha, test_sha, a.method, a.semantics, a.samples, a.seed ? std::to_string(*a.seed) : "", a.max_error,
-      a.views, a.resolution, a.backend, a.camera_geometry, a.symmetric, a.reference_type, a.test_type, a.histogram_bins, a.hausdorff_bound);
+      reference_sha, test_sha, a.method, a.semantics, a.samples, a.seed ? std::to_string(*a.seed) : "",
+      a.max_error, a.views, a.resolution, a.backend, a.camera_geometry, a.symmetric, a.reference_type,
+      a.test_type, a.histogram_bins, a.hausdorff_bound);
   unsigned char digest[EVP_MAX_MD_SIZE];
   unsigned int length = 0;
   EVP_Digest(identity.data(), identity.size(), digest, &length, EVP_sha256(), nullptr);

@@ -106,9 +106,10 @@ void add_measurement_options(CLI::App& app, roving::MeasureArguments& args, bool
       ->check(CLI::Range(1, 16384))
       ->capture_default_str();
   app.add_option("--backend", args.backend, "GL backend: osmesa or egl")->capture_default_str();
-  app.add_option("--camera-geometry", args.camera_geometry,
-                 "roving and cooperative: where each per-sample camera's triangles are put in its frame and their "
-                 "edges widened: cpu, or gpu (in the vertex shader; the same answers)")
+  app.add_option(
+         "--camera-geometry", args.camera_geometry,
+         "roving and cooperative: where each per-sample camera's triangles are put in its frame and their "
+         "edges widened: cpu, or gpu (in a compute shader; the same answers)")
       ->capture_default_str();
   app.add_option("--hausdorff-bound", args.hausdorff_bound,
                  "with --symmetric or --semantics closest: the Hausdorff distance is also bounded over every point "
@@ -180,10 +181,11 @@ int main(int argc, char** argv) {
       "batch",
       "measure many pairs: one JSON report per pair in --out, and --out/summary.csv (exit 0; 4 when some pair "
       "failed, each recorded with its error)");
-  batch->add_option("PAIRS", batch_args.inputs,
-                    "a manifest (.csv with a header naming reference, test and optional per-pair columns "
-                    "method, semantics, samples, seed, max_error, views, resolution, backend, camera_geometry; or .jsonl "
-                    "with those keys), or REF_FOLDER TEST_FOLDER paired by file name");
+  batch->add_option(
+      "PAIRS", batch_args.inputs,
+      "a manifest (.csv with a header naming reference, test and optional per-pair columns "
+      "method, semantics, samples, seed, max_error, views, resolution, backend, camera_geometry; or .jsonl "
+      "with those keys), or REF_FOLDER TEST_FOLDER paired by file name");
   batch->add_option("--out", batch_args.out, "folder of the per-pair reports and summary.csv")
       ->capture_default_str();
   batch->add_option("--shard", batch_args.shard,

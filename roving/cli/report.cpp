@@ -185,8 +185,8 @@ std::string gl_lines(const GlReport& g) {
   }
   if (g.sample_cameras) {
     precision.push_back(
-        fmt::format("camera half-width {:.3g}, camera depth step {:.3g} (cameras built on the {})", g.camera_half_width,
-                    g.camera_depth_step, g.gpu_cameras ? "GPU" : "CPU"));
+        fmt::format("camera half-width {:.3g}, camera depth step {:.3g} (cameras built on the {})",
+                    g.camera_half_width, g.camera_depth_step, g.gpu_cameras ? "GPU" : "CPU"));
   }
   if (!precision.empty()) out += fmt::format("  precision (model units): {}\n", fmt::join(precision, "; "));
   return out;
@@ -197,7 +197,9 @@ nlohmann::json gl_json(const GlReport& g) {
           {"observations", g.observations()},
           {"views_rendered", g.views_rendered},
           {"sample_cameras", g.sample_cameras},
-          {"views", g.axis_views ? "6 axes" : g.views_h == 0 ? "none" : fmt::format("{}x{}", g.views_h, g.views_v)},
+          {"views", g.axis_views     ? "6 axes"
+                    : g.views_h == 0 ? "none"
+                                     : fmt::format("{}x{}", g.views_h, g.views_v)},
           {"resolution", g.resolution},
           {"resolved_by_view", count(g, Resolution::View)},
           {"resolved_by_camera", count(g, Resolution::Camera)},

@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <utility>
 
 #include "gl_api.h"
@@ -226,7 +225,8 @@ class GlDepthRenderer final : public DepthRenderer {
     gl_.VertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 2 * sizeof(float), nullptr);
     gl_.EnableVertexAttribArray(0);
     // Tile vertices from the CPU, and from the compute stage (render_tile_faces()).
-    for (const auto& [vao, buffer] : {std::pair(tile_vao_, tile_vertices_), std::pair(tile_face_vao_, tile_face_buffers_[kVertices])}) {
+    for (const auto& [vao, buffer] :
+         {std::pair(tile_vao_, tile_vertices_), std::pair(tile_face_vao_, tile_face_buffers_[kVertices])}) {
       gl_.BindVertexArray(vao);
       gl_.BindBuffer(GL_ARRAY_BUFFER, buffer);
       gl_.VertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(TileVertex), nullptr);
@@ -392,8 +392,8 @@ class GlDepthRenderer final : public DepthRenderer {
       return f.tile < cameras.size() && f.face < model_triangle_count_;
     });
     if (!faces_valid) {
-      throw Error(fmt::format("gl: a tile face must name one of {} tiles and one of {} triangles", cameras.size(),
-                              model_triangle_count_));
+      throw Error(fmt::format("gl: a tile face must name one of {} tiles and one of {} triangles",
+                              cameras.size(), model_triangle_count_));
     }
     bind_framebuffer(columns, rows);
     if (!faces.empty()) {

@@ -25,7 +25,8 @@ GLuint compile(const Api& gl, const std::string& backend, GLenum type, const cha
     char log[2048] = {};
     gl.GetShaderInfoLog(shader, sizeof log, nullptr, log);
     gl.DeleteShader(shader);
-    throw Error(fmt::format("gl ({}): the {} {} shader does not compile: {}", backend, name, stage_name(type), log));
+    throw Error(
+        fmt::format("gl ({}): the {} {} shader does not compile: {}", backend, name, stage_name(type), log));
   }
   return shader;
 }

@@ -182,8 +182,9 @@ std::size_t rove(GlScene& scene, const SampleSet& samples, const std::vector<std
               const auto t = static_cast<std::uint32_t>(tile);
               if (on_gpu) {
                 batch.cameras[tile] = camera;
-                for_each_candidate(test, *scene.grid, camera, stamp, mark,
-                                   [&](std::uint32_t face) { chunk_batches[chunk].faces.push_back({t, face}); });
+                for_each_candidate(test, *scene.grid, camera, stamp, mark, [&](std::uint32_t face) {
+                  chunk_batches[chunk].faces.push_back({t, face});
+                });
               } else {
                 emit_triangles(test, *scene.grid, camera, t, stamp, mark, chunk_batches[chunk].vertices);
               }
