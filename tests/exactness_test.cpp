@@ -40,6 +40,31 @@ TEST(NormalLine, ClosedTrianglesWidenedByTheTolerance) {
   EXPECT_NEAR(edge_on->high, 0.75, 1e-15);
 }
 
+// The rule's quick rejection of triangles wholly to one side of the line or beyond the view
+// volume must keep those at exactly the tolerance: across the line and past either end.
+TEST(NormalLine, QuickRejectionKeepsTrianglesAtTheTolerance) {
+  const double tolerance = 1e-6;
+  const NormalLine line(Vec3(0, 0, 0), Vec3(0, 0, 1), 1.0, tolerance);
+  // Wholly beside the line (u or v of every corner >= the tolerance), nearest at exactly it.
+  for (const double side : {tolerance, -tolerance}) {
+    const double far = side > 0 ? 1 : -1;
+    const auto beside_x = line.crossing({side, -1, 0.3}, {side, 1, 0.3}, {far, 0, 0.3});
+    const auto beside_y = line.crossing({-1, side, 0.3}, {1, side, 0.3}, {0, far, 0.3});
+    ASSERT_TRUE(beside_x && beside_y) << side;
+    EXPECT_EQ(beside_x->high, 0.3);
+    EXPECT_EQ(beside_y->high, 0.3);
+  }
+  // Wholly past an end of the view volume by the tolerance: met, and clamped to the end.
+  const auto above = line.crossing({-1, -1, 1 + tolerance}, {1, -1, 1 + tolerance}, {0, 1, 1 + tolerance});
+  const auto below = line.crossing({-1, -1, -1 - tolerance}, {1, -1, -1 - tolerance}, {0, 1, -1 - tolerance});
+  ASSERT_TRUE(above && below);
+  EXPECT_EQ(above->high, 1.0);
+  EXPECT_EQ(below->low, -1.0);
+  // A little farther, not met.
+  EXPECT_FALSE(line.crossing({2 * tolerance, 0, 0.3}, {2 * tolerance, 1, 0.3}, {1, 0.5, 0.3}));
+  EXPECT_FALSE(line.crossing({-1, -1, 1.01}, {1, -1, 1.01}, {0, 1, 1.01}));
+}
+
 TEST(NormalLine, NearestPrefersTheOuterOfTwoEquallyNearCrossings) {
   for (bool reversed : {false, true}) {
     CrossingChoice choice(Semantics::Nearest);
