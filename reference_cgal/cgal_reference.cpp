@@ -117,19 +117,22 @@ class CgalAabbMethod final : public DistanceMethod {
   DistanceResult measure(const SampleSet& samples, const DistanceOptions& options) override {
     if (!built_) throw Error(name_ + ": measure() called before build()");
     validate_options(*this, options);
-    return measure_each(samples.size(), [&](std::size_t k) {
-      const Vec3& x = samples.positions[k];
-      const Vec3& n = samples.normals[k];
-      return options.semantics == Semantics::Closest ? std::optional<double>(closest(x, n))
-                                                     : along_normal(x, n, options);
-    }, progress_);
+    return measure_each(
+        samples.size(),
+        [&](std::size_t k) {
+          const Vec3& x = samples.positions[k];
+          const Vec3& n = samples.normals[k];
+          return options.semantics == Semantics::Closest ? std::optional<FaceHit>(closest(x, n))
+                                                         : along_normal(x, n, options);
+        },
+        progress_, options.hit_faces);
   }
 
  private:
   // The crossings of the normal line by the shared rule (roving/core/normal_line.h): the tree
   // lists the triangles whose boxes, widened by the rule's tolerance, the segment from
   // x + h n to x - h n meets; NormalLine decides each, exactly as the Embree reference does.
-  std::optional<double> along_normal(const Vec3& x, const Vec3& n, const DistanceOptions& options) const {
+  std::optional<FaceHit> along_normal(const Vec3& x, const Vec3& n, const DistanceOptions& options) const {
     const double h = options.max_error;
     const Segment segment(to_point(x + h * n), to_point(x - h * n));
     thread_local std::vector<Primitive::Id> crossed;  // scratch, reused across queries
@@ -141,13 +144,17 @@ class CgalAabbMethod final : public DistanceMethod {
     const auto& p = test_->positions();
     for (const Primitive::Id& id : crossed) {
       const Triangle& t = test_->triangles()[id - triangles_.begin()];
-      if (const auto crossing = line.crossing(p[t[0]], p[t[1]], p[t[2]])) choice.consider(*crossing);
+      const auto face = static_cast<std::uint32_t>(id - triangles_.begin());
+      if (const auto crossing = line.crossing(p[t[0]], p[t[1]], p[t[2]])) choice.consider(*crossing, face);
     }
-    return choice.chosen();
+    return choice.chosen_hit();
   }
 
-  double closest(const Vec3& x, const Vec3& n) const {
-    return signed_offset(x, n, to_vec(tree_.closest_point(to_point(x))));
+  // CGAL's closest point and its face; among equally near faces CGAL keeps the first it visits
+  // (the same point wherever they meet at an edge or a vertex).
+  FaceHit closest(const Vec3& x, const Vec3& n) const {
+    const auto [point, id] = tree_.closest_point_and_primitive(to_point(x));
+    return {signed_offset(x, n, to_vec(point)), static_cast<std::uint32_t>(id - triangles_.begin())};
   }
 
   std::string name_;

@@ -35,6 +35,7 @@ struct PointQueryState {
   Vec3 query;  // in mesh coordinates (double)
   Vec3 closest;
   double distance = std::numeric_limits<double>::infinity();
+  std::uint32_t face = 0;
 };
 
 // A search radius (in Embree's float, centred frame) that cannot cull a point at `distance`:
@@ -49,9 +50,11 @@ bool closest_point_callback(RTCPointQueryFunctionArguments* args) {
   const auto& p = state->mesh->positions();
   const Vec3 c = closest_point_on_triangle(state->query, p[t[0]], p[t[1]], p[t[2]]);
   const double distance = (c - state->query).norm();
-  if (distance < state->distance) {
+  // Equally near faces: the lowest, whatever order the traversal visits them in.
+  if (distance < state->distance || (distance == state->distance && args->primID < state->face)) {
     state->distance = distance;
     state->closest = c;
+    state->face = args->primID;
     args->query->radius = search_radius(distance);  // shrink the search sphere
     return true;
   }
@@ -121,23 +124,24 @@ class EmbreeReference final : public DistanceMethod {
             // The previous sample's closest point lies on TEST, so this sample's closest point is
             // no farther than it is: the search starts from that sphere rather than from infinity
             // (the same answers, 1.7x faster on the 4.4 M-triangle scaling pair's vertices).
-            return [&, previous = std::optional<Vec3>()](std::size_t k) mutable -> std::optional<double> {
+            return [&, previous = std::optional<Vec3>()](std::size_t k) mutable -> std::optional<FaceHit> {
               const Vec3& x = samples.positions[k];
               const double bound =
                   previous ? (x - *previous).norm() : std::numeric_limits<double>::infinity();
-              previous = closest_point(x, bound);
-              return signed_offset(x, samples.normals[k], *previous);
+              const PointQueryState closest = closest_point(x, bound);
+              previous = closest.closest;
+              return FaceHit{signed_offset(x, samples.normals[k], closest.closest), closest.face};
             };
           },
-          progress_);
+          progress_, options.hit_faces);
     }
     const double h = options.max_error;
     return measure_each(
         samples.size(),
-        [&](std::size_t k) -> std::optional<double> {
+        [&](std::size_t k) {
           return along_normal(samples.positions[k], samples.normals[k], h, options.semantics);
         },
-        progress_);
+        progress_, options.hit_faces);
   }
 
  private:
@@ -154,7 +158,7 @@ class EmbreeReference final : public DistanceMethod {
 
   // One ray from x + h n along -n over t in [0, 2h] (d = h - t), the float ray carrying the
   // traversal and each candidate decided on the double line.
-  std::optional<double> along_normal(const Vec3& x, const Vec3& n, double h, Semantics semantics) const {
+  std::optional<FaceHit> along_normal(const Vec3& x, const Vec3& n, double h, Semantics semantics) const {
     const NormalLine line(x, n, h, tolerance_);
     CrossingChoice choice(semantics);
     LineContext context{{}, this, &line, &choice, h, semantics == Semantics::FirstHit};
@@ -176,7 +180,7 @@ class EmbreeReference final : public DistanceMethod {
     rayhit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rayhit.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
     rtcIntersect1(scene_, &context.embree, &rayhit);
-    return choice.chosen();
+    return choice.chosen_hit();
   }
 
   // Each triangle's box in the centred float frame, widened by twice the tolerance (which is
@@ -206,7 +210,7 @@ class EmbreeReference final : public DistanceMethod {
     const auto& p = self->test_->positions();
     const auto crossing = context->line->crossing(p[t[0]], p[t[1]], p[t[2]]);
     if (!crossing) return;
-    context->choice->consider(*crossing);
+    context->choice->consider(*crossing, args->primID);
     if (context->first_hit) {
       const double t_best = context->max_error - *context->choice->chosen();
       float& tfar = RTCRayN_tfar(RTCRayHitN_RayN(args->rayhit, args->N), args->N, 0);
@@ -214,14 +218,14 @@ class EmbreeReference final : public DistanceMethod {
     }
   }
 
-  // The point of TEST closest to x, given a bound on its distance (infinity for none).
-  Vec3 closest_point(const Vec3& x, double bound) const {
+  // The point of TEST closest to x and its face, given a bound on its distance (infinity for none).
+  PointQueryState closest_point(const Vec3& x, double bound) const {
     PointQueryState state{test_, x, x};
     RTCPointQuery query = point_query(x - origin_, search_radius(bound));
     RTCPointQueryContext context;
     rtcInitPointQueryContext(&context);
     rtcPointQuery(scene_, &query, &context, nullptr, &state);
-    return state.closest;
+    return state;
   }
 
   RTCDevice device_ = nullptr;

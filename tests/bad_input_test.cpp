@@ -205,13 +205,18 @@ TEST_F(BadFiles, PlyNonFiniteCoordinatesNameTheVertex) {
 }
 
 TEST_F(BadFiles, PlyWithOtherElementsAndBigEndianLoads) {
-  // Colours, a face flag and an edge element are skipped; the geometry is what is read.
+  // Alpha, a face flag and an edge element are skipped; geometry and colours are what is read.
   const std::string ascii =
       "ply\nformat ascii 1.0\ncomment made by hand\nelement vertex 3\nproperty double x\nproperty double y\n"
-      "property double z\nproperty uchar red\nelement face 1\nproperty uchar flags\n"
+      "property double z\nproperty uchar red\nproperty uchar green\nproperty uchar blue\nproperty uchar "
+      "alpha\n"
+      "element face 1\nproperty uchar flags\n"
       "property list uchar uint vertex_indices\nelement edge 1\nproperty int a\nproperty int b\nend_header\n"
-      "0 0 0 255\n1 0 0 0\n0 1 0 9\n7 3 0 1 2\n0 1\n";
-  EXPECT_NEAR(load_mesh(write("extras.ply", ascii)).mesh.total_area(), 0.5, 1e-12);
+      "0 0 0 255 0 0 7\n1 0 0 0 255 0 7\n0 1 0 9 8 7 7\n7 3 0 1 2\n0 1\n";
+  const TriangleMesh extras = load_mesh(write("extras.ply", ascii)).mesh;
+  EXPECT_NEAR(extras.total_area(), 0.5, 1e-12);
+  ASSERT_TRUE(extras.has_colour());
+  EXPECT_EQ(extras.vertex_colours()[2], Colour(9, 8, 7));
   std::string big =
       "ply\nformat binary_big_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
       "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n";
@@ -224,6 +229,34 @@ TEST_F(BadFiles, PlyWithOtherElementsAndBigEndianLoads) {
   big += '\3';
   for (int index : {0, 1, 2}) big += std::string{0, 0, 0, static_cast<char>(index)};
   EXPECT_NEAR(load_mesh(write("big.ply", big)).mesh.total_area(), 2.0, 1e-12);
+}
+
+TEST_F(BadFiles, PlyColoursAreCheckedAndScaled) {
+  const std::string header = std::string(kPlyVertexHeader);
+  const std::string face = "element face 1\nproperty list uchar int vertex_indices\nend_header\n";
+  // Float colours on [0, 1] become code values on [0, 255].
+  const TriangleMesh floats =
+      load_mesh(write("float.ply", header +
+                                       "property float red\nproperty float green\nproperty float blue\n" +
+                                       face + "0 0 0 1 0.5 0\n1 0 0 0 0 0\n0 1 0 0 0 0\n3 0 1 2\n"))
+          .mesh;
+  EXPECT_EQ(floats.vertex_colours()[0], Colour(255, 127.5f, 0));
+  expect_error(write("over.ply", header + "property float red\nproperty float green\nproperty float blue\n" +
+                                     face + "0 0 0 1.5 0 0\n1 0 0 0 0 0\n0 1 0 0 0 0\n3 0 1 2\n"),
+               {"over.ply", "vertex 0", "colour 'red' is 1.5", "within [0, 1]"});
+  expect_error(
+      write("nan-colour.ply", header + "property double red\nproperty double green\nproperty double blue\n" +
+                                  face + "0 0 0 0 0 0\n1 0 0 0 nan 0\n0 1 0 0 0 0\n3 0 1 2\n"),
+      {"vertex 1", "colour 'green' is nan"});
+  expect_error(write("uchar.ply", header + "property uchar red\nproperty uchar green\nproperty uchar blue\n" +
+                                      face + "0 0 0 0 0 300\n1 0 0 0 0 0\n0 1 0 0 0 0\n3 0 1 2\n"),
+               {"vertex 0", "colour 'blue' is 300", "uchar within [0, 255]"});
+  expect_error(write("partial.ply", header + "property uchar red\nproperty uchar green\n" + face +
+                                        "0 0 0 0 0\n1 0 0 0 0\n0 1 0 0 0\n3 0 1 2\n"),
+               {"partial.ply", "2 of the colour properties", "all three or none"});
+  expect_error(write("int-colour.ply", header + "property int red\nproperty int green\nproperty int blue\n" +
+                                           face + "0 0 0 0 0 0\n1 0 0 0 0 0\n0 1 0 0 0 0\n3 0 1 2\n"),
+               {"int-colour.ply", "'red'", "uchar (0-255) or float"});
 }
 
 TEST_F(BadFiles, OffAbsurdCountsAndNegativeCorners) {

@@ -452,6 +452,43 @@ bool documented(const std::string& path, const std::set<std::string>& documented
   return false;
 }
 
+TEST(CliReport, ColourFiguresGatesAndSamplesTable) {
+  // Two cubes 0.05 apart whose vertex colours differ only in red, by 10: every compared hit
+  // (faces lie parallel, so each line meets the same-numbered face) differs by exactly 10 in R'.
+  const Folder folder;
+  const std::string ref = folder.file("ref.ply", coloured_cube_ply(0.5, 200));
+  const std::string test = folder.file("test.ply", coloured_cube_ply(0.55, 210));
+  const std::string csv = folder.file("samples.csv");
+  const CliRun run =
+      run_cli("measure " + ref + " " + test + " --samples vertices --json - --samples-out " + csv);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const auto colour = nlohmann::json::parse(run.out)["colour"];
+  EXPECT_EQ(colour["compared"], 8);
+  EXPECT_NEAR(colour["rgb"]["r"]["mean_abs"].get<double>(), 10, 1e-4);
+  EXPECT_NEAR(colour["rgb"]["r"]["psnr"].get<double>(), 20 * std::log10(25.5), 1e-4);
+  EXPECT_TRUE(colour["rgb"]["b"]["psnr"].is_null()) << "an exact channel's PSNR is infinite: null";
+  std::ifstream table(csv);
+  std::string header, row;
+  std::getline(table, header);
+  std::getline(table, row);
+  EXPECT_NE(header.find(",resolved_by,ref_r,ref_g,ref_b,test_r,test_g,test_b,delta_e"), std::string::npos)
+      << header;
+  EXPECT_NE(row.find(",200,0,200,210,0,200,"), std::string::npos) << row;
+
+  // Gates on colour: a breach exits 3; a colour gate on models without colour is an error.
+  const CliRun breached = run_cli("measure " + ref + " " + test + " --fail-above delta_e_mean=0.5");
+  EXPECT_EQ(breached.exit_code, 3) << breached.err;
+  EXPECT_NE(breached.err.find("gate breached: delta_e_mean"), std::string::npos) << breached.err;
+  EXPECT_EQ(run_cli("measure " + ref + " " + test + " --fail-above colour_rms_y=2%").exit_code, 0);
+  const std::string plain = folder.file("plain.obj", cube_obj(0.55));
+  expect_error("measure " + ref + " " + plain + " --fail-above delta_e_max=1",
+               {"delta_e_max", "nothing measured"});
+  const CliRun one = run_cli("measure " + ref + " " + plain + " --json -");
+  EXPECT_EQ(one.exit_code, 0);
+  EXPECT_NE(one.err.find("has vertex colours but"), std::string::npos) << one.err;
+  EXPECT_FALSE(nlohmann::json::parse(one.out).contains("colour")) << "no colour: absent, not zero";
+}
+
 TEST(CliReport, JsonLayoutIsTheDocumentedOne) {
   const Cubes cubes;
   const std::set<std::string> docs = documented_paths();
@@ -461,10 +498,15 @@ TEST(CliReport, JsonLayoutIsTheDocumentedOne) {
   std::string grid_points;  // a 5 x 5 grid on the plane z = 0.55, as a test point cloud
   for (int i = 0; i < 25; ++i) grid_points += fmt::format("{} {} 0.55 0 0 1\n", 0.25 * (i % 5) - 0.5, 0.25 * (i / 5) - 0.5);
   const std::string grid = cubes.folder.file("grid.xyz", grid_points);
+  const std::string coloured = cubes.folder.file("red.ply", coloured_cube_ply(0.5, 200)) + " " +
+                               cubes.folder.file("redder.ply", coloured_cube_ply(0.55, 210));
   std::set<std::string> written;
   for (const std::string& arguments :
-       {cubes.pair, cubes.pair + " --symmetric", cubes.pair + " --semantics closest", cubes.pair + " --samples area:auto", cubes.pair + " --method cooperative --views 4x2 --resolution 64",
-        teapot + " " + teapot + " --samples area:100", points + " " + cubes.small, cubes.small + " " + grid}) {
+       {coloured + " --symmetric", cubes.pair, cubes.pair + " --symmetric",
+        cubes.pair + " --semantics closest", cubes.pair + " --samples area:auto",
+        cubes.pair + " --method cooperative --views 4x2 --resolution 64",
+        teapot + " " + teapot + " --samples area:100", points + " " + cubes.small,
+        cubes.small + " " + grid}) {
     const CliRun run = run_cli("measure " + arguments + " --json -");
     ASSERT_EQ(run.exit_code, 0) << arguments << ": " << run.err;
     const auto json = nlohmann::json::parse(run.out);

@@ -72,6 +72,22 @@ inline std::string cube_obj(double s, double shift = 0, bool inside_out = false)
   return obj;
 }
 
+// The same cube as an ASCII PLY with a colour per vertex: (red, 40 * corner index mod 256, 200).
+inline std::string coloured_cube_ply(double s, int red) {
+  std::string ply =
+      "ply\nformat ascii 1.0\nelement vertex 8\nproperty float x\nproperty float y\nproperty float z\n"
+      "property uchar red\nproperty uchar green\nproperty uchar blue\nelement face 12\n"
+      "property list uchar int vertex_indices\nend_header\n";
+  for (int i = 0; i < 8; ++i) {
+    ply += fmt::format("{} {} {} {} {} 200\n", i & 1 ? s : -s, i & 2 ? s : -s, i & 4 ? s : -s, red,
+                       40 * i % 256);
+  }
+  const int faces[12][3] = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6}, {0, 1, 4}, {1, 5, 4},
+                            {2, 6, 3}, {3, 6, 7}, {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
+  for (const auto& f : faces) ply += fmt::format("3 {} {} {}\n", f[0], f[1], f[2]);
+  return ply;
+}
+
 // A scratch folder removed at the end of a test.
 struct Folder {
   fs::path path = fs::temp_directory_path() / ("roving-cli-out-" + std::to_string(::getpid()) + "-" + std::to_string(++serial()));

@@ -68,8 +68,8 @@ TEST(NormalLine, QuickRejectionKeepsTrianglesAtTheTolerance) {
 TEST(NormalLine, NearestPrefersTheOuterOfTwoEquallyNearCrossings) {
   for (bool reversed : {false, true}) {
     CrossingChoice choice(Semantics::Nearest);
-    choice.consider({reversed ? 0.1 : -0.1, reversed ? 0.1 : -0.1});
-    choice.consider({reversed ? -0.1 : 0.1, reversed ? -0.1 : 0.1});
+    choice.consider({reversed ? 0.1 : -0.1, reversed ? 0.1 : -0.1}, 0);
+    choice.consider({reversed ? -0.1 : 0.1, reversed ? -0.1 : 0.1}, 1);
     EXPECT_EQ(*choice.chosen(), 0.1);
   }
 }

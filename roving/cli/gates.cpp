@@ -18,6 +18,7 @@ std::vector<std::string> gate_metrics(bool symmetric) {
   const nlohmann::json statistics = statistics_json(Statistics());
   for (const auto& item : statistics.items()) names.push_back(item.key());
   names.push_back("no_hits");
+  names.insert(names.end(), {"delta_e_mean", "delta_e_p95", "delta_e_max", "colour_rms_y"});
   if (symmetric) names.insert(names.end(), {"hausdorff", "mean_both", "rms_both"});
   return names;
 }
@@ -45,6 +46,23 @@ Gate parse_gate(const std::string& text, bool symmetric) {
     throw fail(fmt::format("a limit >= 0 after '{}=': a length, or P% with P in [0, 100]", gate.metric));
   }
   return gate;
+}
+
+bool is_colour_metric(const std::string& metric) {
+  return metric.rfind("delta_e_", 0) == 0 || metric == "colour_rms_y";
+}
+
+void require_gate_values(const std::vector<Gate>& gates, const std::vector<MetricValue>& values) {
+  for (const Gate& gate : gates) {
+    const bool measured = std::any_of(values.begin(), values.end(),
+                                      [&](const MetricValue& v) { return v.metric == gate.metric; });
+    if (!measured) {
+      throw Error(
+          fmt::format("--fail-above {}: nothing measured gives '{}' (colour figures need vertex colours "
+                      "on both meshes and --method embree or cgal)",
+                      gate.text, gate.metric));
+    }
+  }
 }
 
 namespace {

@@ -33,13 +33,22 @@ struct MetricValue {
 // What a gate compares with its limit: the estimate, or the upper end of its interval.
 enum class GateOn { Estimate, Upper };
 
-// The metrics a gate may name: the report's statistics, and with --symmetric the two-sided
-// summary (hausdorff, mean_both, rms_both).
+// The metrics a gate may name: the report's statistics, the colour figures (delta_e_mean,
+// delta_e_p95, delta_e_max: CIEDE2000, P% of L*'s range 100; colour_rms_y: RMS of Y' in code
+// values, P% of the peak 255), and with --symmetric the two-sided summary (hausdorff, mean_both,
+// rms_both).
 std::vector<std::string> gate_metrics(bool symmetric);
 
 // Parses METRIC=VALUE or METRIC=P%; throws roving::Error naming --fail-above, what was
 // expected and what was found.
 Gate parse_gate(const std::string& text, bool symmetric);
+
+// True for the colour figures' names (delta_e_*, colour_rms_y).
+bool is_colour_metric(const std::string& metric);
+
+// Throws roving::Error naming the gate when no measured value is of its metric (a colour gate on
+// models without colour), so that a gate never passes for want of a figure.
+void require_gate_values(const std::vector<Gate>& gates, const std::vector<MetricValue>& values);
 
 // One line per breached gate and value: magnitudes are compared (a signed mean of -0.3
 // breaches siad=0.2), and a metric measured in both directions is checked in each.

@@ -3,6 +3,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <future>
@@ -89,6 +90,14 @@ std::vector<MetricValue> gate_values(const MeasureReport& report) {
     }
     values.push_back(
         {"no_hits", d.label, static_cast<double>(s.no_hit_count), static_cast<double>(s.sample_count)});
+    if (d.colour) {
+      // P% of a colour limit: of the peak (255) for an RMS, of L*'s range (100) for a delta E.
+      const nlohmann::json colour = colour_json(*d.colour);
+      for (const auto& [name, value] : colour.items()) {
+        if (name.rfind("delta_e_", 0) == 0) values.push_back({name, d.label, value.get<double>(), 100.0});
+        if (name == "colour_rms_y") values.push_back({name, d.label, value.get<double>(), kColourPeak});
+      }
+    }
   }
   if (report.symmetric()) {
     const TwoSided t = report.two_sided();
@@ -197,12 +206,23 @@ std::vector<std::string> heatmap_paths(const std::string& path, bool symmetric) 
   return {named(".A-to-B"), named(".B-to-A")};
 }
 
+const TriangleMesh* coloured_mesh(const Model& model) {
+  return model.type == ModelType::Mesh && model.mesh.mesh.has_colour() ? &model.mesh.mesh : nullptr;
+}
+
 void describe_pair(const Model& a, const Model& b, MeasurePlan& plan, MeasureReport& report) {
   // A point cloud's surfels are made (and its points checked) before the long work.
   test_surface(b);
   if (plan.symmetric) test_surface(a);
   report.method = plan.method->name();
   report.semantics = plan.options.semantics;
+  plan.options.hit_faces = coloured_mesh(a) && coloured_mesh(b);
+  if (!plan.options.hit_faces) {  // a colour gate fails before the long work, not after it
+    std::vector<Gate> colour_gates;
+    std::copy_if(plan.gates.begin(), plan.gates.end(), std::back_inserter(colour_gates),
+                 [](const Gate& gate) { return is_colour_metric(gate.metric); });
+    require_gate_values(colour_gates, {});
+  }
   report.max_error_text = plan.max_error.to_string();
   report.seed = plan.sample_spec.seed;
   BoundingBox both = a.bounding_box();
@@ -220,6 +240,12 @@ void measure_models(const Model& a, const Model& b, MeasurePlan& plan, MeasureRe
                     Progress& progress, std::string& stage, const WarnFn& warn,
                     const SampleSet* samples_of_a) {
   warn(alignment_warnings(a, b, plan.options.max_error));
+  if (static_cast<bool>(coloured_mesh(a)) != static_cast<bool>(coloured_mesh(b))) {
+    const Model& coloured = coloured_mesh(a) ? a : b;
+    const Model& plain = coloured_mesh(a) ? b : a;
+    warn({fmt::format("colour: {} has vertex colours but {} has none; no colour figures", coloured.path(),
+                      plain.path())});
+  }
   warn(orientation_warnings(a));
   if (plan.symmetric) warn(orientation_warnings(b));
 
@@ -272,6 +298,17 @@ void measure_models(const Model& a, const Model& b, MeasurePlan& plan, MeasureRe
       stage = fmt::format("bounding the Hausdorff distance from {} to {}", reference->path(), test->path());
       progress.stage(fmt::format("{}certified Hausdorff", d.label.empty() ? "" : d.label + ": "));
       d.hausdorff = certified_hausdorff(test_surface(*reference), test_mesh, report.hausdorff_bound);
+    }
+    if (plan.options.hit_faces && d.result.hit_face.empty()) {
+      warn(
+          {fmt::format("colour: {} does not report which face of TEST each hit lies on; colour figures come "
+                       "from embree and cgal",
+                       plan.method->name())});
+    } else if (plan.options.hit_faces) {
+      stage = "comparing colours";
+      d.colour_pairs = colour_pairs(*coloured_mesh(*reference), d.samples, *coloured_mesh(*test), d.result,
+                                    plan.options.semantics);
+      d.colour = compute_colour_statistics(*d.colour_pairs, d.result.hit);
     }
     d.heatmap_range = plan.heatmap_range ? plan.heatmap_range->resolve(report.diagonal)
                                          : default_heatmap_range(d.result, report.max_error);
@@ -327,6 +364,7 @@ int run_measure(const MeasureArguments& args, std::string& stage) {
     write_stdout(format_header(a, b, report));
   }
   measure_models(a, b, plan, report, progress, stage, warn, nullptr);
+  require_gate_values(plan.gates, gate_values(report));
 
   // Every output file is written whole to a temporary file first; only when all succeeded are
   // they moved into place, so a failed run changes none of them.
@@ -336,7 +374,7 @@ int run_measure(const MeasureArguments& args, std::string& stage) {
     outputs.push_back(std::make_unique<AtomicFile>(args.samples_csv_path));
     for (const DirectionReport& d : report.directions) {
       write_samples_csv(outputs.back()->stream(), d.samples, d.result, d.label,
-                        &d == &report.directions.front());
+                        &d == &report.directions.front(), d.colour_pairs ? &*d.colour_pairs : nullptr);
     }
     outputs.back()->close_stream();
   }

@@ -261,6 +261,7 @@ nlohmann::json direction_json(const DirectionReport& d, const MeasureReport& r) 
       {"heatmap_range", d.heatmap_range},
   };
   if (d.result.gl) json["gl"] = gl_json(*d.result.gl);
+  if (d.colour) json["colour"] = colour_json(*d.colour);
   if (d.auto_sampling) {
     json["samples"]["auto"] = {{"usiad_half_width_asked", d.auto_sampling->target},
                                {"usiad_half_width_reached", d.auto_sampling->reached},
@@ -298,6 +299,33 @@ nlohmann::json direction_json(const DirectionReport& d, const MeasureReport& r) 
   return json;
 }
 
+// One direction's colour figures as a small table: a column per channel, then the summaries.
+std::string colour_lines(const DirectionReport& d) {
+  const ColourStatistics& c = *d.colour;
+  std::string out = fmt::format(
+      "  {}colour: REF's at the sample against TEST's where d was measured; {} hits compared, {} no-hits "
+      "without a colour\n",
+      d.label.empty() ? "" : d.label + ": ", c.compared, c.no_hit);
+  out += fmt::format("    {:<34}", "sRGB code values (0-255)");
+  for (const char* name : {"R'", "G'", "B'", "Y'", "Cb", "Cr"}) out += fmt::format(" {:>9}", name);
+  out += "\n";
+  const auto row = [&](const char* name, double ChannelErrors::*field) {
+    std::string line = fmt::format("    {:<34}", name);
+    for (const auto* channels : {&c.rgb, &c.ycbcr}) {
+      for (const ChannelErrors& e : *channels) line += fmt::format(" {:>9.4g}", e.*field);
+    }
+    return line + "\n";
+  };
+  out += row("mean |delta|", &ChannelErrors::mean_abs);
+  out += row("RMS", &ChannelErrors::rms);
+  out += row("PSNR (dB, peak 255)", &ChannelErrors::psnr);
+  out += fmt::format(
+      "    PSNR R'G'B' {:.4g} dB, Y'CbCr 6:1:1 (MPEG) {:.4g} dB; CIEDE2000 delta E mean {:.4g}, p95 {:.4g}, "
+      "max {:.4g}\n",
+      c.psnr_rgb, c.psnr_ycbcr_611, c.delta_e_mean, c.delta_e_p95, c.delta_e_max);
+  return out;
+}
+
 // "[lower, upper]" of a certified interval, with its width.
 std::string interval_text(double lower, double upper, double diagonal) {
   return fmt::format("[{:.6g}, {:.6g}] (/ diagonal [{:.6g}, {:.6g}]; width {:.3g})", lower, upper, lower / diagonal,
@@ -305,6 +333,27 @@ std::string interval_text(double lower, double upper, double diagonal) {
 }
 
 }  // namespace
+
+nlohmann::json colour_json(const ColourStatistics& c) {
+  const auto channels = [](const std::array<ChannelErrors, 3>& e, std::array<const char*, 3> names) {
+    nlohmann::json json;
+    for (int i = 0; i < 3; ++i)
+      json[names[i]] = {{"mean_abs", e[i].mean_abs}, {"rms", e[i].rms}, {"psnr", e[i].psnr}};
+    return json;
+  };
+  return {{"encoding", "sRGB code values on [0, 255], compared as stored"},
+          {"peak", kColourPeak},
+          {"compared", c.compared},
+          {"no_hits", c.no_hit},
+          {"rgb", channels(c.rgb, {"r", "g", "b"})},
+          {"ycbcr_bt709", channels(c.ycbcr, {"y", "cb", "cr"})},
+          {"psnr_rgb", c.psnr_rgb},
+          {"psnr_ycbcr_611", c.psnr_ycbcr_611},
+          {"delta_e_mean", c.delta_e_mean},
+          {"delta_e_p95", c.delta_e_p95},
+          {"delta_e_max", c.delta_e_max},
+          {"colour_rms_y", c.ycbcr[0].rms}};
+}
 
 nlohmann::json statistics_json(const Statistics& s) {
   return {{"siad", s.siad},           {"usiad", s.usiad},         {"std_signed", s.std_signed},
@@ -377,6 +426,9 @@ std::string format_body(const MeasureReport& r) {
                        s.no_hit_count, s.sample_count, 100 * s.no_hit_fraction);
   }
   out += wrapped(semantics_note(r.semantics));
+  for (const DirectionReport& d : r.directions) {
+    if (d.colour) out += colour_lines(d);
+  }
   if (r.symmetric()) {
     const TwoSided t = r.two_sided();
     const char* max_name =
@@ -471,6 +523,12 @@ nlohmann::json to_json(const MeasureReport& r) {
     json["two_sided"] = two_sided;
     if (t.certified) {
       json["two_sided"]["hausdorff_certified"] = {{"lower", t.hausdorff_lower}, {"upper", t.hausdorff_upper}};
+    }
+    if (r.directions[0].colour && r.directions[1].colour) {
+      const ColourStatistics &ab = *r.directions[0].colour, &ba = *r.directions[1].colour;
+      json["two_sided"]["colour_worse"] = {{"psnr_rgb", std::min(ab.psnr_rgb, ba.psnr_rgb)},
+                                           {"psnr_ycbcr_611", std::min(ab.psnr_ycbcr_611, ba.psnr_ycbcr_611)},
+                                           {"delta_e_mean", std::max(ab.delta_e_mean, ba.delta_e_mean)}};
     }
     json["two_sided_relative_to_diagonal"] = relative_json(
         {{"max_abs", t.max_abs}, {"mean_both", t.mean_abs}, {"rms_both", t.rms}}, r.diagonal);

@@ -7,10 +7,11 @@
 #include <string>
 #include <vector>
 
-#include "roving/reference_embree/certified_hausdorff.h"
+#include "roving/core/colour_statistics.h"
 #include "roving/core/confidence.h"
 #include "roving/core/distance_method.h"
 #include "roving/core/statistics.h"
+#include "roving/reference_embree/certified_hausdorff.h"
 #include "roving/representations/model.h"
 
 namespace roving {
@@ -42,6 +43,10 @@ struct DirectionReport {
   std::optional<AutoSampling> auto_sampling;
   // The heat maps' colour range [-range, range]: --heatmap-range, or the 99th percentile of |d|.
   double heatmap_range = 0;
+  // Each sample's two colours and their statistics, where both models have colour and the
+  // method reports the faces its hits lie on (README "Colour").
+  std::optional<ColourPairs> colour_pairs;
+  std::optional<ColourStatistics> colour;
 };
 
 // Metro's two-sided summary, over both directions' samples (closest-point semantics make the
@@ -84,6 +89,10 @@ std::string format_body(const MeasureReport& report);
 
 // The statistics by their report (and --fail-above) names.
 nlohmann::json statistics_json(const Statistics& statistics);
+
+// The colour statistics by their report names (gates use delta_e_mean, delta_e_p95, delta_e_max
+// and colour_rms_y).
+nlohmann::json colour_json(const ColourStatistics& colour);
 
 // Everything as JSON (layout in docs/report-json.md).
 nlohmann::json to_json(const MeasureReport& report);

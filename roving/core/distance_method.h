@@ -11,6 +11,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "roving/core/sample_set.h"
@@ -57,6 +58,9 @@ using ProgressFn = std::function<void(const char* stage, std::size_t done, std::
 struct DistanceOptions {
   Semantics semantics = Semantics::FirstHit;
   double max_error = 0;  // h: half-height of the view volume, model units, > 0
+  // Also report the face of TEST each hit lies on (DistanceResult::hit_face), for colour; the
+  // methods that know it (the exact references) fill it, the others leave it empty.
+  bool hit_faces = false;
 };
 
 // How a GL method resolved one sample.
@@ -88,6 +92,9 @@ struct GlReport {
 struct DistanceResult {
   std::vector<double> signed_distance;
   std::vector<std::uint8_t> hit;
+  // The face of TEST where each hit lies (DistanceOptions::hit_faces); empty when not asked for
+  // or not known. Where the line meets several faces at the chosen d, the lowest index.
+  std::vector<std::uint32_t> hit_face;
   double build_seconds = 0;    // acceleration structures, uploads: once per test model
   double query_seconds = 0;    // all samples
   std::optional<GlReport> gl;  // GL methods only
@@ -130,25 +137,40 @@ class DistanceMethod {
   ProgressFn progress_;
 };
 
+// An answer that names the face of TEST it lies on.
+struct FaceHit {
+  double distance;
+  std::uint32_t face;
+};
+
 // measure_each (below) for a `distance_of` that keeps state from one sample to the next: each
 // block of consecutive samples calls `make_worker()` for a worker of its own, and the worker's
 // `operator()(k)` answers for sample k. Neighbours in sample order are mostly neighbours on the
-// surface, so one sample's answer can seed the next one's search.
+// surface, so one sample's answer can seed the next one's search. A worker answers
+// std::optional<double> or std::optional<FaceHit>; with the latter, `keep_faces` fills hit_face.
 template <class MakeWorker>
 DistanceResult measure_in_blocks(std::size_t count, const MakeWorker& make_worker,
-                                 const ProgressFn& progress = {}) {
+                                 const ProgressFn& progress = {}, bool keep_faces = false) {
+  using Answer = decltype(make_worker()(std::size_t{}));
+  constexpr bool answers_faces = std::is_same_v<Answer, std::optional<FaceHit>>;
   const Stopwatch watch;
   DistanceResult result;
   result.signed_distance.assign(count, 0.0);
   result.hit.assign(count, 0);
+  if (answers_faces && keep_faces) result.hit_face.assign(count, 0);
   std::atomic<std::size_t> done{0};
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, 256),
                     [&](const tbb::blocked_range<std::size_t>& range) {
                       auto distance_of = make_worker();
                       for (std::size_t k = range.begin(); k != range.end(); ++k) {
-                        if (const std::optional<double> d = distance_of(k)) {
+                        if (const Answer answer = distance_of(k)) {
                           result.hit[k] = 1;
-                          result.signed_distance[k] = *d;
+                          if constexpr (answers_faces) {
+                            result.signed_distance[k] = answer->distance;
+                            if (keep_faces) result.hit_face[k] = answer->face;
+                          } else {
+                            result.signed_distance[k] = *answer;
+                          }
                         }
                       }
                       if (progress) progress("samples", done += range.size(), count);
@@ -163,10 +185,10 @@ DistanceResult measure_in_blocks(std::size_t count, const MakeWorker& make_worke
 // per-sample call inlines (std::function cost 4% of an Embree query). `progress` hears of each
 // finished block of samples.
 template <class DistanceOf>
-DistanceResult measure_each(std::size_t count, const DistanceOf& distance_of,
-                            const ProgressFn& progress = {}) {
+DistanceResult measure_each(std::size_t count, const DistanceOf& distance_of, const ProgressFn& progress = {},
+                            bool keep_faces = false) {
   return measure_in_blocks(
-      count, [&] { return std::cref(distance_of); }, progress);
+      count, [&] { return std::cref(distance_of); }, progress, keep_faces);
 }
 
 // Checks options against `method` and throws roving::Error naming the option on failure.

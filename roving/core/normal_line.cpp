@@ -105,9 +105,18 @@ std::optional<NormalLine::Interval> NormalLine::crossing(const Vec3& a, const Ve
   return Interval{low, high};
 }
 
-void CrossingChoice::consider(const NormalLine::Interval& crossing) {
+void CrossingChoice::keep(double d, std::uint32_t face) {
+  if (best_ && d == *best_) {  // a tie (0 and -0 too): only the face may change
+    face_ = std::min(face_, face);
+    return;
+  }
+  best_ = d;
+  face_ = face;
+}
+
+void CrossingChoice::consider(const NormalLine::Interval& crossing, std::uint32_t face) {
   if (semantics_ == Semantics::FirstHit) {
-    if (!best_ || crossing.high > *best_) best_ = crossing.high;
+    if (!best_ || crossing.high >= *best_) keep(crossing.high, face);
     return;
   }
   // Nearest: the point of the interval closest to x.
@@ -115,7 +124,8 @@ void CrossingChoice::consider(const NormalLine::Interval& crossing) {
                        ? 0.0
                        : (std::abs(crossing.low) < std::abs(crossing.high) ? crossing.low : crossing.high);
   // Equally near crossings on both sides: the outer one, whatever order they come in.
-  if (!best_ || std::abs(d) < std::abs(*best_) || (std::abs(d) == std::abs(*best_) && d > *best_)) best_ = d;
+  if (!best_ || std::abs(d) < std::abs(*best_) || (std::abs(d) == std::abs(*best_) && d >= *best_))
+    keep(d, face);
 }
 
 }  // namespace roving

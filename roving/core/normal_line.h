@@ -51,13 +51,21 @@ class NormalLine {
 class CrossingChoice {
  public:
   explicit CrossingChoice(Semantics semantics) : semantics_(semantics) {}
-  void consider(const NormalLine::Interval& crossing);
+  // A crossing of triangle `face`. Where several give the chosen d, the lowest face is kept, so
+  // the choice does not depend on the order crossings come in.
+  void consider(const NormalLine::Interval& crossing, std::uint32_t face);
   // The chosen d; nullopt when no crossing was considered (a no-hit).
   const std::optional<double>& chosen() const { return best_; }
+  // The chosen d with its face; nullopt for a no-hit.
+  std::optional<FaceHit> chosen_hit() const {
+    return best_ ? std::optional<FaceHit>(FaceHit{*best_, face_}) : std::nullopt;
+  }
 
  private:
+  void keep(double d, std::uint32_t face);
   Semantics semantics_;
   std::optional<double> best_;
+  std::uint32_t face_ = 0;
 };
 
 }  // namespace roving

@@ -120,7 +120,26 @@ std::vector<Vec3> TriangleMesh::vertex_normals(std::vector<double>* third_areas)
 TriangleMesh TriangleMesh::transformed(const Vec3& origin, double scale) const {
   std::vector<Vec3> moved(positions_.size());
   for (std::size_t i = 0; i < positions_.size(); ++i) moved[i] = scale * (positions_[i] - origin);
-  return TriangleMesh(std::move(moved), triangles_);
+  TriangleMesh mesh(std::move(moved), triangles_);
+  mesh.vertex_colours_ = vertex_colours_;
+  return mesh;
+}
+
+void TriangleMesh::set_vertex_colours(std::vector<Colour> colours, const std::string& source) {
+  if (colours.size() != positions_.size()) {
+    throw Error(fmt::format("{}: {} vertex colours for {} vertices; expected one per vertex", source,
+                            colours.size(), positions_.size()));
+  }
+  for (std::size_t i = 0; i < colours.size(); ++i) {
+    const Colour& c = colours[i];
+    if (!(c.array() >= 0).all() || !(c.array() <= 255).all()) {
+      throw Error(
+          fmt::format("{}: vertex {} has colour ({}, {}, {}); expected sRGB code values "
+                      "within [0, 255]",
+                      source, i, c.x(), c.y(), c.z()));
+    }
+  }
+  vertex_colours_ = std::move(colours);
 }
 
 }  // namespace roving

@@ -13,6 +13,9 @@ namespace roving {
 
 using Vec3 = Eigen::Vector3d;
 using Triangle = std::array<int, 3>;
+// A colour as its stored encoding: sRGB code values on [0, 255] (the 8-bit values MPEG's metrics
+// compare), in float so that a file's float or 16-bit colours keep their fraction of a step.
+using Colour = Eigen::Vector3f;
 
 struct BoundingBox {
   Vec3 min = Vec3::Constant(std::numeric_limits<double>::infinity());
@@ -64,6 +67,12 @@ class TriangleMesh {
     return (positions_[t[0]] + positions_[t[1]] + positions_[t[2]]) / 3.0;
   }
 
+  // Per-vertex colours (empty: the model has none). set_vertex_colours throws roving::Error naming
+  // `source` unless there is one per vertex, each channel finite and within [0, 255].
+  const std::vector<Colour>& vertex_colours() const { return vertex_colours_; }
+  bool has_colour() const { return !vertex_colours_.empty(); }
+  void set_vertex_colours(std::vector<Colour> colours, const std::string& source = "mesh");
+
   // The same mesh with every position mapped p -> scale * (p - origin).
   TriangleMesh transformed(const Vec3& origin, double scale) const;
 
@@ -77,6 +86,7 @@ class TriangleMesh {
 
   std::vector<Vec3> positions_;
   std::vector<Triangle> triangles_;
+  std::vector<Colour> vertex_colours_;
   std::vector<bool> vertex_referenced_;
   std::size_t unreferenced_vertices_ = 0;
   std::size_t degenerate_triangles_ = 0;

@@ -56,7 +56,7 @@ bool is_integral(Scalar s) {
 }
 
 // What the reader does with a property's values.
-enum class Role { Skip, X, Y, Z, NX, NY, NZ, Corners };
+enum class Role { Skip, X, Y, Z, NX, NY, NZ, Corners, Red, Green, Blue };
 
 struct Property {
   std::string name;
@@ -179,12 +179,20 @@ void assign_roles(const std::string& path, Header& header) {
     }
     for (Property& p : element.properties) {
       if (element.name == "vertex" && !p.is_list) {
-        static const std::pair<const char*, Role> roles[] = {{"x", Role::X},   {"y", Role::Y},
-                                                             {"z", Role::Z},   {"nx", Role::NX},
-                                                             {"ny", Role::NY}, {"nz", Role::NZ}};
+        static const std::pair<const char*, Role> roles[] = {
+            {"x", Role::X},     {"y", Role::Y},         {"z", Role::Z},
+            {"nx", Role::NX},   {"ny", Role::NY},       {"nz", Role::NZ},
+            {"red", Role::Red}, {"green", Role::Green}, {"blue", Role::Blue}};
         for (const auto& [name, role] : roles) {
           if (p.name == name) p.role = role;
         }
+      }
+      const bool colour = p.role == Role::Red || p.role == Role::Green || p.role == Role::Blue;
+      if (colour && p.type != Scalar::UInt8 && p.type != Scalar::Float32 && p.type != Scalar::Float64) {
+        throw Error(
+            fmt::format("{}: vertex property '{}': expected a colour as uchar (0-255) or float/double "
+                        "(0-1), found another type",
+                        path, p.name));
       }
       if (element.name == "face" && p.is_list && (p.name == "vertex_indices" || p.name == "vertex_index")) {
         if (!is_integral(p.type)) {
@@ -369,21 +377,49 @@ bool read_plain_layout(const Element& element, BinaryBody& body, std::vector<Vec
   return false;
 }
 
+// A colour property's value as an sRGB code value on [0, 255]: uchar as stored, float and double
+// (0-1) scaled by 255. Out of range or not finite: an error naming the vertex.
+float colour_code(const std::string& path, const Element& element, unsigned long long item, const Property& p,
+                  double value) {
+  if (p.type == Scalar::UInt8) {
+    if (!(value >= 0 && value <= 255)) {
+      throw Error(fmt::format("{}: {} {}: colour '{}' is {}; expected a uchar within [0, 255]", path,
+                              element.name, item, p.name, value));
+    }
+    return static_cast<float>(value);
+  }
+  if (!(value >= 0 && value <= 1)) {
+    throw Error(fmt::format("{}: {} {}: colour '{}' is {}; expected a float within [0, 1]", path,
+                            element.name, item, p.name, value));
+  }
+  return static_cast<float>(value * 255);
+}
+
 template <class Body>
 void read_body(const std::string& path, const Header& header, Body& body, PlyContents& out) {
   std::vector<Vec3> positions;
   std::vector<Triangle> triangles;
   std::vector<long long> corners;
-  bool have_normals = false;
+  std::vector<Colour> colours;
+  bool have_normals = false, have_colours = false;
   for (const Element& element : header.elements) {
     const bool is_vertex = element.name == "vertex";
     const bool is_face = element.name == "face";
     if (is_vertex) {
-      int axes = 0, normal_axes = 0;
+      int axes = 0, normal_axes = 0, colour_channels = 0;
       for (const Property& p : element.properties) {
         axes += p.role == Role::X || p.role == Role::Y || p.role == Role::Z;
         normal_axes += p.role == Role::NX || p.role == Role::NY || p.role == Role::NZ;
+        colour_channels += p.role == Role::Red || p.role == Role::Green || p.role == Role::Blue;
       }
+      if (colour_channels != 0 && colour_channels != 3) {
+        throw Error(
+            fmt::format("{}: header line {}: the vertex element has {} of the colour properties red, "
+                        "green and blue; expected all three or none",
+                        path, element.header_line, colour_channels));
+      }
+      have_colours = colour_channels == 3;
+      if (have_colours) colours.reserve(element.count);
       if (axes != 3) {
         throw Error(fmt::format("{}: header line {}: the vertex element needs properties x, y and z", path,
                                 element.header_line));
@@ -405,7 +441,7 @@ void read_body(const std::string& path, const Header& header, Body& body, PlyCon
       triangles.reserve(element.count);
     }
     if constexpr (std::is_same_v<Body, BinaryBody>) {
-      if (!body.swapped() &&
+      if (!body.swapped() && !(is_vertex && have_colours) &&
           read_plain_layout(element, body, positions, out.normals, have_normals, sink, triangles)) {
         continue;
       }
@@ -413,6 +449,7 @@ void read_body(const std::string& path, const Header& header, Body& body, PlyCon
     for (unsigned long long item = 0; item < element.count; ++item) {
       if constexpr (std::is_same_v<Body, AsciiBody>) body.start_item(element, item);
       Vec3 position = Vec3::Zero(), normal = Vec3::Zero();
+      Colour colour = Colour::Zero();
       for (const Property& p : element.properties) {
         const auto read = [&](Scalar type) {
           if constexpr (std::is_same_v<Body, AsciiBody>) {
@@ -430,6 +467,9 @@ void read_body(const std::string& path, const Header& header, Body& body, PlyCon
             case Role::NX: normal.x() = v; break;
             case Role::NY: normal.y() = v; break;
             case Role::NZ: normal.z() = v; break;
+            case Role::Red: colour.x() = colour_code(path, element, item, p, v); break;
+            case Role::Green: colour.y() = colour_code(path, element, item, p, v); break;
+            case Role::Blue: colour.z() = colour_code(path, element, item, p, v); break;
             default: break;
           }
           continue;
@@ -451,6 +491,7 @@ void read_body(const std::string& path, const Header& header, Body& body, PlyCon
       if (is_vertex) {
         positions.push_back(position);
         if (have_normals) out.normals.push_back(normal);
+        if (have_colours) colours.push_back(colour);
       }
       if (is_face) sink->add(corners, item, triangles);
     }
@@ -463,6 +504,7 @@ void read_body(const std::string& path, const Header& header, Body& body, PlyCon
   }
   out.mesh.path = path;
   out.mesh.mesh = TriangleMesh(std::move(positions), std::move(triangles), path);
+  if (have_colours) out.mesh.mesh.set_vertex_colours(std::move(colours), path);
 }
 
 Header checked_header(const std::string& path, std::string_view bytes) {

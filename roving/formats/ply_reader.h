@@ -9,7 +9,10 @@
 namespace roving {
 
 struct PlyContents {
-  LoadedMesh mesh;            // vertices (x, y, z) and the faces' triangles
+  // Vertices (x, y, z) and the faces' triangles; with the vertices' colours where they declare
+  // red, green and blue (alpha is ignored), taken as sRGB code values: uchar as stored, float or
+  // double (0-1) times 255.
+  LoadedMesh mesh;
   std::vector<Vec3> normals;  // nx, ny, nz per vertex when the header declares them
   bool declares_faces = false;
 };

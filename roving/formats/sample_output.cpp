@@ -6,13 +6,18 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "roving/core/colour_science.h"
 #include "roving/core/error.h"
 
 namespace roving {
 
 void write_samples_csv(std::FILE* out, const SampleSet& samples, const DistanceResult& result,
-                       const std::string& direction, bool header) {
-  if (header) fmt::print(out, "x,y,z,nx,ny,nz,d,hit,element,weight,resolved_by{}\n", direction.empty() ? "" : ",direction");
+                       const std::string& direction, bool header, const ColourPairs* colours) {
+  if (header) {
+    fmt::print(out, "x,y,z,nx,ny,nz,d,hit,element,weight,resolved_by{}{}\n",
+               colours ? ",ref_r,ref_g,ref_b,test_r,test_g,test_b,delta_e" : "",
+               direction.empty() ? "" : ",direction");
+  }
   const std::string last = direction.empty() ? "" : "," + direction;
   const auto resolved_by = [&](std::size_t k) -> const char* {
     if (!result.gl) return "";
@@ -28,8 +33,19 @@ void write_samples_csv(std::FILE* out, const SampleSet& samples, const DistanceR
     const Vec3& n = samples.normals[k];
     const std::string d = result.hit[k] ? fmt::format("{}", result.signed_distance[k]) : "";
     const std::string element = k < samples.elements.size() ? fmt::format("{}", samples.elements[k]) : "";
-    fmt::print(out, "{},{},{},{},{},{},{},{},{},{},{}{}\n", p.x(), p.y(), p.z(), n.x(), n.y(), n.z(), d,
-               result.hit[k] ? 1 : 0, element, samples.weights[k], resolved_by(k), last);
+    std::string colour;
+    if (colours) {
+      const Colour& ref = colours->reference[k];
+      const Colour& test = colours->test[k];
+      colour = fmt::format(",{},{},{}", ref.x(), ref.y(), ref.z());
+      colour +=
+          result.hit[k]
+              ? fmt::format(",{},{},{},{}", test.x(), test.y(), test.z(),
+                            ciede2000(srgb_to_lab(ref.cast<double>()), srgb_to_lab(test.cast<double>())))
+              : ",,,,";
+    }
+    fmt::print(out, "{},{},{},{},{},{},{},{},{},{},{}{}{}\n", p.x(), p.y(), p.z(), n.x(), n.y(), n.z(), d,
+               result.hit[k] ? 1 : 0, element, samples.weights[k], resolved_by(k), colour, last);
   }
 }
 

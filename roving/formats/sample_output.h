@@ -3,8 +3,8 @@
 
 #include <cstdio>
 #include <string>
-#include <string>
 
+#include "roving/core/colour.h"
 #include "roving/core/distance_method.h"
 #include "roving/core/sample_set.h"
 
@@ -15,8 +15,11 @@ namespace roving {
 // GL methods whether a view or a per-sample camera answered (or no-hit), empty for the others.
 // A non-empty `direction` ("A -> B") adds a last column naming it, so that both directions of a
 // two-sided run share one table; `header` writes the column names first. Write errors are left
-// on `out` for its owner (an AtomicFile) to report.
+// on `out` for its owner (an AtomicFile) to report. With `colours`, columns ref_r, ref_g, ref_b,
+// test_r, test_g, test_b (sRGB code values, 0-255) and delta_e (CIEDE2000) follow resolved_by;
+// the test colour and delta_e are empty for a no-hit.
 void write_samples_csv(std::FILE* out, const SampleSet& samples, const DistanceResult& result,
-                       const std::string& direction = {}, bool header = true);
+                       const std::string& direction = {}, bool header = true,
+                       const ColourPairs* colours = nullptr);
 
 }  // namespace roving

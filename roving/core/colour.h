@@ -1,0 +1,37 @@
+// The colour rule (README "Colour"): REF's colour at the sample against TEST's colour at the point
+// where the sample's normal line meets TEST (under closest semantics, at the closest point), the
+// same correspondence that gives d. Colours are compared in their stored encoding (Colour).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "roving/core/distance_method.h"
+#include "roving/core/sample_set.h"
+#include "roving/core/triangle_mesh.h"
+
+namespace roving {
+
+// `mesh`'s colour at the point of triangle `face` nearest `point`: its vertex colours interpolated
+// barycentrically there. Requires mesh.has_colour().
+Colour colour_on_face(const TriangleMesh& mesh, std::size_t face, const Vec3& point);
+
+// The point on TEST a sample at x with normal n and signed distance d corresponds to, to be
+// placed on the hit's face: x + d n along the normal line; x itself under closest semantics (the
+// face's nearest point to x is then the closest point).
+inline Vec3 correspondence_point(const Vec3& x, const Vec3& n, double d, Semantics semantics) {
+  return semantics == Semantics::Closest ? x : Vec3(x + d * n);
+}
+
+// Both colours of every sample: REF's at the sample (a vertex sample takes its vertex's colour,
+// a face or area sample its face's colour at the sample) and TEST's at the correspondence on the
+// face `result.hit_face` names. A no-hit has no TEST colour (NaN).
+struct ColourPairs {
+  std::vector<Colour> reference, test;
+};
+// Requires reference.has_colour(), test.has_colour(), samples of `reference` and a result with
+// hit faces. Throws roving::Error when the result has none.
+ColourPairs colour_pairs(const TriangleMesh& reference, const SampleSet& samples, const TriangleMesh& test,
+                         const DistanceResult& result, Semantics semantics);
+
+}  // namespace roving
