@@ -232,6 +232,8 @@ TEST(ColourRule, EmbreeAndCgalGiveTheSameFacesAndColours) {
         // closest point, where the colour is the same up to the interpolation's rounding.
         if (semantics != Semantics::Closest) {
           ASSERT_EQ(e.hit_face[k], c.hit_face[k]) << "sample " << k;
+          // The tie goes to the lower face with its value, so even a zero's sign agrees.
+          ASSERT_EQ(std::signbit(e.signed_distance[k]), std::signbit(c.signed_distance[k])) << "sample " << k;
           ASSERT_EQ(pe.test[k], pc.test[k]) << "sample " << k;
         } else {
           other_faces += e.hit_face[k] != c.hit_face[k];

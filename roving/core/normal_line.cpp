@@ -106,10 +106,9 @@ std::optional<NormalLine::Interval> NormalLine::crossing(const Vec3& a, const Ve
 }
 
 void CrossingChoice::keep(double d, std::uint32_t face) {
-  if (best_ && d == *best_) {  // a tie (0 and -0 too): only the face may change
-    face_ = std::min(face_, face);
-    return;
-  }
+  // A tie (0 and -0 too) goes to the lower face, value and all, so that neither the face nor the
+  // sign of a zero depends on the order the crossings come in.
+  if (best_ && d == *best_ && face_ < face) return;
   best_ = d;
   face_ = face;
 }
