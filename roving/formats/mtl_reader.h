@@ -1,0 +1,23 @@
+// Wavefront MTL material libraries: the diffuse colour (Kd) and its texture (map_Kd).
+#pragma once
+
+#include <map>
+#include <memory>
+#include <string>
+
+#include "roving/core/texture.h"
+
+namespace roving {
+
+// Textures already read, by resolved path, so that materials and libraries sharing one decode it once.
+using TextureCache = std::map<std::string, std::shared_ptr<const Texture>>;
+
+// Reads the materials of `path` into `materials` (a later definition of a name replaces an earlier
+// one, as in the viewers). Kd is taken as sRGB fractions (code values / 255, as every OBJ viewer
+// displays it); a material without Kd is white. map_Kd's image is read through `textures`; of its
+// options only -clamp is honoured (on: clamp to edge; the default repeats). Throws roving::Error
+// naming the file and line for a malformed or out-of-range Kd, an option we do not apply, or an
+// unreadable texture.
+void read_mtl(const std::string& path, std::map<std::string, Material>& materials, TextureCache& textures);
+
+}  // namespace roving
