@@ -522,7 +522,7 @@ void surfel_study(Bench& bench) {
   const double h = 0.05 * bunny.bounding_box().diagonal();
   for (std::size_t n : {20000u, 80000u}) {
     const SampleSet points = make_samples(bunny, {SampleSpec::Kind::Area, n});
-    row("bunny, area-uniform", PointCloud{points.positions, points.normals}, truth, h, NAN);
+    row("bunny, area-uniform", PointCloud{points.positions, points.normals, {}}, truth, h, NAN);
   }
   bench.tables.push_back(t);
 }

@@ -75,7 +75,7 @@ class Writer {
 // Points uniform by area on `mesh`, with its face normals (a scanned-cloud stand-in).
 PointCloud sampled_points(const TriangleMesh& mesh, std::size_t count) {
   const SampleSet s = make_samples(mesh, {SampleSpec::Kind::Area, count});
-  return {s.positions, s.normals};
+  return {s.positions, s.normals, {}};
 }
 
 }  // namespace
@@ -163,7 +163,7 @@ int main(int argc, char** argv) {
                   {"count", 20000},
                   {"seed", 12345}});
     write.points(
-        PointCloud{sampled_points(bunny, 20000).positions, {}}, "bunny-points.xyz",
+        PointCloud{sampled_points(bunny, 20000).positions, {}, {}}, "bunny-points.xyz",
         {{"source", "bunny.ply"}, {"operation", "the same samples without normals"}, {"count", 20000}});
 
     // Analytic cases: exact sphere of radius 50 against concentric tessellated spheres and a

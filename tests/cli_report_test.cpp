@@ -485,8 +485,24 @@ TEST(CliReport, ColourFiguresGatesAndSamplesTable) {
                {"delta_e_max", "nothing measured"});
   const CliRun one = run_cli("measure " + ref + " " + plain + " --json -");
   EXPECT_EQ(one.exit_code, 0);
-  EXPECT_NE(one.err.find("has vertex colours but"), std::string::npos) << one.err;
+  EXPECT_NE(one.err.find("has colour but"), std::string::npos) << one.err;
   EXPECT_FALSE(nlohmann::json::parse(one.out).contains("colour")) << "no colour: absent, not zero";
+
+  // A coloured point cloud as REF: each point's own colour (code values 0-255) against the cube's.
+  const std::string points = folder.file(
+      "points.xyz", "# x y z nx ny nz r g b\n0 0 0.5 0 0 1 190 5 200\n0.1 0 0.5 0 0 1 190 5 200.5\n");
+  const CliRun cloud = run_cli("measure " + points + " " + test + " --max-error 0.2 --json -");
+  ASSERT_EQ(cloud.exit_code, 0) << cloud.err;
+  const auto cloud_json = nlohmann::json::parse(cloud.out);
+  EXPECT_EQ(cloud_json["reference"]["colour"]["point_colours"], true);
+  EXPECT_EQ(cloud_json["colour"]["compared"], 2);
+  EXPECT_NEAR(cloud_json["colour"]["rgb"]["r"]["mean_abs"].get<double>(), 20, 1e-4);
+  // G varies over the top face (vertices 4-7: 160, 200, 240, 24): (0, 0) is midway between 5 and 6,
+  // (0.1, 0) lies in face (5, 7, 6) at u = 0.65 / 1.1, v = 1/2, where G = 416 - 216 u - 176 v.
+  const double g_far = 416 - 216 * 0.65 / 1.1 - 88;
+  EXPECT_NEAR(cloud_json["colour"]["rgb"]["g"]["mean_abs"].get<double>(), ((220 - 5) + (g_far - 5)) / 2,
+              1e-4);
+  EXPECT_NEAR(cloud_json["colour"]["rgb"]["b"]["mean_abs"].get<double>(), 0.25, 1e-4);
 }
 
 TEST(CliReport, JsonLayoutIsTheDocumentedOne) {
@@ -494,9 +510,14 @@ TEST(CliReport, JsonLayoutIsTheDocumentedOne) {
   const std::set<std::string> docs = documented_paths();
   ASSERT_GT(docs.size(), 50u) << "docs/report-json.md not found or not parsed";
   const std::string teapot = roving::testing::data_file("teapot.bpt");
-  const std::string points = cubes.folder.file("points.xyz", "0 0 0.5 0 0 1\n0.1 0 0.5 0 0 1\n0 0.1 0.5 0 0 1\n");
-  std::string grid_points;  // a 5 x 5 grid on the plane z = 0.55, as a test point cloud
-  for (int i = 0; i < 25; ++i) grid_points += fmt::format("{} {} 0.55 0 0 1\n", 0.25 * (i % 5) - 0.5, 0.25 * (i / 5) - 0.5);
+  const std::string points = cubes.folder.file(
+      "points.xyz",
+      "# x y z nx ny nz r g b\n0 0 0.5 0 0 1 1 2 3\n0.1 0 0.5 0 0 1 4 5 6\n0 0.1 0.5 0 0 1 7 8 9\n");
+  std::string grid_points = "//X,Y,Z,R,G,B,Nx,Ny,Nz\n";  // a 5 x 5 grid on the plane z = 0.55, in colour
+  for (int i = 0; i < 25; ++i) {
+    grid_points +=
+        fmt::format("{} {} 0.55 {} 0 200 0 0 1\n", 0.25 * (i % 5) - 0.5, 0.25 * (i / 5) - 0.5, 10 * i);
+  }
   const std::string grid = cubes.folder.file("grid.xyz", grid_points);
   const std::string coloured = cubes.folder.file("red.ply", coloured_cube_ply(0.5, 200)) + " " +
                                cubes.folder.file("redder.ply", coloured_cube_ply(0.55, 210));

@@ -320,10 +320,46 @@ TEST_F(TempFolder, EstimatedNormalsAreOrientedOutward) {
   }
 }
 
+TEST_F(TempFolder, PointColours) {
+  // CloudCompare's header, columns in any order; a plain comment first is no header.
+  const PointCloud named =
+      read_point_cloud(write("cc.xyz", "//X,Y,Z,R,G,B,Nx,Ny,Nz\n1 2 3 10 20 30 0 0 2\n"));
+  EXPECT_EQ(named.colours.at(0), Colour(10, 20, 30));
+  EXPECT_EQ(named.normals.at(0), Vec3(0, 0, 1));
+  const PointCloud reordered = read_point_cloud(write("o.xyz", "# red x y green z blue\n255 1 2 0 3 7.5\n"));
+  EXPECT_EQ(reordered.positions.at(0), Vec3(1, 2, 3));
+  EXPECT_EQ(reordered.colours.at(0), Colour(255, 0, 7.5));
+  EXPECT_TRUE(read_point_cloud(write("c.xyz", "# scanned today\n1 2 3\n")).colours.empty());
+  const PointCloud ply = read_point_cloud(write(
+      "c.ply",
+      "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nproperty "
+      "float z\nproperty uchar red\nproperty uchar green\nproperty uchar blue\nend_header\n1 2 3 4 5 6\n"));
+  EXPECT_EQ(ply.colours.at(0), Colour(4, 5, 6));
+  // As a test model, each disk carries its point's colour over its whole fan.
+  PointCloud grid;
+  for (int i = 0; i < 100; ++i) {
+    grid.positions.emplace_back(i % 10, i / 10, 0);
+    grid.normals.push_back(Vec3::UnitZ());
+    grid.colours.emplace_back(float(i), 0, 255);
+  }
+  const SurfelSurface surfels = make_surfels(grid, "grid");
+  ASSERT_EQ(surfels.mesh.vertex_colours().size(), surfels.mesh.vertex_count());
+  for (std::size_t f = 0; f < surfels.mesh.triangle_count(); ++f) {
+    for (const int v : surfels.mesh.triangles()[f])
+      ASSERT_EQ(surfels.mesh.vertex_colours()[v].x(), float(f / 8));
+  }
+}
+
 TEST_F(TempFolder, BadPointFiles) {
   for (const auto& [name, content, fragment] : std::vector<std::tuple<std::string, std::string, std::string>>{
            {"text.xyz", "1 2 3\n1 two 3\n", ":2:"},
            {"columns.xyz", "1 2 3\n1 2 3 0 0 1\n", "expected 3 numbers"},
+           {"rgb-range.xyz", "# x y z r g b\n1 2 3 0 256 0\n",
+            ":2: colour (0, 256, 0); expected code values"},
+           {"rgb-partial.xyz", "//X,Y,Z,R,G\n1 2 3 0 0\n", "some of nx ny nz or r g b"},
+           {"rgb-twice.xyz", "# x y z r g b r\n1 2 3 0 0 0 0\n", "names column 'r' twice"},
+           {"rgb-count.xyz", "# x y z r g b\n1 2 3 0 0\n", "expected 6 numbers"},
+           {"nine.xyz", "1 2 3 0 0 1 9 9 9\n", "name them on the first line"},
            {"four.xyz", "1 2 3 4\n", "x y z"},
            {"nan.xyz", "1 2 3\nnan 0 0\n", "non-finite"},
            {"zero.xyz", "1 2 3 0 0 0\n", "normal of length"},

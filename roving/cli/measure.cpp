@@ -206,8 +206,18 @@ std::vector<std::string> heatmap_paths(const std::string& path, bool symmetric) 
   return {named(".A-to-B"), named(".B-to-A")};
 }
 
-const TriangleMesh* coloured_mesh(const Model& model) {
-  return model.type == ModelType::Mesh && model.mesh.mesh.has_colour() ? &model.mesh.mesh : nullptr;
+bool has_colour(const Model& model) {
+  if (model.type == ModelType::Points) return !model.points.colours.empty();
+  return model.type == ModelType::Mesh && model.mesh.mesh.has_colour();
+}
+
+// REF's colour at each sample: a point cloud's at its points, a mesh's by the colour rule.
+std::vector<Colour> reference_colours(const Model& reference, const SampleSet& samples) {
+  if (reference.type != ModelType::Points) return sample_colours(reference.mesh.mesh, samples);
+  std::vector<Colour> colours;
+  colours.reserve(samples.size());
+  for (const std::size_t point : samples.elements) colours.push_back(reference.points.colours[point]);
+  return colours;
 }
 
 void describe_pair(const Model& a, const Model& b, MeasurePlan& plan, MeasureReport& report) {
@@ -216,7 +226,7 @@ void describe_pair(const Model& a, const Model& b, MeasurePlan& plan, MeasureRep
   if (plan.symmetric) test_surface(a);
   report.method = plan.method->name();
   report.semantics = plan.options.semantics;
-  plan.options.hit_faces = coloured_mesh(a) && coloured_mesh(b);
+  plan.options.hit_faces = has_colour(a) && has_colour(b);
   if (!plan.options.hit_faces) {  // a colour gate fails before the long work, not after it
     std::vector<Gate> colour_gates;
     std::copy_if(plan.gates.begin(), plan.gates.end(), std::back_inserter(colour_gates),
@@ -240,10 +250,10 @@ void measure_models(const Model& a, const Model& b, MeasurePlan& plan, MeasureRe
                     Progress& progress, std::string& stage, const WarnFn& warn,
                     const SampleSet* samples_of_a) {
   warn(alignment_warnings(a, b, plan.options.max_error));
-  if (static_cast<bool>(coloured_mesh(a)) != static_cast<bool>(coloured_mesh(b))) {
-    const Model& coloured = coloured_mesh(a) ? a : b;
-    const Model& plain = coloured_mesh(a) ? b : a;
-    warn({fmt::format("colour: {} has vertex colours but {} has none; no colour figures", coloured.path(),
+  if (has_colour(a) != has_colour(b)) {
+    const Model& coloured = has_colour(a) ? a : b;
+    const Model& plain = has_colour(a) ? b : a;
+    warn({fmt::format("colour: {} has colour but {} has none; no colour figures", coloured.path(),
                       plain.path())});
   }
   warn(orientation_warnings(a));
@@ -300,13 +310,14 @@ void measure_models(const Model& a, const Model& b, MeasurePlan& plan, MeasureRe
       d.hausdorff = certified_hausdorff(test_surface(*reference), test_mesh, report.hausdorff_bound);
     }
     if (plan.options.hit_faces && d.result.hit_face.empty()) {
-      warn(
-          {fmt::format("colour: {} does not report which face of TEST each hit lies on; colour figures come "
-                       "from embree and cgal",
-                       plan.method->name())});
+      if (&d == &report.directions.front())
+        warn({fmt::format(
+            "colour: {} does not report which face of TEST each hit lies on; colour figures come "
+            "from embree and cgal",
+            plan.method->name())});
     } else if (plan.options.hit_faces) {
       stage = "comparing colours";
-      d.colour_pairs = colour_pairs(*coloured_mesh(*reference), d.samples, *coloured_mesh(*test), d.result,
+      d.colour_pairs = colour_pairs(reference_colours(*reference, d.samples), d.samples, test_mesh, d.result,
                                     plan.options.semantics);
       d.colour = compute_colour_statistics(*d.colour_pairs, d.result.hit);
     }

@@ -11,6 +11,33 @@
 namespace roving {
 namespace {
 
+// The textures a mesh's materials use, each once.
+std::vector<const Texture*> textures_of(const TriangleMesh& m) {
+  std::vector<const Texture*> textures;
+  if (const TextureMapping* mapping = m.texture_mapping()) {
+    for (const Material& material : mapping->materials) {
+      const Texture* t = material.texture.get();
+      if (t && std::find(textures.begin(), textures.end(), t) == textures.end()) textures.push_back(t);
+    }
+  }
+  return textures;
+}
+
+// Where a mesh's colour comes from, for the report's model line.
+std::string colour_source(const TriangleMesh& m) {
+  if (!m.has_colour()) return "";
+  std::vector<std::string> parts;
+  if (!m.vertex_colours().empty()) parts.push_back("vertex colours");
+  if (const TextureMapping* mapping = m.texture_mapping()) {
+    const std::size_t n = mapping->materials.size();
+    parts.push_back(fmt::format("{} material{}", n, n == 1 ? "" : "s"));
+    for (const Texture* t : textures_of(m)) {
+      parts.push_back(fmt::format("texture {} ({} x {})", t->source, t->width, t->height));
+    }
+  }
+  return fmt::format("; colour: {}", fmt::join(parts, ", "));
+}
+
 nlohmann::json model_json(const Model& model) {
   const LoadedMesh& loaded = model.mesh;
   const TriangleMesh& m = loaded.mesh;
@@ -28,6 +55,18 @@ nlohmann::json model_json(const Model& model) {
       {"bounding_box",
        {{"min", {box.min.x(), box.min.y(), box.min.z()}}, {"max", {box.max.x(), box.max.y(), box.max.z()}}}},
       {"diagonal", box.diagonal()}};
+  if (model.type == ModelType::Points && !model.points.colours.empty()) {
+    json["colour"] = {{"point_colours", true}};
+  } else if (m.has_colour()) {
+    nlohmann::json textures = nlohmann::json::array();
+    for (const Texture* t : textures_of(m)) {
+      textures.push_back({{"path", t->source}, {"width", t->width}, {"height", t->height}});
+    }
+    const TextureMapping* mapping = m.texture_mapping();
+    json["colour"] = {{"vertex_colours", !m.vertex_colours().empty()},
+                      {"materials", mapping ? mapping->materials.size() : 0},
+                      {"textures", textures}};
+  }
   if (model.voxels) {
     json["voxels"] = {{"dimension", model.voxels->dimension},
                       {"voxel_size", model.voxels->voxel_size},
@@ -63,9 +102,10 @@ std::string model_line(const std::string& role, const Model& model) {
   const LoadedMesh& loaded = model.mesh;
   const TriangleMesh& m = loaded.mesh;
   if (model.type == ModelType::Points) {
-    std::string line = fmt::format("{:<10} {}: point cloud, {} points, normals {}\n", role, loaded.path,
+    std::string line = fmt::format("{:<10} {}: point cloud, {} points, normals {}{}\n", role, loaded.path,
                                    model.points.positions.size(),
-                                   model.normals_estimated ? "estimated (PCA, k = 12)" : "from the file");
+                                   model.normals_estimated ? "estimated (PCA, k = 12)" : "from the file",
+                                   model.points.colours.empty() ? "" : "; colour: point colours");
     if (model.surfels) {
       const SurfelSurface& s = *model.surfels;
       line += fmt::format(
@@ -97,7 +137,7 @@ std::string model_line(const std::string& role, const Model& model) {
   if (loaded.dropped_repeated_vertex_faces) {
     line += fmt::format(", {} faces with a repeated vertex dropped", loaded.dropped_repeated_vertex_faces);
   }
-  return line + "\n";
+  return line + colour_source(m) + "\n";
 }
 
 const char* semantics_note(Semantics semantics) {

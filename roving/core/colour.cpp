@@ -14,28 +14,69 @@ Colour colour_on_face(const TriangleMesh& mesh, std::size_t face, const Vec3& po
   const Triangle& t = mesh.triangles()[face];
   const auto& p = mesh.positions();
   const Vec3 w = closest_on_triangle(point, p[t[0]], p[t[1]], p[t[2]]).weights;
-  const auto& c = mesh.vertex_colours();
   // In double, then rounded once: interpolating float colours in float drifted by 3e-5 of a step.
-  const Eigen::Vector3d colour =
-      w[0] * c[t[0]].cast<double>() + w[1] * c[t[1]].cast<double>() + w[2] * c[t[2]].cast<double>();
+  Eigen::Vector3d colour = Eigen::Vector3d::Constant(255);
+  if (const auto& c = mesh.vertex_colours(); !c.empty()) {
+    colour = w[0] * c[t[0]].cast<double>() + w[1] * c[t[1]].cast<double>() + w[2] * c[t[2]].cast<double>();
+  }
+  if (const TextureMapping* mapping = mesh.texture_mapping()) {
+    const Material& material = mapping->materials[mapping->face_material[face]];
+    Eigen::Vector3d surface = material.factor.cast<double>();
+    if (material.texture) {
+      const TexCoord* uv = &mapping->corner_uv[3 * face];
+      const TexCoord at = w[0] * uv[0] + w[1] * uv[1] + w[2] * uv[2];
+      surface =
+          surface.cwiseProduct(sample_texture(*material.texture, material.sampler, at).cast<double>()) / 255;
+    }
+    colour = colour.cwiseProduct(surface) / 255;
+  }
   return colour.cast<float>();
 }
 
-ColourPairs colour_pairs(const TriangleMesh& reference, const SampleSet& samples, const TriangleMesh& test,
+namespace {
+
+// A face each vertex belongs to (the lowest; -1 for none): where a vertex sample of a textured mesh
+// takes its colour, a vertex on a texture seam having one coordinate per face.
+std::vector<int> first_face_of_vertices(const TriangleMesh& mesh) {
+  std::vector<int> face(mesh.vertex_count(), -1);
+  for (std::size_t f = mesh.triangle_count(); f-- > 0;) {
+    for (const int v : mesh.triangles()[f]) face[v] = static_cast<int>(f);
+  }
+  return face;
+}
+
+}  // namespace
+
+std::vector<Colour> sample_colours(const TriangleMesh& reference, const SampleSet& samples) {
+  const bool vertex_samples = samples.kind == "vertices";
+  const std::vector<int> vertex_face =
+      vertex_samples && reference.texture_mapping() ? first_face_of_vertices(reference) : std::vector<int>();
+  std::vector<Colour> colours(samples.size());
+  tbb::parallel_for(std::size_t(0), samples.size(), [&](std::size_t k) {
+    const Vec3& x = samples.positions[k];
+    if (!vertex_samples) {
+      colours[k] = colour_on_face(reference, samples.elements[k], x);
+    } else if (vertex_face.empty()) {
+      colours[k] = reference.vertex_colours()[samples.elements[k]];
+    } else {
+      colours[k] = colour_on_face(reference, vertex_face[samples.elements[k]], x);
+    }
+  });
+  return colours;
+}
+
+ColourPairs colour_pairs(std::vector<Colour> reference, const SampleSet& samples, const TriangleMesh& test,
                          const DistanceResult& result, Semantics semantics) {
   if (result.hit_face.size() != samples.size()) {
     throw Error("colour: the method gave no hit faces; colour needs the face each sample's line meets");
   }
-  const bool vertex_samples = samples.kind == "vertices";
   ColourPairs pairs;
-  pairs.reference.resize(samples.size());
+  pairs.reference = std::move(reference);
   pairs.test.assign(samples.size(), Colour::Constant(std::numeric_limits<float>::quiet_NaN()));
   tbb::parallel_for(std::size_t(0), samples.size(), [&](std::size_t k) {
-    const Vec3& x = samples.positions[k];
-    pairs.reference[k] = vertex_samples ? reference.vertex_colours()[samples.elements[k]]
-                                        : colour_on_face(reference, samples.elements[k], x);
     if (!result.hit[k]) return;
-    const Vec3 at = correspondence_point(x, samples.normals[k], result.signed_distance[k], semantics);
+    const Vec3 at =
+        correspondence_point(samples.positions[k], samples.normals[k], result.signed_distance[k], semantics);
     pairs.test[k] = colour_on_face(test, result.hit_face[k], at);
   });
   return pairs;

@@ -13,7 +13,8 @@
 namespace roving {
 
 // `mesh`'s colour at the point of triangle `face` nearest `point`: its vertex colours interpolated
-// barycentrically there. Requires mesh.has_colour().
+// barycentrically there (white when it has none), times its material's factor and texture, sampled
+// at the texture coordinates interpolated by the same weights. Requires mesh.has_colour().
 Colour colour_on_face(const TriangleMesh& mesh, std::size_t face, const Vec3& point);
 
 // The point on TEST a sample at x with normal n and signed distance d corresponds to, to be
@@ -23,15 +24,23 @@ inline Vec3 correspondence_point(const Vec3& x, const Vec3& n, double d, Semanti
   return semantics == Semantics::Closest ? x : Vec3(x + d * n);
 }
 
-// Both colours of every sample: REF's at the sample (a vertex sample takes its vertex's colour,
-// a face or area sample its face's colour at the sample) and TEST's at the correspondence on the
-// face `result.hit_face` names. A no-hit has no TEST colour (NaN).
+// REF's colour at every sample: a vertex sample takes its vertex's colour (on a textured mesh, its
+// lowest face's colour at the vertex), a face or area sample its face's colour at the sample.
+// Requires reference.has_colour() and samples of `reference`.
+std::vector<Colour> sample_colours(const TriangleMesh& reference, const SampleSet& samples);
+
+// Both colours of every sample: REF's (`reference`, one per sample) and TEST's at the
+// correspondence on the face `result.hit_face` names. A no-hit has no TEST colour (NaN).
 struct ColourPairs {
   std::vector<Colour> reference, test;
 };
-// Requires reference.has_colour(), test.has_colour(), samples of `reference` and a result with
-// hit faces. Throws roving::Error when the result has none.
-ColourPairs colour_pairs(const TriangleMesh& reference, const SampleSet& samples, const TriangleMesh& test,
+// Requires test.has_colour() and a result with hit faces; throws roving::Error when it has none.
+ColourPairs colour_pairs(std::vector<Colour> reference, const SampleSet& samples, const TriangleMesh& test,
                          const DistanceResult& result, Semantics semantics);
+// The same with REF a coloured mesh the samples were taken on.
+inline ColourPairs colour_pairs(const TriangleMesh& reference, const SampleSet& samples,
+                                const TriangleMesh& test, const DistanceResult& result, Semantics semantics) {
+  return colour_pairs(sample_colours(reference, samples), samples, test, result, semantics);
+}
 
 }  // namespace roving

@@ -1,4 +1,4 @@
-// Point clouds: positions with optional unit normals.
+// Point clouds: positions with optional unit normals and colours.
 #pragma once
 
 #include <vector>
@@ -9,7 +9,8 @@ namespace roving {
 
 struct PointCloud {
   std::vector<Vec3> positions;
-  std::vector<Vec3> normals;  // unit; empty when the file had none
+  std::vector<Vec3> normals;    // unit; empty when the file had none
+  std::vector<Colour> colours;  // sRGB code values (triangle_mesh.h); empty when the file had none
 };
 
 }  // namespace roving

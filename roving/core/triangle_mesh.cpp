@@ -122,8 +122,16 @@ TriangleMesh TriangleMesh::transformed(const Vec3& origin, double scale) const {
   for (std::size_t i = 0; i < positions_.size(); ++i) moved[i] = scale * (positions_[i] - origin);
   TriangleMesh mesh(std::move(moved), triangles_);
   mesh.vertex_colours_ = vertex_colours_;
+  mesh.texture_mapping_ = texture_mapping_;
   return mesh;
 }
+
+namespace {
+// NaN fails both comparisons.
+bool valid_colour(const Colour& c) {
+  return (c.array() >= 0).all() && (c.array() <= 255).all();
+}
+}  // namespace
 
 void TriangleMesh::set_vertex_colours(std::vector<Colour> colours, const std::string& source) {
   if (colours.size() != positions_.size()) {
@@ -132,7 +140,7 @@ void TriangleMesh::set_vertex_colours(std::vector<Colour> colours, const std::st
   }
   for (std::size_t i = 0; i < colours.size(); ++i) {
     const Colour& c = colours[i];
-    if (!(c.array() >= 0).all() || !(c.array() <= 255).all()) {
+    if (!valid_colour(c)) {
       throw Error(
           fmt::format("{}: vertex {} has colour ({}, {}, {}); expected sRGB code values "
                       "within [0, 255]",
@@ -140,6 +148,41 @@ void TriangleMesh::set_vertex_colours(std::vector<Colour> colours, const std::st
     }
   }
   vertex_colours_ = std::move(colours);
+}
+
+void TriangleMesh::set_texture_mapping(TextureMapping mapping, const std::string& source) {
+  if (mapping.face_material.size() != triangles_.size() ||
+      mapping.corner_uv.size() != 3 * triangles_.size()) {
+    throw Error(
+        fmt::format("{}: {} materials and {} texture coordinates for {} triangles; expected one "
+                    "material and three coordinates per triangle",
+                    source, mapping.face_material.size(), mapping.corner_uv.size(), triangles_.size()));
+  }
+  for (std::size_t f = 0; f < triangles_.size(); ++f) {
+    const int m = mapping.face_material[f];
+    if (m < 0 || static_cast<std::size_t>(m) >= mapping.materials.size()) {
+      throw Error(fmt::format("{}: triangle {} has material {}; expected 0..{}", source, f, m,
+                              static_cast<long long>(mapping.materials.size()) - 1));
+    }
+  }
+  for (std::size_t i = 0; i < mapping.corner_uv.size(); ++i) {
+    if (!mapping.corner_uv[i].allFinite()) {
+      throw Error(fmt::format("{}: triangle {} has a non-finite texture coordinate", source, i / 3));
+    }
+  }
+  for (const Material& material : mapping.materials) {
+    if (!valid_colour(material.factor)) {
+      throw Error(
+          fmt::format("{}: material '{}' has colour factor ({}, {}, {}); expected code values within "
+                      "[0, 255]",
+                      source, material.name, material.factor.x(), material.factor.y(), material.factor.z()));
+    }
+    const Texture* t = material.texture.get();
+    if (t && (t->width <= 0 || t->height <= 0 || t->rgb.size() != std::size_t(t->width) * t->height * 3)) {
+      throw Error(fmt::format("{}: material '{}' has a malformed texture", source, material.name));
+    }
+  }
+  texture_mapping_ = std::make_shared<const TextureMapping>(std::move(mapping));
 }
 
 }  // namespace roving

@@ -6,16 +6,19 @@
 #include <array>
 #include <cstddef>
 #include <limits>
+#include <memory>
 #include <string>
 #include <vector>
+
+#include "roving/core/texture.h"
 
 namespace roving {
 
 using Vec3 = Eigen::Vector3d;
 using Triangle = std::array<int, 3>;
-// A colour as its stored encoding: sRGB code values on [0, 255] (the 8-bit values MPEG's metrics
-// compare), in float so that a file's float or 16-bit colours keep their fraction of a step.
-using Colour = Eigen::Vector3f;
+// Colour (texture.h): a colour as its stored encoding, sRGB code values on [0, 255] (the 8-bit
+// values MPEG's metrics compare), in float so that a file's float or 16-bit colours keep their
+// fraction of a step.
 
 struct BoundingBox {
   Vec3 min = Vec3::Constant(std::numeric_limits<double>::infinity());
@@ -70,8 +73,14 @@ class TriangleMesh {
   // Per-vertex colours (empty: the model has none). set_vertex_colours throws roving::Error naming
   // `source` unless there is one per vertex, each channel finite and within [0, 255].
   const std::vector<Colour>& vertex_colours() const { return vertex_colours_; }
-  bool has_colour() const { return !vertex_colours_.empty(); }
   void set_vertex_colours(std::vector<Colour> colours, const std::string& source = "mesh");
+  // Materials and texture coordinates (null: none). set_texture_mapping throws roving::Error naming
+  // `source` unless there are three finite coordinates per triangle and a valid material per
+  // triangle, every factor within [0, 255]. A face's colour is then its vertex colour (white when
+  // none) times its material's, in code values (colour.h).
+  const TextureMapping* texture_mapping() const { return texture_mapping_.get(); }
+  void set_texture_mapping(TextureMapping mapping, const std::string& source = "mesh");
+  bool has_colour() const { return !vertex_colours_.empty() || texture_mapping_; }
 
   // The same mesh with every position mapped p -> scale * (p - origin).
   TriangleMesh transformed(const Vec3& origin, double scale) const;
@@ -87,6 +96,7 @@ class TriangleMesh {
   std::vector<Vec3> positions_;
   std::vector<Triangle> triangles_;
   std::vector<Colour> vertex_colours_;
+  std::shared_ptr<const TextureMapping> texture_mapping_;  // shared: transformed() copies keep it
   std::vector<bool> vertex_referenced_;
   std::size_t unreferenced_vertices_ = 0;
   std::size_t degenerate_triangles_ = 0;

@@ -1,4 +1,4 @@
-// Internal: a strict, fast Wavefront OBJ reader (positions and faces only).
+// Internal: a strict, fast Wavefront OBJ reader: positions, faces, and what colours them.
 #pragma once
 
 #include <string>
@@ -8,8 +8,12 @@
 namespace roving {
 
 // Reads `v` and `f` records (f with v, v/vt, v/vt/vn or v//vn corners, negative indices
-// relative to the vertices read so far, polygons fan-triangulated); other records are skipped.
-// Throws roving::Error "path:line: expected ..., found ..." on a malformed record.
+// relative to the records read so far, polygons fan-triangulated), and the colour: `v x y z r g b`
+// vertex colours (fractions of [0, 1], as MeshLab writes them), `vt`, `mtllib` and `usemtl` with
+// the MTL's Kd and map_Kd (mtl_reader.h). Other records are skipped.
+// Throws roving::Error "path:line: expected ..., found ..." on a malformed record, and for colour
+// that would be guessed: colours on only some vertices, faces without a material beside faces with
+// one, a textured face without texture coordinates, an undefined material.
 LoadedMesh read_obj(const std::string& path);
 
 }  // namespace roving

@@ -3,6 +3,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <fstream>
@@ -10,8 +11,8 @@
 
 #include "ply_reader.h"
 #include "roving/core/error.h"
-#include "roving/formats/file_bytes.h"
 #include "roving/formats/atomic_file.h"
+#include "roving/formats/file_bytes.h"
 
 namespace roving {
 namespace {
@@ -32,14 +33,55 @@ void validate(PointCloud& cloud, const std::string& path) {
   }
 }
 
+// XYZ columns by role; the header line names them, else 3 or 6 numbers are x y z [nx ny nz].
+enum Column { X, Y, Z, NX, NY, NZ, R, G, B, kColumns };
+
+// The columns a first comment line names ("# x y z r g b", "//X,Y,Z,R,G,B,Nx,Ny,Nz"), or an empty
+// list when it is not such a line. Throws when it names x, y and z but something else is off.
+std::vector<Column> header_columns(std::string line, const std::string& path) {
+  const std::size_t start = line.rfind("//", 0) == 0 ? 2 : line.rfind('#', 0) == 0 ? 1 : std::string::npos;
+  if (start == std::string::npos) return {};
+  for (char& c : line) c = c == ',' ? ' ' : static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  static const std::pair<const char*, Column> kNames[] = {{"x", X},   {"y", Y},   {"z", Z},     {"nx", NX},
+                                                          {"ny", NY}, {"nz", NZ}, {"r", R},     {"g", G},
+                                                          {"b", B},   {"red", R}, {"green", G}, {"blue", B}};
+  std::vector<Column> columns;
+  std::istringstream words(line.substr(start));
+  for (std::string word; words >> word;) {
+    const auto named =
+        std::find_if(std::begin(kNames), std::end(kNames), [&](const auto& n) { return word == n.first; });
+    if (named == std::end(kNames)) return {};  // a plain comment
+    if (std::find(columns.begin(), columns.end(), named->second) != columns.end()) {
+      throw Error(fmt::format("{}:1: the header names column '{}' twice", path, word));
+    }
+    columns.push_back(named->second);
+  }
+  const auto has = [&](std::initializer_list<Column> set) {
+    return std::count_if(set.begin(), set.end(),
+                         [&](Column c) { return std::count(columns.begin(), columns.end(), c); });
+  };
+  if (has({X, Y, Z}) != 3) return {};
+  if (has({NX, NY, NZ}) % 3 != 0 || has({R, G, B}) % 3 != 0) {
+    throw Error(
+        fmt::format("{}:1: the header names some of nx ny nz or r g b; expected all three or none", path));
+  }
+  return columns;
+}
+
 PointCloud read_xyz(const std::string& path) {
   require_regular_file(path, "a .xyz point cloud");
   std::ifstream file(path);
   if (!file) throw Error(fmt::format("{}: cannot open for reading", path));
   PointCloud cloud;
   std::string line;
-  int columns = 0;
+  std::vector<Column> columns;
+  bool normals = false, colours = false;
   for (std::size_t line_number = 1; std::getline(file, line); ++line_number) {
+    if (line_number == 1 && !(columns = header_columns(line, path)).empty()) {
+      normals = std::count(columns.begin(), columns.end(), NX);
+      colours = std::count(columns.begin(), columns.end(), R);
+      continue;
+    }
     std::istringstream words(line);
     std::vector<double> values;
     for (std::string token; words >> token;) {
@@ -52,13 +94,31 @@ PointCloud read_xyz(const std::string& path) {
       values.push_back(value);
     }
     if (values.empty()) continue;
-    if (columns == 0) columns = static_cast<int>(values.size());
-    if ((values.size() != 3 && values.size() != 6) || static_cast<int>(values.size()) != columns) {
-      throw Error(fmt::format("{}:{}: expected {} numbers (x y z [nx ny nz]) like the first point, found {}",
-                              path, line_number, columns == 0 ? 3 : columns, values.size()));
+    if (columns.empty()) {
+      if (values.size() != 3 && values.size() != 6) {
+        throw Error(
+            fmt::format("{}:{}: expected 3 or 6 numbers (x y z [nx ny nz]), found {}; for other columns "
+                        "name them on the first line ('# x y z r g b')",
+                        path, line_number, values.size()));
+      }
+      columns = {X, Y, Z};
+      if (values.size() == 6) columns.insert(columns.end(), {NX, NY, NZ}), normals = true;
     }
-    cloud.positions.emplace_back(values[0], values[1], values[2]);
-    if (columns == 6) cloud.normals.emplace_back(values[3], values[4], values[5]);
+    if (values.size() != columns.size()) {
+      throw Error(fmt::format("{}:{}: expected {} numbers like the first point, found {}", path, line_number,
+                              columns.size(), values.size()));
+    }
+    double v[kColumns];
+    for (std::size_t k = 0; k < columns.size(); ++k) v[columns[k]] = values[k];
+    cloud.positions.emplace_back(v[X], v[Y], v[Z]);
+    if (normals) cloud.normals.emplace_back(v[NX], v[NY], v[NZ]);
+    if (colours) {
+      if (!(v[R] >= 0 && v[R] <= 255 && v[G] >= 0 && v[G] <= 255 && v[B] >= 0 && v[B] <= 255)) {
+        throw Error(fmt::format("{}:{}: colour ({}, {}, {}); expected code values within [0, 255]", path,
+                                line_number, v[R], v[G], v[B]));
+      }
+      cloud.colours.emplace_back(float(v[R]), float(v[G]), float(v[B]));
+    }
   }
   return cloud;
 }
@@ -68,7 +128,7 @@ PointCloud read_ply_points(const std::string& path) {
   if (ply.declares_faces) {
     throw Error(fmt::format("{}: declares faces; expected a point cloud (read it as a mesh)", path));
   }
-  return PointCloud{ply.mesh.mesh.positions(), std::move(ply.normals)};
+  return PointCloud{ply.mesh.mesh.positions(), std::move(ply.normals), ply.mesh.mesh.vertex_colours()};
 }
 
 }  // namespace

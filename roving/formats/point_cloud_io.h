@@ -1,5 +1,6 @@
-// Point clouds with normals: PLY (vertices, optional nx ny nz, no faces) and XYZ ("x y z" or
-// "x y z nx ny nz" per line).
+// Point clouds with normals and colours: PLY (vertices, optional nx ny nz and red green blue, no
+// faces) and XYZ: "x y z" or "x y z nx ny nz" per line, or the columns a first comment line names
+// ("# x y z r g b nx ny nz" or CloudCompare's "//X,Y,Z,R,G,B"), r g b being code values 0-255.
 #pragma once
 
 #include <string>
@@ -9,7 +10,7 @@
 namespace roving {
 
 // Throws roving::Error naming the file (and line, for XYZ) on a malformed record, NaN/inf,
-// normals of zero length, or no points.
+// normals of zero length, a colour outside [0, 255], an unknown or repeated column name, or no points.
 PointCloud read_point_cloud(const std::string& path);
 void write_point_cloud_ply(const PointCloud& cloud, const std::string& path);
 

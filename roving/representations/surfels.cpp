@@ -117,6 +117,12 @@ SurfelSurface make_surfels(const PointCloud& cloud, const std::string& path, con
     }
   }
   SurfelSurface surfels{TriangleMesh(std::move(positions), std::move(triangles)), rule, 0, 0, 0};
+  if (!cloud.colours.empty()) {  // each disk in its point's colour
+    std::vector<Colour> colours;
+    colours.reserve(n * (sides + 1));
+    for (const Colour& c : cloud.colours) colours.insert(colours.end(), sides + 1, c);
+    surfels.mesh.set_vertex_colours(std::move(colours), path);
+  }
   std::vector<double> sorted = radius;
   std::nth_element(sorted.begin(), sorted.begin() + n / 2, sorted.end());
   surfels.median_radius = sorted[n / 2];

@@ -1,6 +1,7 @@
 // libFuzzer harness for one file format (ROVING_FUZZ_EXTENSION): the bytes are written to a file
-// of that extension and loaded as a user's model would be, then sampled. Any roving::Error is a
-// clean refusal; a crash, a sanitizer report, a hang or an allocation over the limit is a finding.
+// of that extension and loaded as a user's model would be, then sampled (a texture, decoded). Any
+// roving::Error is a clean refusal; a crash, a sanitizer report, a hang or an allocation over the limit is a
+// finding.
 #include <unistd.h>
 
 #include <cstdint>
@@ -9,6 +10,7 @@
 #include <string>
 
 #include "roving/core/error.h"
+#include "roving/formats/texture_io.h"
 #include "roving/representations/model.h"
 
 namespace {
@@ -32,6 +34,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   std::fwrite(data, 1, size, file);
   std::fclose(file);
   try {
+    if constexpr (ROVING_FUZZ_TEXTURE) {
+      (void)roving::read_texture(path);
+      return 0;
+    }
     const roving::Model model = roving::load_model(path);
     roving::SampleSpec spec;
     (void)roving::reference_samples(model, spec);
