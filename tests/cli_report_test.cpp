@@ -488,6 +488,15 @@ TEST(CliReport, ColourFiguresGatesAndSamplesTable) {
   EXPECT_NE(one.err.find("has colour but"), std::string::npos) << one.err;
   EXPECT_FALSE(nlohmann::json::parse(one.out).contains("colour")) << "no colour: absent, not zero";
 
+  // No hit within h: no colour figure at all (null, not zero), and a colour gate fails closed.
+  const CliRun far =
+      run_cli("measure " + ref + " " + test + " --max-error 0.01 --json - --fail-above delta_e_max=50");
+  EXPECT_EQ(far.exit_code, 3) << far.err;
+  EXPECT_NE(far.err.find("gate breached: delta_e_max has no value"), std::string::npos) << far.err;
+  const auto far_colour = nlohmann::json::parse(far.out)["colour"];
+  EXPECT_EQ(far_colour["compared"], 0);
+  EXPECT_TRUE(far_colour["delta_e_mean"].is_null() && far_colour["rgb"]["r"]["rms"].is_null()) << far_colour;
+
   // A coloured point cloud as REF: each point's own colour (code values 0-255) against the cube's.
   const std::string points = folder.file(
       "points.xyz", "# x y z nx ny nz r g b\n0 0 0.5 0 0 1 190 5 200\n0.1 0 0.5 0 0 1 190 5 200.5\n");

@@ -86,7 +86,11 @@ std::vector<std::string> breached_gates(const std::vector<Gate>& gates, const st
       const double limit = limit_of(gate, v);
       const bool upper = on == GateOn::Upper && !std::isnan(v.high);
       const double compared = upper ? v.high : std::abs(v.value);
-      if (!(compared <= limit)) {
+      if (std::isnan(compared)) {  // fails closed: a figure that could not be measured passes no gate
+        lines.push_back(
+            fmt::format("gate breached: {}{} has no value (nothing was compared) (--fail-above {})",
+                        gate.metric, where(v), gate.text));
+      } else if (!(compared <= limit)) {
         lines.push_back(fmt::format("gate breached: {}{} = {:.6g}{} is above the limit {:.6g} (--fail-above {})",
                                     gate.metric, where(v), v.value,
                                     upper ? fmt::format(", its interval reaching {:.6g},", v.high) : "", limit,

@@ -343,9 +343,10 @@ nlohmann::json direction_json(const DirectionReport& d, const MeasureReport& r) 
 std::string colour_lines(const DirectionReport& d) {
   const ColourStatistics& c = *d.colour;
   std::string out = fmt::format(
-      "  {}colour: REF's at the sample against TEST's where d was measured; {} hits compared, {} no-hits "
-      "without a colour\n",
+      "  {}colour: REF's at the sample against TEST's where d was measured:\n"
+      "    {} hits compared, {} no-hits without a colour\n",
       d.label.empty() ? "" : d.label + ": ", c.compared, c.no_hit);
+  if (c.compared == 0) return out + "    no colour figures: no hit to compare\n";
   out += fmt::format("    {:<34}", "sRGB code values (0-255)");
   for (const char* name : {"R'", "G'", "B'", "Y'", "Cb", "Cr"}) out += fmt::format(" {:>9}", name);
   out += "\n";

@@ -6,6 +6,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "roving/core/colour.h"
@@ -16,20 +17,24 @@ namespace roving {
 // gives the same PSNR).
 constexpr double kColourPeak = 255;
 
+// Every figure is NaN (no figure, null in JSON) until a hit is compared.
+constexpr double kNoFigure = std::numeric_limits<double>::quiet_NaN();
+
 struct ChannelErrors {
-  double mean_abs = 0, rms = 0;
-  double psnr = 0;  // 10 log10(peak^2 / MSE); +infinity where the colours agree exactly
+  double mean_abs = kNoFigure, rms = kNoFigure;
+  double psnr = kNoFigure;  // 10 log10(peak^2 / MSE); +infinity where the colours agree exactly
 };
 
 // Plain means over the samples that have both colours (the hits), as MPEG's metrics average
 // over points; a no-hit has no TEST colour and is counted apart.
 struct ColourStatistics {
   std::size_t compared = 0, no_hit = 0;
-  std::array<ChannelErrors, 3> rgb;                           // R', G', B'
-  std::array<ChannelErrors, 3> ycbcr;                         // Y', Cb, Cr (BT.709)
-  double psnr_rgb = 0;                                        // on the mean of the three channels' MSE
-  double psnr_ycbcr_611 = 0;                                  // MPEG: on (6 MSE_Y + MSE_Cb + MSE_Cr) / 8
-  double delta_e_mean = 0, delta_e_p95 = 0, delta_e_max = 0;  // CIEDE2000; p95 nearest-rank
+  std::array<ChannelErrors, 3> rgb;    // R', G', B'
+  std::array<ChannelErrors, 3> ycbcr;  // Y', Cb, Cr (BT.709)
+  double psnr_rgb = kNoFigure;         // on the mean of the three channels' MSE
+  double psnr_ycbcr_611 = kNoFigure;   // MPEG: on (6 MSE_Y + MSE_Cb + MSE_Cr) / 8
+  double delta_e_mean = kNoFigure, delta_e_p95 = kNoFigure,
+         delta_e_max = kNoFigure;  // CIEDE2000; p95 nearest-rank
 };
 
 // Throws roving::Error on sizes that disagree.
