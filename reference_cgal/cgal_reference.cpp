@@ -125,7 +125,7 @@ class CgalAabbMethod final : public DistanceMethod {
           return options.semantics == Semantics::Closest ? std::optional<FaceHit>(closest(x, n))
                                                          : along_normal(x, n, options);
         },
-        progress_, options.hit_faces);
+        progress_, options.colour);
   }
 
  private:

@@ -133,7 +133,7 @@ class EmbreeReference final : public DistanceMethod {
               return FaceHit{signed_offset(x, samples.normals[k], closest.closest), closest.face};
             };
           },
-          progress_, options.hit_faces);
+          progress_, options.colour);
     }
     const double h = options.max_error;
     return measure_each(
@@ -141,7 +141,7 @@ class EmbreeReference final : public DistanceMethod {
         [&](std::size_t k) {
           return along_normal(samples.positions[k], samples.normals[k], h, options.semantics);
         },
-        progress_, options.hit_faces);
+        progress_, options.colour);
   }
 
  private:

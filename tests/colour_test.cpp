@@ -10,6 +10,8 @@
 #include <cmath>
 
 #include "analytic.h"
+#include "colour_models.h"
+#include "coloured.h"
 #include "roving/core/colour_science.h"
 #include "roving/core/colour_statistics.h"
 #include "roving/registry/method_registry.h"
@@ -17,6 +19,8 @@
 
 namespace roving {
 namespace {
+
+using testing::gradient_plane;
 
 // Sharma, Wu and Dalal (2005), Table 1: the 34 CIELAB pairs and their CIEDE2000 differences.
 struct SharmaPair {
@@ -124,32 +128,6 @@ TEST(ColourStatistics, PsnrAndMeansOfAKnownDifference) {
   EXPECT_GE(s.delta_e_max, s.delta_e_p95);
 }
 
-// A square grid of side 10 at height z, normal +z, coloured by the linear field
-// (50 + 10 x', 20 + 10 y', 100) with x' = x - shift: TEST moved along x by `shift` in colour.
-TriangleMesh gradient_plane(double z, double shift, int n = 21) {
-  std::vector<Vec3> positions;
-  std::vector<Colour> colours;
-  for (int j = 0; j < n; ++j) {
-    for (int i = 0; i < n; ++i) {
-      const double x = 10.0 * i / (n - 1), y = 10.0 * j / (n - 1);
-      positions.emplace_back(x, y, z);
-      colours.emplace_back(static_cast<float>(50 + 10 * (x - shift)), static_cast<float>(20 + 10 * y),
-                           100.0f);
-    }
-  }
-  std::vector<Triangle> triangles;
-  for (int j = 0; j + 1 < n; ++j) {
-    for (int i = 0; i + 1 < n; ++i) {
-      const int a = j * n + i, b = a + 1, c = a + n, d = c + 1;
-      triangles.push_back({a, b, d});
-      triangles.push_back({a, d, c});
-    }
-  }
-  TriangleMesh mesh(std::move(positions), std::move(triangles));
-  mesh.set_vertex_colours(std::move(colours));
-  return mesh;
-}
-
 TEST(ColourRule, GradientPlaneMovedByAKnownOffset) {
   // TEST lies 0.5 above REF and its colour field is shifted by 0.5 along x: wherever a sample's
   // line meets it, TEST's R' is REF's less 5 exactly and G', B' agree (the field is linear, so
@@ -191,19 +169,6 @@ TEST(ColourRule, NoHitHasNoColour) {
       colour_pairs(reference, samples, test, result, Semantics::FirstHit), result.hit);
   EXPECT_EQ(s.compared, 0u);
   EXPECT_EQ(s.no_hit, samples.size());
-}
-
-// A smooth colour field over the bunny, so that a face's colour says which face it is.
-std::vector<Colour> procedural_colours(const TriangleMesh& mesh) {
-  const BoundingBox& box = mesh.bounding_box();
-  std::vector<Colour> colours;
-  for (const Vec3& p : mesh.positions()) {
-    const Vec3 u = (p - box.min).cwiseQuotient(box.size());
-    colours.emplace_back(static_cast<float>(127.5 + 127.5 * std::sin(12 * u.x())),
-                         static_cast<float>(127.5 + 127.5 * std::cos(9 * u.y())),
-                         static_cast<float>(255 * std::clamp(u.z(), 0.0, 1.0)));
-  }
-  return colours;
 }
 
 TEST(ColourRule, EmbreeAndCgalGiveTheSameFacesAndColours) {

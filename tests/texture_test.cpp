@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "colour_models.h"
 #include "roving/core/colour.h"
 #include "roving/core/colour_statistics.h"
 #include "roving/core/error.h"
@@ -21,26 +22,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// width x height texels, each colour(column, row).
-template <typename Pattern>
-Texture make_texture(int width, int height, Pattern colour) {
-  Texture t;
-  t.width = width;
-  t.height = height;
-  for (int row = 0; row < height; ++row) {
-    for (int column = 0; column < width; ++column) {
-      const Eigen::Vector3i c = colour(column, row);
-      for (int k = 0; k < 3; ++k) t.rgb.push_back(static_cast<std::uint8_t>(c[k]));
-    }
-  }
-  return t;
-}
-
-Texture checkerboard(int n) {
-  return make_texture(n, n, [](int i, int j) {
-    return (i + j) % 2 ? Eigen::Vector3i(255, 255, 255) : Eigen::Vector3i(i, j, 7);
-  });
-}
+using testing::checkerboard;
+using testing::make_texture;
 
 TEST(TextureSampling, TexelCentresGiveTheTexelUnderEitherFilter) {
   const Texture t = checkerboard(8);

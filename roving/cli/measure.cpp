@@ -226,8 +226,8 @@ void describe_pair(const Model& a, const Model& b, MeasurePlan& plan, MeasureRep
   if (plan.symmetric) test_surface(a);
   report.method = plan.method->name();
   report.semantics = plan.options.semantics;
-  plan.options.hit_faces = has_colour(a) && has_colour(b);
-  if (!plan.options.hit_faces) {  // a colour gate fails before the long work, not after it
+  plan.options.colour = has_colour(a) && has_colour(b);
+  if (!plan.options.colour) {  // a colour gate fails before the long work, not after it
     std::vector<Gate> colour_gates;
     std::copy_if(plan.gates.begin(), plan.gates.end(), std::back_inserter(colour_gates),
                  [](const Gate& gate) { return is_colour_metric(gate.metric); });
@@ -309,13 +309,15 @@ void measure_models(const Model& a, const Model& b, MeasurePlan& plan, MeasureRe
       progress.stage(fmt::format("{}certified Hausdorff", d.label.empty() ? "" : d.label + ": "));
       d.hausdorff = certified_hausdorff(test_surface(*reference), test_mesh, report.hausdorff_bound);
     }
-    if (plan.options.hit_faces && d.result.hit_face.empty()) {
+    if (plan.options.colour && d.result.hit_face.empty() && d.result.hit_colour.empty()) {
       if (&d == &report.directions.front())
         warn({fmt::format(
-            "colour: {} does not report which face of TEST each hit lies on; colour figures come "
-            "from embree and cgal",
+            "colour: {} gives no colour (no face of TEST for each hit, no frame buffer); colour figures "
+            "come from embree, cgal and the GL methods",
             plan.method->name())});
-    } else if (plan.options.hit_faces) {
+    } else if (plan.options.colour) {
+      if (plan.gl.gpu_cameras && d.result.gl && !d.result.gl->gpu_cameras && &d == &report.directions.front())
+        warn({"colour: the cameras were built on the CPU: --camera-geometry gpu builds no colour yet"});
       stage = "comparing colours";
       d.colour_pairs = colour_pairs(reference_colours(*reference, d.samples), d.samples, test_mesh, d.result,
                                     plan.options.semantics);

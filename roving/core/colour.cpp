@@ -67,11 +67,19 @@ std::vector<Colour> sample_colours(const TriangleMesh& reference, const SampleSe
 
 ColourPairs colour_pairs(std::vector<Colour> reference, const SampleSet& samples, const TriangleMesh& test,
                          const DistanceResult& result, Semantics semantics) {
-  if (result.hit_face.size() != samples.size()) {
-    throw Error("colour: the method gave no hit faces; colour needs the face each sample's line meets");
-  }
   ColourPairs pairs;
   pairs.reference = std::move(reference);
+  if (result.hit_colour.size() == samples.size()) {
+    pairs.test = result.hit_colour;
+    for (std::size_t k = 0; k < samples.size(); ++k) {
+      if (!result.hit[k]) pairs.test[k] = Colour::Constant(std::numeric_limits<float>::quiet_NaN());
+    }
+    return pairs;
+  }
+  if (result.hit_face.size() != samples.size()) {
+    throw Error(
+        "colour: the method gave no hit colours or faces; colour needs where each sample's line meets TEST");
+  }
   pairs.test.assign(samples.size(), Colour::Constant(std::numeric_limits<float>::quiet_NaN()));
   tbb::parallel_for(std::size_t(0), samples.size(), [&](std::size_t k) {
     if (!result.hit[k]) return;

@@ -29,12 +29,14 @@ inline Vec3 correspondence_point(const Vec3& x, const Vec3& n, double d, Semanti
 // Requires reference.has_colour() and samples of `reference`.
 std::vector<Colour> sample_colours(const TriangleMesh& reference, const SampleSet& samples);
 
-// Both colours of every sample: REF's (`reference`, one per sample) and TEST's at the
-// correspondence on the face `result.hit_face` names. A no-hit has no TEST colour (NaN).
+// Both colours of every sample: REF's (`reference`, one per sample) and TEST's, as a GL method
+// drew it (`result.hit_colour`) or else at the correspondence on the face `result.hit_face`
+// names. A no-hit has no TEST colour (NaN).
 struct ColourPairs {
   std::vector<Colour> reference, test;
 };
-// Requires test.has_colour() and a result with hit faces; throws roving::Error when it has none.
+// Requires test.has_colour() and a result with hit colours or faces; throws roving::Error when it
+// has neither.
 ColourPairs colour_pairs(std::vector<Colour> reference, const SampleSet& samples, const TriangleMesh& test,
                          const DistanceResult& result, Semantics semantics);
 // The same with REF a coloured mesh the samples were taken on.

@@ -58,9 +58,11 @@ using ProgressFn = std::function<void(const char* stage, std::size_t done, std::
 struct DistanceOptions {
   Semantics semantics = Semantics::FirstHit;
   double max_error = 0;  // h: half-height of the view volume, model units, > 0
-  // Also report the face of TEST each hit lies on (DistanceResult::hit_face), for colour; the
-  // methods that know it (the exact references) fill it, the others leave it empty.
-  bool hit_faces = false;
+  // Also report TEST's colour at each hit, for the colour figures: the exact references give the
+  // face each hit lies on (DistanceResult::hit_face; colour.h then takes the colour there), the GL
+  // methods draw the colour in the frame buffer beside the depth (hit_colour, where TEST has
+  // colour); the baselines give neither.
+  bool colour = false;
 };
 
 // How a GL method resolved one sample.
@@ -92,9 +94,12 @@ struct GlReport {
 struct DistanceResult {
   std::vector<double> signed_distance;
   std::vector<std::uint8_t> hit;
-  // The face of TEST where each hit lies (DistanceOptions::hit_faces); empty when not asked for
+  // The face of TEST where each hit lies (DistanceOptions::colour); empty when not asked for
   // or not known. Where the line meets several faces at the chosen d, the lowest index.
   std::vector<std::uint32_t> hit_face;
+  // TEST's colour at each hit as a GL method drew it (DistanceOptions::colour), code values; NaN
+  // where no colour was drawn; empty when not asked for or not drawn.
+  std::vector<Colour> hit_colour;
   double build_seconds = 0;    // acceleration structures, uploads: once per test model
   double query_seconds = 0;    // all samples
   std::optional<GlReport> gl;  // GL methods only

@@ -46,6 +46,20 @@ struct TileFace {
   std::uint32_t tile, face;
 };
 
+// What colours a tile vertex's fragments (colour runs only): the surface's colour factor there
+// (its vertex colour times its material's factor, as fractions of 255: TriangleMesh's colour) and
+// its texture coordinates (glTF's, v down from the image's top row).
+struct TileShade {
+  float r, g, b, u, v;
+};
+
+// Consecutive tile vertices (three a triangle) drawn with one material's texture
+// (upload_materials()).
+struct MaterialRun {
+  std::uint32_t material;
+  std::size_t vertex_count;
+};
+
 // A rectangle of pixels [x0, x1) x [y0, y1) of a view (x along `right`, y along `up`).
 struct PixelRect {
   int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
@@ -67,17 +81,25 @@ class DepthRenderer {
   // Uploads M_C once: for whole-model views, and with `for_tile_faces` also its positions in
   // double and its triangles, for render_tile_faces().
   virtual void upload_model(const TriangleMesh& mesh, bool for_tile_faces = false) = 0;
+  // Uploads the textures and samplers of M_C's materials (material i's texture, or white where it
+  // has none), for render_coloured_tiles(). Throws roving::Error naming a texture larger than
+  // the context allows.
+  virtual void upload_materials(const std::vector<Material>& materials) = 0;
   // Draws the uploaded model through `camera` into a resolution x resolution 32-bit float depth
   // buffer and returns it row by row from the bottom (x along `right`); 1 where nothing was drawn.
-  virtual void render_view(const OrthoCamera& camera, int resolution, std::vector<float>& depth) = 0;
+  // With `triangles`, also which triangle each pixel shows: 1 + its index in the model, 0 for none.
+  virtual void render_view(const OrthoCamera& camera, int resolution, std::vector<float>& depth,
+                           std::vector<std::uint32_t>* triangles = nullptr) = 0;
   // The same view, drawing only the triangles whose corners (indices into the uploaded model's
   // vertices, three a triangle) `corners` lists, and only the pixels in `rect`: depth has
   // resolution^2 entries; at the pixels of the `wanted` rectangles (within `rect`) they are what
   // render_view() gives wherever no omitted triangle covers the pixel; elsewhere in `rect` they
-  // are undefined, and outside it left as they were.
+  // are undefined, and outside it left as they were. `triangles` as render_view's, the index
+  // being into the triangles `corners` lists.
   virtual void render_view_part(const OrthoCamera& camera, int resolution, const PixelRect& rect,
                                 const std::vector<PixelRect>& wanted,
-                                const std::vector<std::uint32_t>& corners, std::vector<float>& depth) = 0;
+                                const std::vector<std::uint32_t>& corners, std::vector<float>& depth,
+                                std::vector<std::uint32_t>* triangles = nullptr) = 0;
 
   // Draws `vertices` (triangles, three consecutive vertices each) into a grid of one-pixel tiles,
   // tile k at column k % columns, row k / columns, each clipped to its own view volume, and
@@ -85,6 +107,15 @@ class DepthRenderer {
   // central ray, so the depth read back is that ray's first crossing of what was drawn.
   virtual void render_tiles(const std::vector<TileVertex>& vertices, std::size_t tile_count,
                             std::vector<float>& depth) = 0;
+  // The same tiles coloured, the frame buffer beside the Z-buffer (the paper's Section 1): each
+  // vertex's fragments by shades[i] (the factor times its material's texture sampled at the
+  // interpolated coordinates by the material's sampler), the vertices drawn run by run with
+  // `runs`' materials. Also returns each tile's colour in code values (Colour); NaN where nothing
+  // was drawn. Needs upload_materials().
+  virtual void render_coloured_tiles(const std::vector<TileVertex>& vertices,
+                                     const std::vector<TileShade>& shades,
+                                     const std::vector<MaterialRun>& runs, std::size_t tile_count,
+                                     std::vector<float>& depth, std::vector<Colour>& colour) = 0;
   // The same tiles (one per camera), their geometry built on the GPU from `faces`: for each, the
   // uploaded model's triangle in its tile's camera frame, with its edges and corners widened as
   // surface roving's CPU builds them (roving/gl_methods/surface_roving.cpp), in double as there.

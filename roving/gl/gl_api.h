@@ -70,7 +70,17 @@ namespace roving::gl {
   X(PFNGLDRAWARRAYSINDIRECTPROC, DrawArraysIndirect)           \
   X(PFNGLDISPATCHCOMPUTEPROC, DispatchCompute)                 \
   X(PFNGLMEMORYBARRIERPROC, MemoryBarrier)                     \
-  X(PFNGLDRAWELEMENTSPROC, DrawElements)
+  X(PFNGLDRAWELEMENTSPROC, DrawElements)                       \
+  X(PFNGLDRAWBUFFERSPROC, DrawBuffers)                         \
+  X(PFNGLCLEARBUFFERFVPROC, ClearBufferfv)                     \
+  X(PFNGLCLEARBUFFERUIVPROC, ClearBufferuiv)                   \
+  X(PFNGLGENTEXTURESPROC, GenTextures)                         \
+  X(PFNGLBINDTEXTUREPROC, BindTexture)                         \
+  X(PFNGLACTIVETEXTUREPROC, ActiveTexture)                     \
+  X(PFNGLTEXIMAGE2DPROC, TexImage2D)                           \
+  X(PFNGLTEXPARAMETERIPROC, TexParameteri)                     \
+  X(PFNGLDELETETEXTURESPROC, DeleteTextures)                   \
+  X(PFNGLUNIFORM1IPROC, Uniform1i)
 
 struct Api {
 #define ROVING_GL_DECLARE(type, name) type name = nullptr;

@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <optional>
 #include <utility>
 
 #include "gl_api.h"
@@ -32,9 +34,17 @@ void main() {
 
 // Roving tiles: vertices arrive in their sample camera's normalised frame; tile k is one pixel
 // whose centre is that camera's central ray; clip distances keep each triangle inside its tile.
-constexpr const char* kTileVertexShader = R"(#version 450 core
+// Compiled twice: for depth alone, and SHADED, passing each vertex's colour factor and texture
+// coordinates on to kShadeFragmentShader.
+constexpr const char* kTileVertexShader = R"(
 layout(location = 0) in vec3 normalised;
 layout(location = 1) in uint tile;
+#ifdef SHADED
+layout(location = 2) in vec3 factor_in;
+layout(location = 3) in vec2 uv_in;
+out vec3 factor;
+out vec2 uv;
+#endif
 uniform ivec2 grid;  // columns, rows
 out float gl_ClipDistance[4];
 void main() {
@@ -45,6 +55,31 @@ void main() {
   gl_ClipDistance[1] = 1.0 + normalised.x;
   gl_ClipDistance[2] = 1.0 - normalised.y;
   gl_ClipDistance[3] = 1.0 + normalised.y;
+#ifdef SHADED
+  factor = factor_in;
+  uv = uv_in;
+#endif
+}
+)";
+
+// The colour of a surface where a fragment lies: its factor (vertex colour times material
+// factor) times its material's texture, sampled by the texture's own sampler state (wrap and
+// filter as glTF's sampler says, no mipmaps: a sample is a point). Fractions of 255.
+constexpr const char* kShadeFragmentShader = R"(#version 450 core
+in vec3 factor;
+in vec2 uv;
+uniform sampler2D surface;
+layout(location = 0) out vec4 colour;
+void main() {
+  colour = vec4(factor * texture(surface, uv).rgb, 1.0);
+}
+)";
+
+// Which triangle a view's pixel shows: 1 + its index in the draw (0 is the clear: none).
+constexpr const char* kTriangleFragmentShader = R"(#version 450 core
+layout(location = 1) out uint triangle;
+void main() {
+  triangle = uint(gl_PrimitiveID) + 1u;
 }
 )";
 
@@ -194,6 +229,18 @@ constexpr const char* kDepthOnlyFragmentShader = R"(#version 450 core
 void main() {}
 )";
 
+// The far rectangles also clear a view's triangles, where a view draws them.
+constexpr const char* kFarFragmentShader = R"(#version 450 core
+layout(location = 1) out uint triangle;
+void main() {
+  triangle = 0u;
+}
+)";
+
+// Where a draw's fragments go: depth always; with colour, attachment 0 (RGBA32F); with
+// triangles, attachment 1 (R32UI).
+enum class Outputs { Depth, Colour, Triangles };
+
 class GlDepthRenderer final : public DepthRenderer {
  public:
   explicit GlDepthRenderer(GlBackend backend) : context_(gl::make_context(backend)) {
@@ -207,13 +254,22 @@ class GlDepthRenderer final : public DepthRenderer {
     gl_.GetIntegerv(GL_MAX_VIEWPORT_DIMS, viewport);
     max_size_ = std::min({renderbuffer, viewport[0], viewport[1]});
     view_program_ = link(kViewVertexShader, "view");
-    tile_program_ = link(kTileVertexShader, "tile");
+    view_triangle_program_ =
+        gl::link_program(gl_, info_.backend, "view triangles", kViewVertexShader, kTriangleFragmentShader);
+    const std::string tile_source = std::string("#version 450 core\n") + kTileVertexShader;
+    const std::string shaded_tile_source =
+        std::string("#version 450 core\n#define SHADED\n") + kTileVertexShader;
+    tile_program_ = link(tile_source.c_str(), "tile");
+    tile_shade_program_ =
+        gl::link_program(gl_, info_.backend, "shaded tile", shaded_tile_source.c_str(), kShadeFragmentShader);
     tile_face_program_ = gl::link_compute_program(gl_, info_.backend, "tile faces", kTileFaceComputeShader);
-    far_program_ = link(kFarVertexShader, "far");
+    far_program_ = gl::link_program(gl_, info_.backend, "far", kFarVertexShader, kFarFragmentShader);
     gl_.GenVertexArrays(1, &model_vao_);
     gl_.GenVertexArrays(1, &tile_vao_);
     gl_.GenVertexArrays(1, &tile_face_vao_);
     gl_.GenVertexArrays(1, &far_vao_);
+    gl_.GenVertexArrays(1, &tile_shade_vao_);
+    gl_.GenBuffers(1, &tile_shades_);
     gl_.GenBuffers(kStorageBuffers, tile_face_buffers_);
     gl_.GenBuffers(1, &model_vertices_);
     gl_.GenBuffers(1, &model_indices_);
@@ -226,7 +282,8 @@ class GlDepthRenderer final : public DepthRenderer {
     gl_.EnableVertexAttribArray(0);
     // Tile vertices from the CPU, and from the compute stage (render_tile_faces()).
     for (const auto& [vao, buffer] :
-         {std::pair(tile_vao_, tile_vertices_), std::pair(tile_face_vao_, tile_face_buffers_[kVertices])}) {
+         {std::pair(tile_vao_, tile_vertices_), std::pair(tile_shade_vao_, tile_vertices_),
+          std::pair(tile_face_vao_, tile_face_buffers_[kVertices])}) {
       gl_.BindVertexArray(vao);
       gl_.BindBuffer(GL_ARRAY_BUFFER, buffer);
       gl_.VertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(TileVertex), nullptr);
@@ -235,6 +292,14 @@ class GlDepthRenderer final : public DepthRenderer {
       gl_.EnableVertexAttribArray(0);
       gl_.EnableVertexAttribArray(1);
     }
+    // A shaded tile's colour factor and texture coordinates, from their own buffer.
+    gl_.BindVertexArray(tile_shade_vao_);
+    gl_.BindBuffer(GL_ARRAY_BUFFER, tile_shades_);
+    gl_.VertexAttribPointer(2, 3, GL_FLOAT, GL_FALSE, sizeof(TileShade), nullptr);
+    gl_.VertexAttribPointer(3, 2, GL_FLOAT, GL_FALSE, sizeof(TileShade),
+                            reinterpret_cast<void*>(offsetof(TileShade, u)));
+    gl_.EnableVertexAttribArray(2);
+    gl_.EnableVertexAttribArray(3);
     gl_.Enable(GL_DEPTH_TEST);
     gl_.DepthFunc(GL_LESS);
     gl_.PixelStorei(GL_PACK_ALIGNMENT, 4);
@@ -256,13 +321,20 @@ class GlDepthRenderer final : public DepthRenderer {
     gl_.DeleteVertexArrays(1, &tile_vao_);
     gl_.DeleteVertexArrays(1, &tile_face_vao_);
     gl_.DeleteVertexArrays(1, &far_vao_);
+    gl_.DeleteVertexArrays(1, &tile_shade_vao_);
+    gl_.DeleteBuffers(1, &tile_shades_);
     gl_.DeleteBuffers(kStorageBuffers, tile_face_buffers_);
+    if (!textures_.empty()) gl_.DeleteTextures(GLsizei(textures_.size()), textures_.data());
     gl_.DeleteProgram(view_program_);
+    gl_.DeleteProgram(view_triangle_program_);
+    gl_.DeleteProgram(tile_shade_program_);
     gl_.DeleteProgram(tile_program_);
     gl_.DeleteProgram(far_program_);
     gl_.DeleteProgram(tile_face_program_);
     if (framebuffer_) gl_.DeleteFramebuffers(1, &framebuffer_);
     if (depth_buffer_) gl_.DeleteRenderbuffers(1, &depth_buffer_);
+    if (colour_buffer_) gl_.DeleteRenderbuffers(1, &colour_buffer_);
+    if (triangle_buffer_) gl_.DeleteRenderbuffers(1, &triangle_buffer_);
   }
 
   RendererInfo info() const override { return info_; }
@@ -304,21 +376,61 @@ class GlDepthRenderer final : public DepthRenderer {
     check("uploading the test model");
   }
 
-  void render_view(const OrthoCamera& camera, int resolution, std::vector<float>& depth) override {
+  void upload_materials(const std::vector<Material>& materials) override {
+    context_->make_current();
+    GLint max_texture = 0;
+    gl_.GetIntegerv(GL_MAX_TEXTURE_SIZE, &max_texture);
+    if (!textures_.empty()) gl_.DeleteTextures(GLsizei(textures_.size()), textures_.data());
+    textures_.assign(materials.size(), 0);
+    gl_.GenTextures(GLsizei(textures_.size()), textures_.data());
+    gl_.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    const auto wrap = [](Wrap w) {
+      return w == Wrap::Repeat ? GL_REPEAT : w == Wrap::ClampToEdge ? GL_CLAMP_TO_EDGE : GL_MIRRORED_REPEAT;
+    };
+    static const std::uint8_t white[3] = {255, 255, 255};
+    for (std::size_t m = 0; m < materials.size(); ++m) {
+      const Texture* texture = materials[m].texture.get();
+      if (texture && std::max(texture->width, texture->height) > max_texture) {
+        throw Error(fmt::format("gl ({}): texture {} is {} x {}; this context takes at most {} a side",
+                                info_.backend, texture->source, texture->width, texture->height,
+                                max_texture));
+      }
+      const Sampler& sampler = materials[m].sampler;
+      const GLint filter = sampler.filter == Filter::Linear ? GL_LINEAR : GL_NEAREST;
+      gl_.BindTexture(GL_TEXTURE_2D, textures_[m]);
+      gl_.TexImage2D(GL_TEXTURE_2D, 0, GL_RGB8, texture ? texture->width : 1, texture ? texture->height : 1,
+                     0, GL_RGB, GL_UNSIGNED_BYTE, texture ? texture->rgb.data() : white);
+      gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
+      gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, filter);
+      gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, filter);
+      gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, wrap(sampler.wrap_s));
+      gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, wrap(sampler.wrap_t));
+    }
+    gl_.PixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    gl_.UseProgram(tile_shade_program_);
+    gl_.Uniform1i(gl_.GetUniformLocation(tile_shade_program_, "surface"), 0);
+    gl_.ActiveTexture(GL_TEXTURE0);
+    check("uploading the textures");
+  }
+
+  void render_view(const OrthoCamera& camera, int resolution, std::vector<float>& depth,
+                   std::vector<std::uint32_t>* triangles) override {
     context_->make_current();
     require_view(resolution);
-    bind_framebuffer(resolution, resolution);
-    use_view_program(camera);
+    const Outputs outputs = triangles ? Outputs::Triangles : Outputs::Depth;
+    bind_framebuffer(resolution, resolution, outputs);
+    use_view_program(camera, outputs);
     gl_.BindVertexArray(model_vao_);
     gl_.BindBuffer(GL_ELEMENT_ARRAY_BUFFER, model_indices_);
     gl_.DrawElements(GL_TRIANGLES, model_index_count_, GL_UNSIGNED_INT, nullptr);
     read_depth(resolution, resolution, depth);
+    if (triangles) read_triangles({0, 0, resolution, resolution}, resolution, *triangles);
     check("rendering a view");
   }
 
   void render_view_part(const OrthoCamera& camera, int resolution, const PixelRect& rect,
                         const std::vector<PixelRect>& wanted, const std::vector<std::uint32_t>& corners,
-                        std::vector<float>& depth) override {
+                        std::vector<float>& depth, std::vector<std::uint32_t>* triangles) override {
     context_->make_current();
     require_view(resolution);
     const auto inside = [&](const PixelRect& r, const PixelRect& outer) {
@@ -338,15 +450,17 @@ class GlDepthRenderer final : public DepthRenderer {
                               model_vertex_count_));
     }
     depth.resize(static_cast<std::size_t>(resolution) * resolution);
+    if (triangles) triangles->resize(depth.size());
     if (rect.empty()) return;
     // Only the rectangle is drawn and read (the scissor box bounds both), and only the wanted
     // pixels in it are cleared: a scissored clear costs as much as drawing the whole rectangle.
     gl_.Enable(GL_SCISSOR_TEST);
     gl_.Scissor(rect.x0, rect.y0, rect.x1 - rect.x0, rect.y1 - rect.y0);
-    bind_framebuffer(resolution, resolution, /*clear=*/false);
+    const Outputs outputs = triangles ? Outputs::Triangles : Outputs::Depth;
+    bind_framebuffer(resolution, resolution, outputs, /*clear=*/false);
     draw_far(resolution, wanted);
     if (!corners.empty()) {
-      use_view_program(camera);
+      use_view_program(camera, outputs);
       gl_.BindVertexArray(model_vao_);
       gl_.BindBuffer(GL_ELEMENT_ARRAY_BUFFER, part_buffer_);
       gl_.BufferData(GL_ELEMENT_ARRAY_BUFFER, corners.size() * sizeof(std::uint32_t), corners.data(),
@@ -359,6 +473,7 @@ class GlDepthRenderer final : public DepthRenderer {
     gl_.ReadPixels(rect.x0, rect.y0, rect.x1 - rect.x0, rect.y1 - rect.y0, GL_DEPTH_COMPONENT, GL_FLOAT,
                    depth.data() + static_cast<std::size_t>(rect.y0) * resolution + rect.x0);
     gl_.PixelStorei(GL_PACK_ROW_LENGTH, 0);
+    if (triangles) read_triangles(rect, resolution, *triangles);
     gl_.Disable(GL_SCISSOR_TEST);
     check("rendering part of a view");
   }
@@ -381,6 +496,55 @@ class GlDepthRenderer final : public DepthRenderer {
     read_depth(columns, rows, depth);
     depth.resize(tile_count);
     check("rendering a tile batch");
+  }
+
+  void render_coloured_tiles(const std::vector<TileVertex>& vertices, const std::vector<TileShade>& shades,
+                             const std::vector<MaterialRun>& runs, std::size_t tile_count,
+                             std::vector<float>& depth, std::vector<Colour>& colour) override {
+    context_->make_current();
+    std::size_t run_vertices = 0;
+    for (const MaterialRun& run : runs) {
+      if (run.material >= textures_.size()) {
+        throw Error(
+            fmt::format("gl: a tile run names material {} of {} uploaded", run.material, textures_.size()));
+      }
+      run_vertices += run.vertex_count;
+    }
+    if (shades.size() != vertices.size() || run_vertices != vertices.size()) {
+      throw Error(fmt::format("gl: {} tile vertices need as many shades and run vertices, found {} and {}",
+                              vertices.size(), shades.size(), run_vertices));
+    }
+    const auto [columns, rows] = tile_grid(tile_count);
+    bind_framebuffer(columns, rows, Outputs::Colour);
+    if (!vertices.empty()) {
+      gl_.UseProgram(tile_shade_program_);
+      gl_.Uniform2i(gl_.GetUniformLocation(tile_shade_program_, "grid"), columns, rows);
+      for (int plane = 0; plane < 4; ++plane) gl_.Enable(GL_CLIP_DISTANCE0 + plane);
+      gl_.BindVertexArray(tile_shade_vao_);
+      gl_.BindBuffer(GL_ARRAY_BUFFER, tile_vertices_);
+      gl_.BufferData(GL_ARRAY_BUFFER, vertices.size() * sizeof(TileVertex), vertices.data(), GL_STREAM_DRAW);
+      gl_.BindBuffer(GL_ARRAY_BUFFER, tile_shades_);
+      gl_.BufferData(GL_ARRAY_BUFFER, shades.size() * sizeof(TileShade), shades.data(), GL_STREAM_DRAW);
+      std::size_t first = 0;
+      for (const MaterialRun& run : runs) {
+        gl_.BindTexture(GL_TEXTURE_2D, textures_[run.material]);
+        gl_.DrawArrays(GL_TRIANGLES, static_cast<GLint>(first), static_cast<GLsizei>(run.vertex_count));
+        first += run.vertex_count;
+      }
+      for (int plane = 0; plane < 4; ++plane) gl_.Disable(GL_CLIP_DISTANCE0 + plane);
+    }
+    read_depth(columns, rows, depth);
+    depth.resize(tile_count);
+    std::vector<float> rgba(static_cast<std::size_t>(4) * columns * rows);
+    gl_.ReadBuffer(GL_COLOR_ATTACHMENT0);
+    gl_.ReadPixels(0, 0, columns, rows, GL_RGBA, GL_FLOAT, rgba.data());
+    gl_.ReadBuffer(GL_NONE);
+    colour.resize(tile_count);
+    for (std::size_t k = 0; k < tile_count; ++k) {
+      colour[k] = depth[k] < 1.0f ? Colour(255 * rgba[4 * k], 255 * rgba[4 * k + 1], 255 * rgba[4 * k + 2])
+                                  : Colour::Constant(std::numeric_limits<float>::quiet_NaN());
+    }
+    check("rendering a coloured tile batch");
   }
 
   void render_tile_faces(const std::vector<OrthoCamera>& cameras, const std::vector<TileFace>& faces,
@@ -484,15 +648,16 @@ class GlDepthRenderer final : public DepthRenderer {
     }
   }
 
-  void use_view_program(const OrthoCamera& camera) {
-    gl_.UseProgram(view_program_);
+  void use_view_program(const OrthoCamera& camera, Outputs outputs) {
+    const GLuint program = outputs == Outputs::Triangles ? view_triangle_program_ : view_program_;
+    gl_.UseProgram(program);
     const Vec3 centre = camera.centre - model_origin_;
     const Vec3 right = camera.right / camera.half_width, up = camera.up / camera.half_height;
     const Vec3 forward = camera.forward / (2 * camera.half_depth);
-    uniform3(view_program_, "centre", centre);
-    uniform3(view_program_, "right_scaled", right);
-    uniform3(view_program_, "up_scaled", up);
-    uniform3(view_program_, "forward_scaled", forward);
+    uniform3(program, "centre", centre);
+    uniform3(program, "right_scaled", right);
+    uniform3(program, "up_scaled", up);
+    uniform3(program, "forward_scaled", forward);
   }
 
   std::string text(GLenum name) const {
@@ -529,21 +694,24 @@ class GlDepthRenderer final : public DepthRenderer {
     gl_.DepthFunc(GL_LESS);
   }
 
-  // A depth-only framebuffer of at least width x height (grown, never shrunk), with the viewport
-  // on its used corner, cleared to 1 there unless `clear` is false.
-  void bind_framebuffer(int width, int height, bool clear = true) {
-    if (width > fb_width_ || height > fb_height_) {
+  // A framebuffer of at least width x height (grown, never shrunk): float depth, and once a
+  // draw asks for them a colour and a triangle attachment, the draw buffers set to `outputs`,
+  // the viewport on its used corner, cleared there unless `clear` is false.
+  void bind_framebuffer(int width, int height, Outputs outputs = Outputs::Depth, bool clear = true) {
+    const bool more_attachments = outputs != Outputs::Depth && !colour_buffer_;
+    if (width > fb_width_ || height > fb_height_ || more_attachments) {
       fb_width_ = std::max(fb_width_, width);
       fb_height_ = std::max(fb_height_, height);
       if (!framebuffer_) gl_.GenFramebuffers(1, &framebuffer_);
-      if (!depth_buffer_) gl_.GenRenderbuffers(1, &depth_buffer_);
-      gl_.BindRenderbuffer(GL_RENDERBUFFER, depth_buffer_);
-      // 32-bit float depth: OSMesa's default framebuffer stays at 24 bits whatever is asked.
-      gl_.RenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT32F, fb_width_, fb_height_);
       gl_.BindFramebuffer(GL_FRAMEBUFFER, framebuffer_);
-      gl_.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth_buffer_);
-      gl_.DrawBuffer(GL_NONE);
+      // 32-bit float depth: OSMesa's default framebuffer stays at 24 bits whatever is asked.
+      attach(depth_buffer_, GL_DEPTH_COMPONENT32F, GL_DEPTH_ATTACHMENT);
+      if (colour_buffer_ || more_attachments) {
+        attach(colour_buffer_, GL_RGBA32F, GL_COLOR_ATTACHMENT0);
+        attach(triangle_buffer_, GL_R32UI, GL_COLOR_ATTACHMENT1);
+      }
       gl_.ReadBuffer(GL_NONE);
+      drawn_outputs_.reset();  // set below
       const GLenum status = gl_.CheckFramebufferStatus(GL_FRAMEBUFFER);
       if (status != GL_FRAMEBUFFER_COMPLETE) {
         throw Error(fmt::format("gl ({}): a {} x {} float-depth framebuffer is incomplete (status 0x{:x})",
@@ -552,10 +720,40 @@ class GlDepthRenderer final : public DepthRenderer {
       check("creating the framebuffer");
     }
     gl_.BindFramebuffer(GL_FRAMEBUFFER, framebuffer_);
+    if (outputs != drawn_outputs_) {  // only on a change: a depth-only draw pays nothing for colour
+      const GLenum buffers[2] = {
+          outputs == Outputs::Colour ? GLenum(GL_COLOR_ATTACHMENT0) : GLenum(GL_NONE),
+          outputs == Outputs::Triangles ? GLenum(GL_COLOR_ATTACHMENT1) : GLenum(GL_NONE)};
+      gl_.DrawBuffers(colour_buffer_ ? 2 : 1, buffers);
+      drawn_outputs_ = outputs;
+    }
     gl_.Viewport(0, 0, width, height);
     if (!clear) return;
     gl_.ClearDepth(1.0);
     gl_.Clear(GL_DEPTH_BUFFER_BIT);
+    const float no_colour[4] = {0, 0, 0, 0};
+    const GLuint no_triangle[4] = {0, 0, 0, 0};
+    if (outputs == Outputs::Colour) gl_.ClearBufferfv(GL_COLOR, 0, no_colour);
+    if (outputs == Outputs::Triangles) gl_.ClearBufferuiv(GL_COLOR, 1, no_triangle);
+  }
+
+  // (Re)allocates `buffer` at the framebuffer's size and attaches it.
+  void attach(GLuint& buffer, GLenum format, GLenum attachment) {
+    if (!buffer) gl_.GenRenderbuffers(1, &buffer);
+    gl_.BindRenderbuffer(GL_RENDERBUFFER, buffer);
+    gl_.RenderbufferStorage(GL_RENDERBUFFER, format, fb_width_, fb_height_);
+    gl_.FramebufferRenderbuffer(GL_FRAMEBUFFER, attachment, GL_RENDERBUFFER, buffer);
+  }
+
+  // The triangle attachment over `rect`, into its place in a resolution^2 image.
+  void read_triangles(const PixelRect& rect, int resolution, std::vector<std::uint32_t>& triangles) const {
+    triangles.resize(static_cast<std::size_t>(resolution) * resolution);
+    gl_.ReadBuffer(GL_COLOR_ATTACHMENT1);
+    gl_.PixelStorei(GL_PACK_ROW_LENGTH, resolution);
+    gl_.ReadPixels(rect.x0, rect.y0, rect.x1 - rect.x0, rect.y1 - rect.y0, GL_RED_INTEGER, GL_UNSIGNED_INT,
+                   triangles.data() + static_cast<std::size_t>(rect.y0) * resolution + rect.x0);
+    gl_.PixelStorei(GL_PACK_ROW_LENGTH, 0);
+    gl_.ReadBuffer(GL_NONE);
   }
 
   void read_depth(int width, int height, std::vector<float>& depth) const {
@@ -567,7 +765,10 @@ class GlDepthRenderer final : public DepthRenderer {
   gl::Api gl_;
   RendererInfo info_;
   int max_size_ = 0;
-  GLuint view_program_ = 0, tile_program_ = 0, far_program_ = 0;
+  GLuint view_program_ = 0, view_triangle_program_ = 0, tile_program_ = 0, tile_shade_program_ = 0,
+         far_program_ = 0;
+  GLuint tile_shade_vao_ = 0, tile_shades_ = 0;
+  std::vector<GLuint> textures_;  // one per material (upload_materials())
   GLuint model_vao_ = 0, tile_vao_ = 0, model_vertices_ = 0, model_indices_ = 0, tile_vertices_ = 0;
   GLuint far_vao_ = 0, far_vertices_ = 0;
   GLuint tile_face_program_ = 0, tile_face_vao_ = 0, tile_face_buffers_[kStorageBuffers] = {};
@@ -577,7 +778,8 @@ class GlDepthRenderer final : public DepthRenderer {
   std::size_t model_vertex_count_ = 0;
   GLuint part_buffer_ = 0;
   Vec3 model_origin_ = Vec3::Zero();
-  GLuint framebuffer_ = 0, depth_buffer_ = 0;
+  GLuint framebuffer_ = 0, depth_buffer_ = 0, colour_buffer_ = 0, triangle_buffer_ = 0;
+  std::optional<Outputs> drawn_outputs_;  // what the framebuffer's draw buffers are set to
   int fb_width_ = 0, fb_height_ = 0;
 };
 

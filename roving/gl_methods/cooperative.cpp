@@ -18,12 +18,13 @@ class Cooperative final : public GlMethod {
   using GlMethod::GlMethod;
   std::string name() const override { return "cooperative"; }
 
-  void resolve(const SampleSet& samples, double max_error, GlReport& report, const Record& record) override {
+  void resolve(const SampleSet& samples, double max_error, GlReport& report, const Record& record,
+               const Coloured& coloured) override {
     const Found by_camera = [&](std::uint32_t k, double d) { record(k, d, Resolution::Camera); };
     std::vector<std::uint32_t> candidates;
     std::optional<ViewBudget> budget;
     if (options_.auto_views) {
-      budget = start_cameras(samples, max_error, report, by_camera, candidates);
+      budget = start_cameras(samples, max_error, report, by_camera, coloured, candidates);
       if (!budget) return;  // the cameras did every sample
     } else {
       candidates.resize(samples.size());
@@ -36,13 +37,13 @@ class Cooperative final : public GlMethod {
           viewed[k] = 1;
           record(k, d, Resolution::View);
         },
-        budget ? &*budget : nullptr);
+        coloured, budget ? &*budget : nullptr);
     scene_.clusters.reset();  // the views' culling structure; the cameras use the grid
     // What no view accepted goes to the cameras (candidates is reused for it).
     candidates.erase(
         std::remove_if(candidates.begin(), candidates.end(), [&](std::uint32_t k) { return viewed[k]; }),
         candidates.end());
-    rove(scene_, samples, candidates, max_error, report, progress_, by_camera);
+    rove(scene_, samples, candidates, max_error, report, progress_, by_camera, coloured);
   }
 
  private:
@@ -58,7 +59,8 @@ class Cooperative final : public GlMethod {
   // `candidates` the samples they did not do; otherwise they go on to the end in the same
   // pipeline, and no view is drawn.
   std::optional<ViewBudget> start_cameras(const SampleSet& samples, double max_error, GlReport& report,
-                                          const Found& by_camera, std::vector<std::uint32_t>& candidates) {
+                                          const Found& by_camera, const Coloured& coloured,
+                                          std::vector<std::uint32_t>& candidates) {
     const std::size_t runs_total =
         std::min(samples.size(), std::clamp<std::size_t>(samples.size() / 16, 4096, 65536));
     std::vector<std::uint32_t> order;
@@ -82,7 +84,7 @@ class Cooperative final : public GlMethod {
     bool decided = false;
     double seconds_per_camera = 0;
     const std::size_t done =
-        rove(scene_, samples, order, max_error, report, progress_, by_camera,
+        rove(scene_, samples, order, max_error, report, progress_, by_camera, coloured,
              [&](std::size_t done, const CameraCost& cost) {
                if (decided || done < runs_total || cost.stepped_cameras == 0) return false;
                decided = true;

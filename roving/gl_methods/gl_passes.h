@@ -25,8 +25,21 @@ struct GlScene {
   std::unique_ptr<TriangleClusters> clusters;
   const TriangleMesh* test = nullptr;
   bool gpu_cameras = false;  // GlMethodOptions::gpu_cameras
+  // Colour (prepare_colour()): M_C's shade at each triangle corner (three a triangle), as the
+  // tiles interpolate it, and each triangle's material (empty: all material 0).
+  std::vector<TileShade> corner_shades;
+  std::vector<std::uint32_t> face_materials;
+  std::uint32_t material_count = 1;
 
   void build(GlBackend backend, const TriangleMesh& test_model, bool cameras_on_gpu);
+  // Uploads M_C's materials and makes corner_shades, once: then the passes can draw colour.
+  // Requires test->has_colour().
+  void prepare_colour();
+  std::uint32_t material_of(std::uint32_t face) const {
+    return face_materials.empty() ? 0 : face_materials[face];
+  }
+  // M_C's shade at the point of triangle `face` nearest p, interpolated as the tiles do.
+  TileShade shade_at(std::uint32_t face, const Vec3& p) const;
   // Frees the culling structures (the renderer and its context stay, to be reused).
   void release();
   std::string renderer_name() const;
@@ -50,6 +63,9 @@ void run_beside(const Background& background, const Foreground& foreground) {
 // Where a pass hands each sample it resolves, k, and its d (first hit). Passed on at once
 // rather than gathered, so that no pass holds a value for every sample.
 using Found = std::function<void(std::uint32_t k, double d)>;
+// Where a pass hands TEST's colour at a sample it resolved, as the frame buffer gives it (code
+// values). An empty one: the pass draws depth alone.
+using Coloured = std::function<void(std::uint32_t k, const Colour& colour)>;
 
 // What rove's cameras cost, measured as it goes: the first batch's draw (which compiles the
 // tile shader) and the steps of the pipeline after it (a batch drawn while the next is built).
@@ -65,11 +81,13 @@ struct CameraCost {
 using LastBatch = std::function<bool(std::size_t done, const CameraCost& cost)>;
 
 // Surface roving for samples[indices[i]]: found(k, d) for each k of `indices` whose camera sees
-// M_C. Fills the report's camera fields; tells `progress` of each batch of cameras. Returns how
-// many of `indices` it did: all, unless `last_batch` stopped it early (at a batch boundary).
+// M_C, and with `coloured` its colour there, from the camera's pixel of the frame buffer (the
+// cameras are then built on the CPU). Fills the report's camera fields; tells `progress` of each
+// batch of cameras. Returns how many of `indices` it did: all, unless `last_batch` stopped it
+// early (at a batch boundary).
 std::size_t rove(GlScene& scene, const SampleSet& samples, const std::vector<std::uint32_t>& indices,
                  double max_error, GlReport& report, const ProgressFn& progress, const Found& found,
-                 const LastBatch& last_batch = {});
+                 const Coloured& coloured = {}, const LastBatch& last_batch = {});
 
 // `--views auto`: a view is drawn while its expected cost stays below that of the per-sample
 // cameras it would save. A camera's cost is measured by the first batches of cameras; a view's
@@ -97,10 +115,12 @@ class ViewBudget {
 // Viewpoint sampling of samples[candidates]: found(k, d) where a view accepted sample k, from
 // several threads at once (for different k). Views go in decreasing number of samples; with a
 // `budget`, the first view not worth drawing ends them (the rest have fewer samples still).
+// With `coloured`, each accepted sample's colour, once the views are done (view_colour.h).
 // Fills the report's view fields; tells `progress` of each view.
 void view_sample(GlScene& scene, const SampleSet& samples, const std::vector<std::uint32_t>& candidates,
                  double max_error, const GlMethodOptions& options, GlReport& report,
-                 const ProgressFn& progress, const Found& found, ViewBudget* budget = nullptr);
+                 const ProgressFn& progress, const Found& found, const Coloured& coloured = {},
+                 ViewBudget* budget = nullptr);
 
 // What the three GL methods share: checks, timing, and filling in the result and report; each
 // method only says how it resolves samples.
@@ -113,10 +133,11 @@ class GlMethod : public DistanceMethod {
   DistanceResult measure(const SampleSet& samples, const DistanceOptions& options) final;
 
  protected:
-  // Per-sample answers: record(k, d, how) marks sample k a hit with distance d.
+  // Per-sample answers: record(k, d, how) marks sample k a hit with distance d; `coloured`, when
+  // not empty, takes TEST's colour there (DistanceOptions::colour).
   using Record = std::function<void(std::uint32_t k, double d, Resolution how)>;
-  virtual void resolve(const SampleSet& samples, double max_error, GlReport& report,
-                       const Record& record) = 0;
+  virtual void resolve(const SampleSet& samples, double max_error, GlReport& report, const Record& record,
+                       const Coloured& coloured) = 0;
 
   GlMethodOptions options_;
   GlScene scene_;

@@ -29,9 +29,9 @@ void widen_edge(const Vec3& p, const Vec3& q, const Emit& emit) {
       ring[i] = Vec3(p.x() + std::cos(angle), p.y() + std::sin(angle), p.z());
     }
     for (int i = 1; i + 1 < kSides; ++i) {
-      emit(ring[0]);
-      emit(ring[i]);
-      emit(ring[i + 1]);
+      emit(ring[0], 0.0);
+      emit(ring[i], 0.0);
+      emit(ring[i + 1], 0.0);
     }
   }
   // Liang-Barsky: the part of p-q inside the window.
@@ -59,7 +59,8 @@ void widen_edge(const Vec3& p, const Vec3& q, const Emit& emit) {
   if (!(length > 1e-9)) return;  // seen end-on: the octagons at its ends cover it
   const Vec3 across((start.y() - end.y()) / length, (end.x() - start.x()) / length, 0);
   const Vec3 corners[4] = {start + across, end + across, end - across, start - across};
-  for (const int i : {0, 1, 2, 0, 2, 3}) emit(corners[i]);
+  const double along[4] = {enter, leave, leave, enter};
+  for (const int i : {0, 1, 2, 0, 2, 3}) emit(corners[i], along[i]);
 }
 
 // Tiles per draw: 64 x 64, small enough that the next batch is built while one is drawn, large
@@ -91,18 +92,31 @@ void for_each_candidate(const TriangleMesh& test, const TriangleGrid& grid, cons
   });
 }
 
+// One batch of cameras, as the renderer takes it: built on the CPU, the tiles' vertices, with
+// their shades when colour is drawn, all of one material (`runs` joins the materials' batches);
+// built on the GPU, each tile's camera and its candidate triangles.
+struct TileBatch {
+  std::vector<TileVertex> vertices;
+  std::vector<TileShade> shades;
+  std::vector<MaterialRun> runs;
+  std::vector<OrthoCamera> cameras;
+  std::vector<TileFace> faces;
+};
+
 // Appends, for sample camera `camera` in tile `tile`, every candidate triangle that reaches the
 // view volume, in the camera's normalised frame (x, y in units of the camera half-width, which is
 // the shared rule's tolerance: normal_line.h). Beside each triangle, its edges and vertices that
 // pass within the pixel are widened into thin strips and small octagons one half-width across
 // (built in double, here), so that the rasteriser covers the pixel centre wherever the central
 // ray passes through the closed triangle or within the tolerance of it, whatever its fill rule
-// decides on an edge.
-void emit_triangles(const TriangleMesh& test, const TriangleGrid& grid, const OrthoCamera& camera,
-                    std::uint32_t tile, std::vector<std::uint32_t>& stamp, std::uint32_t mark,
-                    std::vector<TileVertex>& out) {
-  const auto emit = [&](const Vec3& p) { out.push_back({float(p.x()), float(p.y()), float(p.z()), tile}); };
-  for_each_candidate(test, grid, camera, stamp, mark, [&](std::uint32_t face) {
+// decides on an edge. batch_of(material) is where a triangle of that material goes; with
+// `shaded`, each vertex gets its shade, interpolated along the edge it widens.
+template <class BatchOf>
+void emit_triangles(const GlScene& scene, const OrthoCamera& camera, std::uint32_t tile,
+                    std::vector<std::uint32_t>& stamp, std::uint32_t mark, bool shaded,
+                    const BatchOf& batch_of) {
+  const TriangleMesh& test = *scene.test;
+  for_each_candidate(test, *scene.grid, camera, stamp, mark, [&](std::uint32_t face) {
     const Triangle& t = test.triangles()[face];
     Vec3 q[3];
     for (int c = 0; c < 3; ++c) q[c] = camera.to_normalised(test.positions()[t[c]]);
@@ -113,30 +127,36 @@ void emit_triangles(const TriangleMesh& test, const TriangleGrid& grid, const Or
         return;
       }
     }
-    for (const Vec3& p : q) emit(p);
-    for (int e = 0; e < 3; ++e) widen_edge(q[e], q[(e + 1) % 3], emit);
+    TileBatch& out = batch_of(shaded ? scene.material_of(face) : 0);
+    const TileShade* corner = shaded ? &scene.corner_shades[3 * face] : nullptr;
+    const auto emit = [&](const Vec3& p, int edge, double along) {
+      out.vertices.push_back({float(p.x()), float(p.y()), float(p.z()), tile});
+      if (!corner) return;
+      const TileShade& a = corner[edge];
+      const TileShade& b = corner[(edge + 1) % 3];
+      const auto mix = [&](float x, float y) { return float(x + along * (double(y) - x)); };
+      out.shades.push_back({mix(a.r, b.r), mix(a.g, b.g), mix(a.b, b.b), mix(a.u, b.u), mix(a.v, b.v)});
+    };
+    for (int c = 0; c < 3; ++c) emit(q[c], c, 0.0);
+    for (int e = 0; e < 3; ++e) {
+      widen_edge(q[e], q[(e + 1) % 3], [&](const Vec3& p, double along) { emit(p, e, along); });
+    }
   });
 }
-
-// One batch of cameras, as the renderer takes it: built on the CPU, the tiles' vertices; built
-// on the GPU, each tile's camera and its candidate triangles.
-struct TileBatch {
-  std::vector<TileVertex> vertices;
-  std::vector<OrthoCamera> cameras;
-  std::vector<TileFace> faces;
-};
 
 class SurfaceRoving final : public GlMethod {
  public:
   using GlMethod::GlMethod;
   std::string name() const override { return "roving"; }
 
-  void resolve(const SampleSet& samples, double max_error, GlReport& report, const Record& record) override {
+  void resolve(const SampleSet& samples, double max_error, GlReport& report, const Record& record,
+               const Coloured& coloured) override {
     std::vector<std::uint32_t> all(samples.size());
     for (std::uint32_t k = 0; k < all.size(); ++k) all[k] = k;
     report.views_h = report.views_v = report.resolution = 0;  // cameras only: no view grid applies
-    rove(scene_, samples, all, max_error, report, progress_,
-         [&](std::uint32_t k, double d) { record(k, d, Resolution::Camera); });
+    rove(
+        scene_, samples, all, max_error, report, progress_,
+        [&](std::uint32_t k, double d) { record(k, d, Resolution::Camera); }, coloured);
   }
 };
 
@@ -144,7 +164,7 @@ class SurfaceRoving final : public GlMethod {
 
 std::size_t rove(GlScene& scene, const SampleSet& samples, const std::vector<std::uint32_t>& indices,
                  double max_error, GlReport& report, const ProgressFn& progress, const Found& found,
-                 const LastBatch& last_batch) {
+                 const Coloured& coloured, const LastBatch& last_batch) {
   const TriangleMesh& test = *scene.test;
   // The camera's half-width: half a pixel across, and the shared rule's tolerance, which the
   // lines and points drawn for edges and vertices near the ray reach (normal_line.h). Tiny:
@@ -157,13 +177,17 @@ std::size_t rove(GlScene& scene, const SampleSet& samples, const std::vector<std
   report.camera_depth_step = 2 * half_depth * std::ldexp(1.0, -24);
 
   // The batch `first` .. first + kTilesPerBatch of `indices`, tile by tile: chunks of tiles in
-  // parallel, then joined in order.
-  const bool on_gpu = scene.gpu_cameras;
+  // parallel, each with a batch per material, then joined in order, material by material.
+  // Colour is drawn by tiles built on the CPU (the compute stage builds no shades).
+  const bool shaded = static_cast<bool>(coloured);
+  const bool on_gpu = scene.gpu_cameras && !shaded;
+  report.gpu_cameras = on_gpu;
+  const std::uint32_t materials = shaded ? scene.material_count : 1;
   const auto emit_batch = [&](std::size_t first, TileBatch& batch) {
     const Stopwatch building;
     const std::size_t count = std::min(kTilesPerBatch, indices.size() - first);
     const std::size_t chunks = (count + kSamplesPerChunk - 1) / kSamplesPerChunk;
-    std::vector<TileBatch> chunk_batches(chunks);
+    std::vector<TileBatch> chunk_batches(chunks * materials);  // [material * chunks + chunk]
     batch.cameras.resize(on_gpu ? count : 0);
     tbb::parallel_for(
         tbb::blocked_range<std::size_t>(0, chunks), [&](const tbb::blocked_range<std::size_t>& range) {
@@ -186,7 +210,9 @@ std::size_t rove(GlScene& scene, const SampleSet& samples, const std::vector<std
                   chunk_batches[chunk].faces.push_back({t, face});
                 });
               } else {
-                emit_triangles(test, *scene.grid, camera, t, stamp, mark, chunk_batches[chunk].vertices);
+                emit_triangles(scene, camera, t, stamp, mark, shaded, [&](std::uint32_t m) -> TileBatch& {
+                  return chunk_batches[m * chunks + chunk];
+                });
               }
             }
           }
@@ -200,7 +226,15 @@ std::size_t rove(GlScene& scene, const SampleSet& samples, const std::vector<std
       for (const TileBatch& c : chunk_batches) all.insert(all.end(), (c.*member).begin(), (c.*member).end());
     };
     join(&TileBatch::vertices);
+    join(&TileBatch::shades);
     join(&TileBatch::faces);
+    batch.runs.clear();
+    for (std::uint32_t m = 0; m < materials; ++m) {
+      std::size_t vertices = 0;
+      for (std::size_t chunk = 0; chunk < chunks; ++chunk)
+        vertices += chunk_batches[m * chunks + chunk].vertices.size();
+      if (vertices > 0) batch.runs.push_back({m, vertices});
+    }
     report.camera_build_seconds += building.seconds();
   };
 
@@ -208,6 +242,7 @@ std::size_t rove(GlScene& scene, const SampleSet& samples, const std::vector<std
   // build the next one.
   TileBatch batch[2];
   std::vector<float> depth;
+  std::vector<Colour> colour;
   CameraCost cost;
   std::size_t end = indices.size();  // where last_batch stops it
   if (!indices.empty()) emit_batch(0, batch[0]);
@@ -222,10 +257,14 @@ std::size_t rove(GlScene& scene, const SampleSet& samples, const std::vector<std
         },
         [&] {
           const Stopwatch draw;
+          const TileBatch& drawn = batch[b % 2];
           if (on_gpu) {
-            scene.renderer->render_tile_faces(batch[b % 2].cameras, batch[b % 2].faces, depth);
+            scene.renderer->render_tile_faces(drawn.cameras, drawn.faces, depth);
+          } else if (shaded) {
+            scene.renderer->render_coloured_tiles(drawn.vertices, drawn.shades, drawn.runs, count, depth,
+                                                  colour);
           } else {
-            scene.renderer->render_tiles(batch[b % 2].vertices, count, depth);
+            scene.renderer->render_tiles(drawn.vertices, count, depth);
           }
           draw_seconds = draw.seconds();
           report.camera_render_seconds += draw_seconds;
@@ -235,6 +274,7 @@ std::size_t rove(GlScene& scene, const SampleSet& samples, const std::vector<std
       if (depth[tile] < 1.0f) {
         found(indices[first + tile],
               std::clamp(half_depth - double(depth[tile]) * 2 * half_depth, -max_error, max_error));
+        if (shaded) coloured(indices[first + tile], colour[tile]);
       }
     }
     report.sample_cameras += count;

@@ -7,6 +7,7 @@
 #include <array>
 #include <atomic>
 #include <cmath>
+#include <mutex>
 #include <numeric>
 
 #include "gl_passes.h"
@@ -14,6 +15,7 @@
 #include "roving/core/stopwatch.h"
 #include "roving/gl_methods/gl_methods.h"
 #include "roving/gl_methods/view_footprint.h"
+#include "view_colour.h"
 
 namespace roving {
 namespace {
@@ -222,7 +224,8 @@ class ViewLine {
 
 void view_sample(GlScene& scene, const SampleSet& samples, const std::vector<std::uint32_t>& candidates,
                  double max_error, const GlMethodOptions& options, GlReport& report,
-                 const ProgressFn& progress, const Found& found, ViewBudget* budget) {
+                 const ProgressFn& progress, const Found& found, const Coloured& coloured,
+                 ViewBudget* budget) {
   report.axis_views = axis_normals(samples);
   const ViewGrid grid(report.axis_views, options.views_h, options.views_v);
   const std::vector<Vec3>& directions = grid.directions;
@@ -263,14 +266,19 @@ void view_sample(GlScene& scene, const SampleSet& samples, const std::vector<std
       std::count_if(groups.begin(), groups.end(), [](const auto& g) { return !g.empty(); });
   // A view to draw: its camera (looking against the direction, at the surfaces facing it) and,
   // when culled, the pixels read and the triangles that can cover them.
+  // With colour, also which triangle each pixel shows, and which of M_C's each drawn one is.
   struct View {
     std::uint32_t direction = 0;
     OrthoCamera camera;
     PixelRect rect;
     std::vector<PixelRect> wanted;
-    std::vector<std::uint32_t> corners;
+    std::vector<std::uint32_t> corners, faces;
     std::vector<float> depth;
+    std::vector<std::uint32_t> triangles;
   };
+  const bool colour = static_cast<bool>(coloured);
+  std::vector<ViewHit> hits;  // the accepted samples, to be shaded once the views are done
+  std::mutex hits_mutex;
   if (options.cull_views && !scene.clusters) scene.clusters = std::make_unique<TriangleClusters>(*scene.test);
   const auto prepare = [&](View& view, std::uint32_t d) {
     view.direction = d;
@@ -280,14 +288,14 @@ void view_sample(GlScene& scene, const SampleSet& samples, const std::vector<std
                                   options.normal_line ? max_error : 0.0);
     view.rect = footprint.rect();
     view.wanted = footprint.read_squares();
-    view.corners = footprint.corners_reaching(*scene.clusters);
+    view.corners = footprint.corners_reaching(*scene.clusters, colour ? &view.faces : nullptr);
   };
   const auto draw = [&](View& view) {
     if (options.cull_views) {
       scene.renderer->render_view_part(view.camera, resolution, view.rect, view.wanted, view.corners,
-                                       view.depth);
+                                       view.depth, colour ? &view.triangles : nullptr);
     } else {
-      scene.renderer->render_view(view.camera, resolution, view.depth);
+      scene.renderer->render_view(view.camera, resolution, view.depth, colour ? &view.triangles : nullptr);
     }
   };
   // The samples of a drawn view: found(k, d) for each it accepts; returns how many.
@@ -298,6 +306,12 @@ void view_sample(GlScene& scene, const SampleSet& samples, const std::vector<std
     const auto accept = [&](std::uint32_t k, double d) {
       found(k, d);
       ++resolved;
+      if (!colour) return;
+      const Vec3 point = samples.positions[k] + d * samples.normals[k];
+      const std::uint32_t face =
+          face_under(*scene.test, camera, resolution, view.triangles, view.faces, point);
+      const std::lock_guard<std::mutex> lock(hits_mutex);
+      hits.push_back({k, face, point});
     };
     if (options.normal_line) {
       const ViewLine line(camera, view.depth, resolution, smooth_span, 2 * radius, report.view_pixel_size,
@@ -360,6 +374,7 @@ void view_sample(GlScene& scene, const SampleSet& samples, const std::vector<std
     const std::size_t resolved = read(ring[(drawn - 1) % 3]);
     if (budget) budget->record_read(groups[order[drawn - 1]].size(), resolved);
   }
+  if (colour) shade_view_hits(scene, hits, coloured);
 }
 
 namespace {
@@ -369,11 +384,13 @@ class ViewpointSampling final : public GlMethod {
   using GlMethod::GlMethod;
   std::string name() const override { return "viewpoint"; }
 
-  void resolve(const SampleSet& samples, double max_error, GlReport& report, const Record& record) override {
+  void resolve(const SampleSet& samples, double max_error, GlReport& report, const Record& record,
+               const Coloured& coloured) override {
     std::vector<std::uint32_t> all(samples.size());
     std::iota(all.begin(), all.end(), 0u);
-    view_sample(scene_, samples, all, max_error, options_, report, progress_,
-                [&](std::uint32_t k, double d) { record(k, d, Resolution::View); });
+    view_sample(
+        scene_, samples, all, max_error, options_, report, progress_,
+        [&](std::uint32_t k, double d) { record(k, d, Resolution::View); }, coloured);
   }
 };
 

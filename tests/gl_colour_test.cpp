@@ -1,0 +1,213 @@
+// Colour by the frame buffer (the paper's Section 1): each GL method's colour against the exact
+// answer on the same samples, on planes whose colour is known in closed form, a checkerboard's
+// texel centres, and coloured and textured bunnies against recoloured, moved copies.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <memory>
+
+#include "analytic.h"
+#include "colour_models.h"
+#include "coloured.h"
+#include "roving/core/colour.h"
+#include "roving/core/colour_statistics.h"
+#include "roving/core/normalise.h"
+#include "roving/gl_methods/gl_methods.h"
+#include "roving/registry/method_registry.h"
+#include "test_support.h"
+
+namespace roving {
+namespace {
+
+const char* const kGlMethods[] = {"roving", "viewpoint", "cooperative"};
+
+class EachBackend : public ::testing::TestWithParam<GlBackend> {
+ protected:
+  DistanceResult measure(const char* method, const TriangleMesh& test, const SampleSet& samples,
+                         double h) const {
+    GlMethodOptions gl;
+    gl.backend = GetParam();
+    auto m = make_method(method, gl);
+    return measure_distances(*m, test, samples, {Semantics::FirstHit, h, true});
+  }
+};
+
+// Vertex colours are interpolated in float by the rasteriser, in a tile's frame where a triangle
+// spans up to 1e6 tile half-widths: a few float ulps of the field's range over a triangle (10
+// code values here), far below a thousandth of a step.
+constexpr double kVertexColourTolerance = 1e-3;
+
+TEST_P(EachBackend, GradientPlaneMovedByAKnownOffset) {
+  REQUIRE_GL_CONTEXT(GetParam());
+  // TEST 0.5 above REF, its linear colour field moved 0.5 along x: TEST's R' is REF's less 5 at
+  // every point the normal meets, G' and B' the same. A view's d errs a little along the normal,
+  // where the field does not change.
+  const TriangleMesh reference = testing::gradient_plane(0, 0);
+  const TriangleMesh test = testing::gradient_plane(0.5, 0.5);
+  const SampleSet samples = make_samples(reference, parse_sample_spec("faces"));
+  const std::vector<Colour> expected = sample_colours(reference, samples);
+  for (const char* method : kGlMethods) {
+    SCOPED_TRACE(method);
+    const DistanceResult r = measure(method, test, samples, 1.0);
+    ASSERT_EQ(r.hit_colour.size(), samples.size());
+    std::size_t hits = 0;
+    for (std::size_t k = 0; k < samples.size(); ++k) {
+      if (!r.hit[k]) continue;
+      ++hits;
+      ASSERT_LT((r.hit_colour[k] - (expected[k] - Colour(5, 0, 0))).cwiseAbs().maxCoeff(),
+                kVertexColourTolerance)
+          << "sample " << k << ": " << r.hit_colour[k].transpose();
+    }
+    EXPECT_GT(hits, samples.size() / 2);
+  }
+}
+
+TEST_P(EachBackend, RecolouredRampTextureOnAMovedPlane) {
+  REQUIRE_GL_CONTEXT(GetParam());
+  // A ramp texture (R up 5 a column, G down 4 a row) across the square from texel centre to
+  // centre, so its bilinear colour is linear; TEST 0.5 above with R less 5. GL filters the 8-bit
+  // texels with weights of 8 fractional bits and, on llvmpipe, rounds the result to 8 bits: the
+  // drawn colour is within half a step, and a 256th of the largest step between texels (5), of
+  // the exact one.
+  const int n = 32;
+  const auto ramp = [](int shift) {
+    return [shift](int i, int j) { return Eigen::Vector3i(40 + 5 * i - shift, 200 - 4 * j, 90); };
+  };
+  const TriangleMesh reference =
+      testing::textured_square(0, std::make_shared<Texture>(testing::make_texture(n, n, ramp(0))));
+  const TriangleMesh test =
+      testing::textured_square(0.5, std::make_shared<Texture>(testing::make_texture(n, n, ramp(5))));
+  const SampleSet samples = make_samples(reference, parse_sample_spec("area:2000"));
+  auto embree = make_method("embree");
+  const DistanceResult exact = measure_distances(*embree, test, samples, {Semantics::FirstHit, 1.0, true});
+  const ColourPairs truth = colour_pairs(reference, samples, test, exact, Semantics::FirstHit);
+  const double tolerance = 0.5 + 5.0 / 256 + kVertexColourTolerance;
+  for (const char* method : kGlMethods) {
+    SCOPED_TRACE(method);
+    const DistanceResult r = measure(method, test, samples, 1.0);
+    std::size_t hits = 0;
+    for (std::size_t k = 0; k < samples.size(); ++k) {
+      if (!r.hit[k]) continue;
+      ++hits;
+      ASSERT_LT((r.hit_colour[k] - truth.test[k]).cwiseAbs().maxCoeff(), tolerance)
+          << "sample " << k << ": " << r.hit_colour[k].transpose() << " against "
+          << truth.test[k].transpose();
+      ASSERT_LT((truth.test[k] - (truth.reference[k] - Colour(5, 0, 0))).cwiseAbs().maxCoeff(), 1e-4);
+    }
+    EXPECT_GT(hits, samples.size() / 2);
+  }
+}
+
+TEST_P(EachBackend, CheckerboardTexelCentresUnderEitherFilter) {
+  REQUIRE_GL_CONTEXT(GetParam());
+  // Samples straight under a checkerboard's texel centres: under either filter the colour there is
+  // the texel's, with no neighbour's weight, so GL draws it exactly.
+  const int n = 8;
+  for (const Filter filter : {Filter::Linear, Filter::Nearest}) {
+    Sampler sampler;
+    sampler.filter = filter;
+    const auto board = std::make_shared<Texture>(testing::checkerboard(n));
+    const TriangleMesh test = testing::textured_square(0.5, board, sampler);
+    // The square maps texel centre to texel centre: texel (i, j)'s centre is at x = 10 i / (n - 1),
+    // y = 10 (n - 1 - j) / (n - 1); stay off the square's rim, where a view cannot read.
+    SampleSet samples;
+    samples.kind = "area:texel centres";
+    for (int j = 1; j + 1 < n; ++j) {
+      for (int i = 1; i + 1 < n; ++i) {
+        samples.positions.emplace_back(10.0 * i / (n - 1), 10.0 * (n - 1 - j) / (n - 1), 0);
+        samples.normals.emplace_back(0, 0, 1);
+        samples.weights.push_back(1);
+        samples.elements.push_back(0);
+      }
+    }
+    for (const char* method : kGlMethods) {
+      SCOPED_TRACE(std::string(method) + (filter == Filter::Linear ? " linear" : " nearest"));
+      const DistanceResult r = measure(method, test, samples, 1.0);
+      std::size_t k = 0, hits = 0;
+      for (int j = 1; j + 1 < n; ++j) {
+        for (int i = 1; i + 1 < n; ++i, ++k) {
+          if (!r.hit[k]) continue;
+          ++hits;
+          ASSERT_LT((r.hit_colour[k] - board->texel(i, j)).cwiseAbs().maxCoeff(), kVertexColourTolerance)
+              << "texel " << i << ", " << j << ": " << r.hit_colour[k].transpose();
+        }
+      }
+      if (std::string(method) != "viewpoint") EXPECT_EQ(hits, samples.size());
+    }
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Backends, EachBackend, ::testing::Values(GlBackend::OSMesa, GlBackend::Egl),
+                         [](const ::testing::TestParamInfo<GlBackend>& info) {
+                           return std::string(to_string(info.param));
+                         });
+
+// How a GL method's colours compare with Embree's on the samples both hit: the share within one
+// 8-bit step in every channel, and the colour PSNRs of each over those samples.
+struct ColourAgreement {
+  std::size_t both = 0, within_a_step = 0;
+  ColourStatistics exact, drawn;
+  double within_fraction() const { return double(within_a_step) / double(both); }
+};
+
+ColourAgreement colour_agreement(const ColourPairs& exact, const ColourPairs& drawn, const DistanceResult& e,
+                                 const DistanceResult& d) {
+  ColourAgreement a;
+  std::vector<std::uint8_t> both(e.hit.size(), 0);
+  for (std::size_t k = 0; k < both.size(); ++k) {
+    if (!e.hit[k] || !d.hit[k]) continue;
+    both[k] = 1;
+    ++a.both;
+    a.within_a_step += (exact.test[k] - drawn.test[k]).cwiseAbs().maxCoeff() <= 1;
+  }
+  a.exact = compute_colour_statistics(exact, both);
+  a.drawn = compute_colour_statistics(drawn, both);
+  return a;
+}
+
+// The bunny (normalised) against a copy moved smoothly by up to 0.5% of the diagonal and
+// recoloured: vertex colours of the procedural field, or a procedural texture (with stripes)
+// projected along z. Every GL method's colour is within one step of Embree's on >= 99.9% of the
+// samples both hit, and its PSNRs within 0.1 dB.
+TEST(BunnyColour, GlMethodsAgreeWithEmbree) {
+  REQUIRE_GL_CONTEXT(GlBackend::OSMesa);
+  const TriangleMesh bunny = normalised(testing::bunny());
+  const double diagonal = bunny.bounding_box().diagonal();
+  const TriangleMesh moved = smoothly_perturbed(bunny, 0.005 * diagonal, 0.3 * diagonal);
+  TriangleMesh coloured_reference = bunny, coloured_test = moved;
+  coloured_reference.set_vertex_colours(procedural_colours(bunny));
+  std::vector<Colour> recoloured = procedural_colours(moved, bunny.bounding_box());
+  for (Colour& c : recoloured) c.x() = std::min(255.0f, c.x() * 1.05f);
+  coloured_test.set_vertex_colours(recoloured);
+  const TriangleMesh textured_reference =
+      with_planar_texture(bunny, std::make_shared<Texture>(procedural_texture(512, 0, 40)));
+  const TriangleMesh textured_test = with_planar_texture(
+      moved, std::make_shared<Texture>(procedural_texture(512, 0.2, 40)), {}, bunny.bounding_box());
+  const std::pair<const TriangleMesh*, const TriangleMesh*> pairs[] = {{&coloured_reference, &coloured_test},
+                                                                       {&textured_reference, &textured_test}};
+  const double h = 0.05 * diagonal;
+  for (const auto& [reference, test] : pairs) {
+    const SampleSet samples = make_samples(*reference, {});
+    auto embree = make_method("embree");
+    const DistanceResult e = measure_distances(*embree, *test, samples, {Semantics::FirstHit, h, true});
+    const std::vector<Colour> reference_colours = sample_colours(*reference, samples);
+    const ColourPairs exact = colour_pairs(reference_colours, samples, *test, e, Semantics::FirstHit);
+    for (const char* method : kGlMethods) {
+      SCOPED_TRACE(std::string(method) + (reference->texture_mapping() ? " textured" : " vertex colours"));
+      auto m = make_method(method);
+      const DistanceResult d = measure_distances(*m, *test, samples, {Semantics::FirstHit, h, true});
+      const ColourAgreement a = colour_agreement(
+          exact, colour_pairs(reference_colours, samples, *test, d, Semantics::FirstHit), e, d);
+      EXPECT_GE(a.within_fraction(), 0.999) << a.within_a_step << " of " << a.both;
+      EXPECT_NEAR(a.drawn.psnr_rgb, a.exact.psnr_rgb, 0.1);
+      EXPECT_NEAR(a.drawn.psnr_ycbcr_611, a.exact.psnr_ycbcr_611, 0.1);
+      EXPECT_GT(a.both, samples.size() / 2);
+      RecordProperty(
+          std::string(method) + (reference->texture_mapping() ? "_textured" : "_vertex") + "_within",
+          std::to_string(a.within_fraction()));
+    }
+  }
+}
+
+}  // namespace
+}  // namespace roving
