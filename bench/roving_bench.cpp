@@ -308,9 +308,10 @@ void figure8_picture(Bench& bench, const TriangleMesh& bunny, const SampleSet& s
   view.subtitle = picture.subtitle;
   view.method = "cooperative";
   bench.figure8_views.push_back(std::move(view));
-  bench.pictures.push_back({"figure8-" + file + ".png", picture.title,
-                            coloured_surface(&bunny, faces, samples, distance_colours(values, range)),
-                            picture});
+  bench.pictures.push_back(
+      {"figure8-" + file + ".png", picture.title,
+       coloured_surface(&bunny, faces, samples, heatmap_colours(values, {HeatmapQuantity::Distance, range})),
+       picture});
 }
 
 // Figure 5b: where the cooperative method's views suffice and where it hands a sample to its

@@ -5,11 +5,14 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <nlohmann/json.hpp>
 #include <set>
+#include <sstream>
 
 #include "cli_support.h"
+#include "roving/formats/heatmap.h"
 
 namespace {
 
@@ -512,6 +515,51 @@ TEST(CliReport, ColourFiguresGatesAndSamplesTable) {
   EXPECT_NEAR(cloud_json["colour"]["rgb"]["g"]["mean_abs"].get<double>(), ((220 - 5) + (g_far - 5)) / 2,
               1e-4);
   EXPECT_NEAR(cloud_json["colour"]["rgb"]["b"]["mean_abs"].get<double>(), 0.25, 1e-4);
+}
+
+// --heatmap-of delta-e: the heat map of each sample's colour difference on the sequential map,
+// its legend in delta E, from the same values as the samples table's delta_e; refused where a
+// model has no colour, for a method without colour, and with a range in % of the diagonal.
+TEST(CliReport, ColourHeatMapShowsEachSamplesDeltaE) {
+  const Folder folder;
+  const std::string ref = folder.file("ref.ply", coloured_cube_ply(0.5, 200));
+  const std::string test = folder.file("test.ply", coloured_cube_ply(0.55, 210));
+  const std::string ply = folder.file("de.ply"), png = folder.file("de.png"), csv = folder.file("s.csv");
+  for (const char* method : {"embree", "roving"}) {
+    SCOPED_TRACE(method);
+    const CliRun run = run_cli("measure " + ref + " " + test + " --method " + method +
+                               " --samples vertices --heatmap-of delta-e --heatmap-range 20 --heatmap " +
+                               ply + " --heatmap-png " + png + " --samples-out " + csv);
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    std::ifstream file(ply);
+    const std::string text(std::istreambuf_iterator<char>(file), {});
+    EXPECT_NE(text.find("colour difference, CIEDE2000 delta E"), std::string::npos) << text.substr(0, 400);
+    EXPECT_NE(text.find("(per vertex)"), std::string::npos);
+    // Vertex 0's delta E, as the samples table gives it, is its quality; its colour is YlOrRd's
+    // at delta E / 20.
+    std::ifstream table(csv);
+    std::string header, row;
+    std::getline(table, header);
+    std::getline(table, row);
+    const double delta_e = std::stod(row.substr(row.rfind(',') + 1));
+    EXPECT_GT(delta_e, 1);
+    const auto c = roving::sequential_colour(delta_e / 20);
+    std::istringstream lines(text.substr(text.find("end_header\n") + 11));
+    double x, y, z, quality;
+    int r, g, b;
+    lines >> x >> y >> z >> r >> g >> b >> quality;
+    EXPECT_NEAR(quality, delta_e, 1e-4 * delta_e);
+    EXPECT_TRUE(r == c[0] && g == c[1] && b == c[2]) << r << ' ' << g << ' ' << b;
+    EXPECT_EQ(png_size(png).first, 16 + 3 * 416 + 250);
+  }
+  const std::string plain = folder.file("plain.obj", cube_obj(0.55));
+  expect_error("measure " + ref + " " + plain + " --heatmap-of delta-e --heatmap " + ply,
+               {"--heatmap-of delta-e", "colour on both models", plain.c_str()});
+  expect_error("measure " + ref + " " + test + " --method v2v-kdtree --heatmap-of delta-e",
+               {"v2v-kdtree", "no colour"});
+  expect_error("measure " + ref + " " + test + " --heatmap-of delta-e --heatmap-range 5%",
+               {"--heatmap-range", "5%"});
+  expect_error("measure " + ref + " " + test + " --heatmap-of colour", {"--heatmap-of", "colour"});
 }
 
 TEST(CliReport, JsonLayoutIsTheDocumentedOne) {

@@ -171,9 +171,17 @@ int main(int argc, char** argv) {
                       "write one self-contained web page (opens offline in a browser): REF in 3D coloured by d as for "
                       "--heatmap-png, to turn and zoom, a sample's d on hover or click, the figures, histogram, "
                       "warnings and provenance; both directions with --symmetric");
-  measure->add_option("--heatmap-range", args.heatmap_range,
-                      "the colour map's half-range: a length or P% of the diagonal (default: the 99th percentile of "
-                      "|d| over the hits)");
+  measure
+      ->add_option(
+          "--heatmap-of", args.heatmap_of,
+          "what --heatmap and --heatmap-png show: d (signed distance, diverging map) or delta-e (the "
+          "CIEDE2000 colour difference at each sample, 0 to the range; both models coloured)")
+      ->capture_default_str();
+  measure->add_option(
+      "--heatmap-range", args.heatmap_range,
+      "the colour map's half-range: a length or P% of the diagonal (default: the 99th percentile of "
+      "|d| over the hits); with --heatmap-of delta-e, a delta E (default: the 99th percentile of "
+      "delta E)");
 
   roving::BatchArguments batch_args;
   batch_args.defaults.command_line = args.command_line;

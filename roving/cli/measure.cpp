@@ -130,7 +130,28 @@ MeasurePlan plan_measurement(const MeasureArguments& args) {
     plan.sample_spec.seed = *args.seed;
   }
   plan.max_error = parse_max_error(args.max_error);
-  if (!args.heatmap_range.empty()) plan.heatmap_range = parse_length("--heatmap-range", args.heatmap_range);
+  if (args.heatmap_of != "d" && args.heatmap_of != "delta-e") {
+    throw Error(fmt::format("--heatmap-of: expected d or delta-e, found '{}'", args.heatmap_of));
+  }
+  if (args.heatmap_of == "delta-e") {
+    plan.heatmap_of = HeatmapQuantity::DeltaE;
+    if (!plan.method->reports_colour()) {
+      throw Error(
+          fmt::format("--heatmap-of delta-e: {} gives no colour at its hits; use embree, cgal or a GL method",
+                      plan.method->name()));
+    }
+    if (!args.heatmap_range.empty()) {
+      const MaxErrorSpec range = parse_length("--heatmap-range", args.heatmap_range);
+      if (range.percent_of_diagonal) {
+        throw Error(fmt::format(
+            "--heatmap-range: with --heatmap-of delta-e, expected a delta E > 0 (e.g. 5), found '{}'",
+            args.heatmap_range));
+      }
+      plan.heatmap_delta_e_range = range.value;
+    }
+  } else if (!args.heatmap_range.empty()) {
+    plan.heatmap_range = parse_length("--heatmap-range", args.heatmap_range);
+  }
   plan.max_error_text = args.max_error;
   if (!args.semantics.empty()) {
     plan.options.semantics = parse_semantics(args.semantics);
@@ -227,6 +248,10 @@ void describe_pair(const Model& a, const Model& b, MeasurePlan& plan, MeasureRep
   report.method = plan.method->name();
   report.semantics = plan.options.semantics;
   plan.options.colour = has_colour(a) && has_colour(b);
+  if (plan.heatmap_of == HeatmapQuantity::DeltaE && !plan.options.colour) {
+    throw Error(fmt::format("--heatmap-of delta-e: needs colour on both models; {} has none",
+                            has_colour(a) ? b.path() : a.path()));
+  }
   if (!plan.options.colour) {  // a colour gate fails before the long work, not after it
     std::vector<Gate> colour_gates;
     std::copy_if(plan.gates.begin(), plan.gates.end(), std::back_inserter(colour_gates),
@@ -398,10 +423,15 @@ int run_measure(const MeasureArguments& args, std::string& stage) {
     const Model& reference = *d.reference;
     const TriangleMesh* surface = reference.type == ModelType::Points ? nullptr : &reference.mesh.mesh;
     const HeatmapLayout layout = heatmap_layout(reference, d.samples);
-    const double range = d.heatmap_range;
+    const bool delta_e = plan.heatmap_of == HeatmapQuantity::DeltaE;
+    const std::vector<float> per_sample =
+        delta_e ? sample_delta_e(*d.colour_pairs, d.result.hit) : distances_or_nan(d.result);
+    const HeatmapScale scale{
+        plan.heatmap_of,
+        delta_e ? plan.heatmap_delta_e_range.value_or(percentile_99(per_sample, 1)) : d.heatmap_range};
     if (!args.heatmap_path.empty()) {
       outputs.push_back(std::make_unique<AtomicFile>(heatmap_paths(args.heatmap_path, report.symmetric())[i]));
-      write_heatmap_ply(outputs.back()->stream(), surface, layout, d.samples, d.result, range);
+      write_heatmap_ply(outputs.back()->stream(), surface, layout, d.samples, per_sample, scale);
       outputs.back()->close_stream();
     }
     if (!args.heatmap_png_path.empty()) {
@@ -409,17 +439,26 @@ int run_measure(const MeasureArguments& args, std::string& stage) {
       Picture picture;
       picture.title = fmt::format("{} (REF) against {} (TEST){}", file_name(reference.path()),
                                   file_name(d.test->path()), d.label.empty() ? "" : ", " + d.label);
-      picture.subtitle = fmt::format(
-          "d by {}, {} semantics, {} samples ({}); USiAD {:.4g} ({:.3g}% of the diagonal), {} no-hits",
-          report.method, to_string(report.semantics), d.samples.size(), d.samples.kind, d.statistics.usiad,
-          100 * d.statistics.usiad / report.diagonal, d.statistics.no_hit_count);
-      picture.legend.range = range;
+      if (delta_e) {
+        picture.subtitle = fmt::format(
+            "colour difference by {} ({} semantics), {} samples ({}); CIEDE2000 mean {:.3g}, p95 {:.3g}, "
+            "{} no-hits without a colour",
+            report.method, to_string(report.semantics), d.samples.size(), d.samples.kind,
+            d.colour->delta_e_mean, d.colour->delta_e_p95, d.colour->no_hit);
+        picture.legend.no_value_label = "no hit: no colour";
+      } else {
+        picture.subtitle = fmt::format(
+            "d by {}, {} semantics, {} samples ({}); USiAD {:.4g} ({:.3g}% of the diagonal), {} no-hits",
+            report.method, to_string(report.semantics), d.samples.size(), d.samples.kind, d.statistics.usiad,
+            100 * d.statistics.usiad / report.diagonal, d.statistics.no_hit_count);
+      }
+      picture.legend.quantity = plan.heatmap_of;
+      picture.legend.range = scale.range;
       picture.legend.diagonal = report.diagonal;
-      const std::vector<float> values =
-          heatmap_values(surface, layout, d.samples, distances_or_nan(d.result));
+      const std::vector<float> values = heatmap_values(surface, layout, d.samples, per_sample);
       outputs.push_back(std::make_unique<AtomicFile>(heatmap_paths(args.heatmap_png_path, report.symmetric())[i]));
       write_picture_png(outputs.back()->stream(), plan.gl.backend,
-                        coloured_surface(surface, layout, d.samples, distance_colours(values, range)),
+                        coloured_surface(surface, layout, d.samples, heatmap_colours(values, scale)),
                         picture);
       outputs.back()->close_stream();
     }

@@ -25,7 +25,8 @@ struct MeasureArguments {
   std::optional<std::uint64_t> seed;  // area:N only
   std::string max_error = "5%";
   std::string json_path, samples_csv_path, heatmap_path, heatmap_png_path, html_path;
-  std::string heatmap_range;  // empty: the 99th percentile of |d| over the hits
+  std::string heatmap_of = "d";           // or "delta-e": what --heatmap and --heatmap-png show
+  std::string heatmap_range;              // empty: the 99th percentile of |d| (or delta E) over the hits
   std::string hausdorff_bound = "0.01%";  // the certified interval's width, or "none"
   std::string gate_on = "estimate";       // or "upper": gates compare an interval's upper end
   std::string precision = "1%";           // area:auto: USiAD's 95% half-width, relative (P%) or a length
@@ -56,6 +57,8 @@ struct MeasurePlan {
   GateOn gate_on = GateOn::Estimate;
   std::optional<MaxErrorSpec> precision;  // area:auto only; P% is of USiAD itself
   std::optional<MaxErrorSpec> heatmap_range;  // --heatmap-range; unset: the 99th percentile of |d|
+  HeatmapQuantity heatmap_of = HeatmapQuantity::Distance;
+  std::optional<double> heatmap_delta_e_range;  // --heatmap-range with --heatmap-of delta-e
 };
 
 // A bad option value or combination on the command line: the tool exits 2, as for a parse error.

@@ -14,10 +14,31 @@ double colour_psnr(double mse) {
   return mse > 0 ? 10 * std::log10(kColourPeak * kColourPeak / mse) : std::numeric_limits<double>::infinity();
 }
 
-ColourStatistics compute_colour_statistics(const ColourPairs& pairs, const std::vector<std::uint8_t>& hit) {
+namespace {
+
+void require_sizes(const ColourPairs& pairs, const std::vector<std::uint8_t>& hit) {
   if (pairs.reference.size() != hit.size() || pairs.test.size() != hit.size()) {
     throw Error("colour statistics: colour pairs and hits disagree in number");
   }
+}
+
+double delta_e_of(const ColourPairs& pairs, std::size_t k) {
+  return ciede2000(srgb_to_lab(pairs.reference[k].cast<double>()), srgb_to_lab(pairs.test[k].cast<double>()));
+}
+
+}  // namespace
+
+std::vector<float> sample_delta_e(const ColourPairs& pairs, const std::vector<std::uint8_t>& hit) {
+  require_sizes(pairs, hit);
+  std::vector<float> delta_e(hit.size(), std::numeric_limits<float>::quiet_NaN());
+  for (std::size_t k = 0; k < hit.size(); ++k) {
+    if (hit[k]) delta_e[k] = static_cast<float>(delta_e_of(pairs, k));
+  }
+  return delta_e;
+}
+
+ColourStatistics compute_colour_statistics(const ColourPairs& pairs, const std::vector<std::uint8_t>& hit) {
+  require_sizes(pairs, hit);
   ColourStatistics s;
   Vec3 sum_abs_rgb = Vec3::Zero(), sum_sq_rgb = Vec3::Zero();
   Vec3 sum_abs_ycbcr = Vec3::Zero(), sum_sq_ycbcr = Vec3::Zero();
@@ -36,7 +57,7 @@ ColourStatistics compute_colour_statistics(const ColourPairs& pairs, const std::
     sum_sq_rgb += rgb.cwiseAbs2();
     sum_abs_ycbcr += ycbcr.cwiseAbs();
     sum_sq_ycbcr += ycbcr.cwiseAbs2();
-    delta_e.push_back(ciede2000(srgb_to_lab(ref), srgb_to_lab(test)));
+    delta_e.push_back(delta_e_of(pairs, k));
     delta_e_sum += delta_e.back();
   }
   s.compared = delta_e.size();

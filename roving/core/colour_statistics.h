@@ -37,6 +37,10 @@ struct ColourStatistics {
          delta_e_max = kNoFigure;  // CIEDE2000; p95 nearest-rank
 };
 
+// Each sample's CIEDE2000 delta E between its two colours; NaN where it has no hit. Throws
+// roving::Error on sizes that disagree.
+std::vector<float> sample_delta_e(const ColourPairs& pairs, const std::vector<std::uint8_t>& hit);
+
 // Throws roving::Error on sizes that disagree.
 ColourStatistics compute_colour_statistics(const ColourPairs& pairs, const std::vector<std::uint8_t>& hit);
 

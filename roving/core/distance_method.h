@@ -120,6 +120,9 @@ class DistanceMethod {
   virtual std::string name() const = 0;
   // The semantics this method can compute; the first is its default.
   virtual std::vector<Semantics> supported_semantics() const = 0;
+  // Whether DistanceOptions::colour gets TEST's colour at each hit from it (a face or a drawn
+  // colour); the baselines have no such correspondence.
+  virtual bool reports_colour() const { return false; }
 
   // Prepares for queries against `test` (kept by reference: it must outlive the method).
   // Returns the build time in seconds.

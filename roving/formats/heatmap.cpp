@@ -24,6 +24,27 @@ std::array<unsigned char, 3> diverging_colour(double s) {
   return colour;
 }
 
+std::array<unsigned char, 3> sequential_colour(double s) {
+  // YlOrRd, 9 classes (Brewer 2002).
+  static constexpr unsigned char stops[9][3] = {{255, 255, 204}, {255, 237, 160}, {254, 217, 118},
+                                                {254, 178, 76},  {253, 141, 60},  {252, 78, 42},
+                                                {227, 26, 28},   {189, 0, 38},    {128, 0, 38}};
+  const double position = std::clamp(std::isnan(s) ? 0.0 : s, 0.0, 1.0) * 8;  // 0..8
+  const int low = std::min(static_cast<int>(position), 7);
+  const double t = position - low;
+  std::array<unsigned char, 3> colour;
+  for (int c = 0; c < 3; ++c) {
+    colour[c] = static_cast<unsigned char>(std::lround((1 - t) * stops[low][c] + t * stops[low + 1][c]));
+  }
+  return colour;
+}
+
+std::array<unsigned char, 3> HeatmapScale::colour(float value) const {
+  if (std::isnan(value)) return kNoHitColour;
+  return quantity == HeatmapQuantity::Distance ? diverging_colour(value / range)
+                                               : sequential_colour(value / range);
+}
+
 std::vector<float> heatmap_values(const TriangleMesh* surface, const HeatmapLayout& layout, const SampleSet& samples,
                                   const std::vector<float>& per_sample) {
   if (!surface || layout.element == HeatmapElement::Points) return per_sample;
@@ -41,13 +62,19 @@ std::vector<float> heatmap_values(const TriangleMesh* surface, const HeatmapLayo
 }
 
 double default_heatmap_range(const DistanceResult& result, double fallback) {
-  std::vector<double> magnitudes;
+  std::vector<float> magnitudes;
   for (std::size_t k = 0; k < result.hit.size(); ++k) {
-    if (result.hit[k]) magnitudes.push_back(std::abs(result.signed_distance[k]));
+    if (result.hit[k]) magnitudes.push_back(static_cast<float>(std::abs(result.signed_distance[k])));
   }
-  if (magnitudes.empty()) return fallback;
-  const auto at = magnitudes.begin() + static_cast<std::ptrdiff_t>(0.99 * (magnitudes.size() - 1));
-  std::nth_element(magnitudes.begin(), at, magnitudes.end());
+  return percentile_99(std::move(magnitudes), fallback);
+}
+
+double percentile_99(std::vector<float> values, double fallback) {
+  values.erase(std::remove_if(values.begin(), values.end(), [](float v) { return std::isnan(v); }),
+               values.end());
+  if (values.empty()) return fallback;
+  const auto at = values.begin() + static_cast<std::ptrdiff_t>(0.99 * (values.size() - 1));
+  std::nth_element(values.begin(), at, values.end());
   return *at > 0 ? *at : fallback;
 }
 
@@ -60,19 +87,30 @@ std::vector<float> distances_or_nan(const DistanceResult& result) {
 }
 
 void write_heatmap_ply(std::FILE* out, const TriangleMesh* surface, const HeatmapLayout& layout,
-                       const SampleSet& samples, const DistanceResult& result, double range) {
-  if (!(range > 0)) range = 1;
-  const auto colour_of = [&](float d) { return std::isnan(d) ? kNoHitColour : diverging_colour(d / range); };
+                       const SampleSet& samples, const std::vector<float>& per_sample,
+                       const HeatmapScale& scale) {
   const HeatmapElement element = surface ? layout.element : HeatmapElement::Points;
-  const std::vector<float> d = distances_or_nan(result);
-  const std::vector<float> value = heatmap_values(surface, layout, samples, d);
-  fmt::print(out,
-             "ply\nformat ascii 1.0\ncomment surface roving heat map of signed distance d ({})\n"
-             "comment legend: d = -{} blue (TEST inside REF), 0 white, +{} red (outside); grey = no hit "
-             "(quality nan)\n",
-             element == HeatmapElement::Faces ? "per face" : element == HeatmapElement::Vertices ? "per vertex"
-                                                                                                  : "per sample point",
-             range, range);
+  const std::vector<float> value = heatmap_values(surface, layout, samples, per_sample);
+  const double range = scale.range;
+  fmt::print(out, "ply\nformat ascii 1.0\n");
+  const char* per = element == HeatmapElement::Faces      ? "per face"
+                    : element == HeatmapElement::Vertices ? "per vertex"
+                                                          : "per sample point";
+  if (scale.quantity == HeatmapQuantity::Distance) {
+    fmt::print(out,
+               "comment surface roving heat map of signed distance d ({})\n"
+               "comment legend: d = -{} blue (TEST inside REF), 0 white, +{} red (outside); grey = no hit "
+               "(quality nan)\n",
+               per, range, range);
+  } else {
+    fmt::print(
+        out,
+        "comment surface roving heat map of colour difference, CIEDE2000 delta E between REF's and "
+        "TEST's colours ({})\n"
+        "comment legend: delta E = 0 pale yellow (colours agree), {} dark red; grey = no hit, no colour "
+        "(quality nan)\n",
+        per, range);
+  }
   const bool per_vertex = element != HeatmapElement::Faces;
   const std::size_t vertices = element == HeatmapElement::Points ? samples.size() : surface->vertex_count();
   fmt::print(out, "element vertex {}\nproperty float x\nproperty float y\nproperty float z\n", vertices);
@@ -87,9 +125,9 @@ void write_heatmap_ply(std::FILE* out, const TriangleMesh* surface, const Heatma
     }
   }
   fmt::print(out, "end_header\n");
-  const auto coloured = [&](float d) {
-    const auto c = colour_of(d);
-    return fmt::format("{} {} {} {}", c[0], c[1], c[2], d);  // fmt writes NaN as "nan"
+  const auto coloured = [&](float v) {
+    const auto c = scale.colour(v);
+    return fmt::format("{} {} {} {}", c[0], c[1], c[2], v);  // fmt writes NaN as "nan"
   };
   if (element == HeatmapElement::Points) {
     for (std::size_t k = 0; k < samples.size(); ++k) {

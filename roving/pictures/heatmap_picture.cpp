@@ -62,13 +62,15 @@ void swatch(cairo_t* cr, double x, double y, const Rgb& colour, const std::strin
 }
 
 // The colour bar from +range (top) to -range (bottom), ticks in model units and % of the
-// diagonal, and which side is which.
+// diagonal, and which side is which; for delta E, from range (top) to 0.
 void colour_bar(cairo_t* cr, double x, double top, double height, const PictureLegend& legend) {
-  text(cr, x, top - 26, 13, "signed distance d", true);
-  text(cr, x, top - 10, 12, "model units (% of diagonal)");
+  const bool distance = legend.quantity == HeatmapQuantity::Distance;
+  text(cr, x, top - 26, 13, distance ? "signed distance d" : "colour difference", true);
+  text(cr, x, top - 10, 12, distance ? "model units (% of diagonal)" : "CIEDE2000 delta E");
   const double width = 22;
   for (int row = 0; row < static_cast<int>(height); ++row) {
-    set_colour(cr, diverging_colour(1 - 2 * (row + 0.5) / height));
+    const double s = 1 - (row + 0.5) / height;  // 1 at the top, 0 at the bottom
+    set_colour(cr, distance ? diverging_colour(2 * s - 1) : sequential_colour(s));
     cairo_rectangle(cr, x, top + row, width, 1);
     cairo_fill(cr);
   }
@@ -77,18 +79,28 @@ void colour_bar(cairo_t* cr, double x, double top, double height, const PictureL
   cairo_set_line_width(cr, 1);
   cairo_stroke(cr);
   for (int tick = 0; tick <= 4; ++tick) {
-    const double s = 1 - tick / 2.0, y = top + height * tick / 4.0;
+    const double s = 1 - tick / 4.0, y = top + height * tick / 4.0;
     cairo_move_to(cr, x + width, y);
     cairo_line_to(cr, x + width + 5, y);
     cairo_stroke(cr);
-    const double value = s * legend.range;
-    const std::string percent =
-        legend.diagonal > 0 ? fmt::format(" ({:+.3g}%)", 100 * value / legend.diagonal) : std::string();
-    text(cr, x + width + 9, y + 4, 12,
-         value == 0 ? std::string("0") : fmt::format("{:+.3g}", value) + percent);
+    std::string label;
+    if (distance) {
+      const double value = (2 * s - 1) * legend.range;
+      const std::string percent =
+          legend.diagonal > 0 ? fmt::format(" ({:+.3g}%)", 100 * value / legend.diagonal) : std::string();
+      label = value == 0 ? std::string("0") : fmt::format("{:+.3g}", value) + percent;
+    } else {
+      label = fmt::format("{:.3g}", s * legend.range);
+    }
+    text(cr, x + width + 9, y + 4, 12, label);
   }
-  text(cr, x, top + height + 20, 12, "red: TEST outside REF");
-  text(cr, x, top + height + 36, 12, "blue: TEST inside REF");
+  if (distance) {
+    text(cr, x, top + height + 20, 12, "red: TEST outside REF");
+    text(cr, x, top + height + 36, 12, "blue: TEST inside REF");
+  } else {
+    text(cr, x, top + height + 20, 12, "pale: colours agree");
+    text(cr, x, top + height + 36, 12, "about 1: just noticeable");
+  }
   text(cr, x, top + height + 52, 12, "beyond the ends: end colour");
 }
 
@@ -123,10 +135,10 @@ ColouredSurface coloured_surface(const TriangleMesh* surface, const HeatmapLayou
   return out;
 }
 
-std::vector<Rgb> distance_colours(const std::vector<float>& values, double range) {
+std::vector<Rgb> heatmap_colours(const std::vector<float>& values, const HeatmapScale& scale) {
   std::vector<Rgb> colours;
   colours.reserve(values.size());
-  for (float d : values) colours.push_back(std::isnan(d) ? kNoHitColour : diverging_colour(d / range));
+  for (float v : values) colours.push_back(scale.colour(v));
   return colours;
 }
 

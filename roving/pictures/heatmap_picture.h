@@ -16,7 +16,9 @@
 namespace roving {
 
 struct PictureLegend {
-  // A diverging colour bar over [-range, range], labelled in model units and in % of `diagonal`.
+  // A diverging colour bar of d over [-range, range], labelled in model units and in % of
+  // `diagonal`; or, for the colour difference, a sequential bar of delta E over [0, range].
+  HeatmapQuantity quantity = HeatmapQuantity::Distance;
   double range = 0, diagonal = 0;
   // Or, when not empty, one swatch per category instead of the bar.
   std::vector<std::pair<Rgb, std::string>> categories;
@@ -34,8 +36,8 @@ struct Picture {
 ColouredSurface coloured_surface(const TriangleMesh* surface, const HeatmapLayout& layout,
                                  const SampleSet& samples, const std::vector<Rgb>& element_colours);
 
-// The heat map's colours for heatmap_values(): diverging over [-range, range], no-hit grey.
-std::vector<Rgb> distance_colours(const std::vector<float>& values, double range);
+// The heat map's colours for heatmap_values() on `scale`, no-hit grey for NaN.
+std::vector<Rgb> heatmap_colours(const std::vector<float>& values, const HeatmapScale& scale);
 
 // Renders `surface` seen from +z (front), +x (side) and +y (top) and writes the picture as PNG.
 // Throws roving::Error when GL or cairo fails.
