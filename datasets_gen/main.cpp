@@ -8,18 +8,22 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <set>
 
-#include "data_folder.h"
 #include "analytic.h"
+#include "coloured.h"
+#include "data_folder.h"
 #include "decimate.h"
 #include "paper_models.h"
 #include "roving/core/error.h"
 #include "roving/core/normalise.h"
 #include "roving/core/sample_set.h"
 #include "roving/formats/binvox.h"
+#include "roving/formats/coloured_mesh_writer.h"
 #include "roving/formats/file_hash.h"
 #include "roving/formats/mesh_io.h"
 #include "roving/formats/point_cloud_io.h"
+#include "roving/formats/texture_io.h"
 #include "subdivide.h"
 #include "voxelize.h"
 
@@ -53,6 +57,29 @@ class Writer {
     add(name, std::move(made_by), {{"points", c.positions.size()}, {"normals", !c.normals.empty()}});
   }
   void copied(const std::string& name, json made_by) { add(name, std::move(made_by), json::object()); }
+  // A textured mesh of one material as OBJ + MTL (NAME.obj, NAME.mtl) and its texture
+  // (`texture_name`: PNG, or JPEG at `jpeg_quality`), or as glTF (NAME.gltf and .bin) when
+  // `gltf`; the texture written once by whoever names it first.
+  void textured(const TriangleMesh& m, const std::string& name, const std::string& texture_name, json made_by,
+                int jpeg_quality = 0, bool gltf = false) {
+    const Texture& texture = *m.texture_mapping()->materials[0].texture;
+    if (!fs::exists(path(texture_name)) || !written_textures_.count(texture_name)) {
+      write_texture(texture, path(texture_name), jpeg_quality);
+      written_textures_.insert(texture_name);
+      add(texture_name, made_by,
+          {{"width", texture.width}, {"height", texture.height}, {"jpeg_quality", jpeg_quality}});
+    }
+    const std::string stem = fs::path(name).stem().string();
+    if (gltf) {
+      write_coloured_gltf(m, path(stem + ".gltf"), {texture_name});
+      add(stem + ".gltf", std::move(made_by),
+          {{"vertices", m.vertex_count()}, {"triangles", m.triangle_count()}});
+    } else {
+      write_coloured_obj(m, path(stem + ".obj"), path(stem + ".mtl"), {texture_name});
+      add(stem + ".obj", std::move(made_by),
+          {{"vertices", m.vertex_count()}, {"triangles", m.triangle_count()}});
+    }
+  }
   void finish() {
     std::ofstream(folder_ / "manifest.json")
         << json{{"generator", "roving-datasets"}, {"files", manifest_}}.dump(2) << "\n";
@@ -70,12 +97,77 @@ class Writer {
   }
   fs::path folder_;
   json manifest_ = json::array();
+  std::set<std::string> written_textures_;
 };
 
 // Points uniform by area on `mesh`, with its face normals (a scanned-cloud stand-in).
 PointCloud sampled_points(const TriangleMesh& mesh, std::size_t count) {
   const SampleSet s = make_samples(mesh, {SampleSpec::Kind::Area, count});
   return {s.positions, s.normals, {}};
+}
+
+// The colour benchmark's models (docs/benchmark.md "Colour"): the normalised bunny coloured by
+// one procedural field over its box, as vertex colours and as a baked per-triangle atlas, and
+// copies degraded as a codec or a pipeline would degrade them.
+void write_colour_models(const TriangleMesh& bunny, const std::string& folder) {
+  Writer write(folder);
+  const BoundingBox box = bunny.bounding_box();
+  const auto unit = [&](const Vec3& p) { return Vec3((p - box.min).cwiseQuotient(box.size())); };
+  const auto whole = [](std::vector<Colour> colours) {
+    for (Colour& c : colours) c = c.array().round().matrix();
+    return colours;
+  };
+  const json field = {{"field", "procedural_colour over the bunny's box (datasets_gen/coloured.cpp)"}};
+  const auto made = [&](const std::string& operation, json extra = json::object()) {
+    json m = {{"source", "bunny.ply"}, {"operation", operation}};
+    m.update(field);
+    m.update(extra);
+    return m;
+  };
+  TriangleMesh coloured = bunny;
+  coloured.set_vertex_colours(whole(procedural_colours(bunny)));
+  write.mesh(coloured, "bunny-vc.ply", made("vertex colours of the field"));
+  TriangleMesh quantised_colours = coloured;
+  quantised_colours.set_vertex_colours(quantised(coloured.vertex_colours(), 4));
+  write.mesh(quantised_colours, "bunny-vc-4bit.ply",
+             made("vertex colours quantised to 4 bits a channel", {{"bits", 4}}));
+  TriangleMesh decimated = decimate_quadric(bunny, 10459);
+  decimated.set_vertex_colours(whole(procedural_colours(decimated, box)));
+  write.mesh(decimated, "bunny-10459-vc.ply",
+             made("quadric decimation to 10459, vertex colours of the field", {{"target_triangles", 10459}}));
+
+  constexpr int kSide = 2048, kBands = 24;
+  const auto detail = [&](const Vec3& p) { return detailed_colour(unit(p), kBands); };
+  const json atlas = {{"atlas", "per-triangle cells (with_baked_atlas)"}, {"side", kSide}, {"bands", kBands}};
+  const TriangleMesh textured = with_baked_atlas(bunny, kSide, detail);
+  write.textured(textured, "bunny-atlas.obj", "bunny-atlas.png",
+                 made("texture atlas baked from the field", atlas));
+  write.textured(textured, "bunny-atlas.gltf", "bunny-atlas.png", made("the same as glTF", atlas), 0, true);
+  const Texture& texture = *textured.texture_mapping()->materials[0].texture;
+  const auto retextured = [&](const Texture& t) {
+    TextureMapping mapping = *textured.texture_mapping();
+    mapping.materials[0].texture = std::make_shared<Texture>(t);
+    TriangleMesh m = bunny;
+    m.set_texture_mapping(std::move(mapping));
+    return m;
+  };
+  for (const int quality : {90, 50, 20}) {
+    write.textured(retextured(texture), fmt::format("bunny-atlas-jpeg{}.obj", quality),
+                   fmt::format("bunny-atlas-q{}.jpg", quality),
+                   made("the atlas as JPEG", {{"jpeg_quality", quality}}), quality);
+  }
+  for (const int times : {1, 2}) {
+    write.textured(retextured(downsampled(texture, times)), fmt::format("bunny-atlas-down{}.obj", 1 << times),
+                   fmt::format("bunny-atlas-down{}.png", 1 << times),
+                   made("the atlas downsampled by 2 x 2 box filters", {{"factor", 1 << times}}));
+  }
+  write.textured(retextured(quantised(texture, 4)), "bunny-atlas-4bit.obj", "bunny-atlas-4bit.png",
+                 made("the atlas quantised to 4 bits a channel", {{"bits", 4}}));
+  const TriangleMesh coarse = with_baked_atlas(decimate_quadric(bunny, 17362), kSide, detail);
+  write.textured(coarse, "bunny-17362-atlas.obj", "bunny-17362-atlas.png",
+                 made("quadric decimation to 17362 (a quarter), its atlas baked again from the field",
+                      {{"target_triangles", 17362}, {"side", kSide}}));
+  write.finish();
 }
 
 }  // namespace
@@ -89,6 +181,12 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--out", out, "folder to write into")->capture_default_str();
   app.add_flag("--quick", quick, "the bunny's files only (for tests)");
+  bool colour = false;
+  app.add_flag(
+      "--colour", colour,
+      "only the colour benchmark's models, into OUT/colour: the bunny with vertex colours and with a baked "
+      "texture atlas, and their degraded copies (decimation, colour quantisation, texture downsampling, "
+      "JPEG), as PLY, OBJ + MTL + PNG/JPEG and glTF");
   bool scaling = false;
   app.add_flag("--scaling", scaling,
                "only the scaling benchmark's pairs, into OUT/scaling: the bunny and its perturbed 10,459-triangle "
@@ -131,6 +229,10 @@ int main(int argc, char** argv) {
                      {"n", n}});
       }
       scaled.finish();
+      return 0;
+    }
+    if (colour) {
+      write_colour_models(bunny, (fs::path(out) / "colour").string());
       return 0;
     }
     write.mesh(bunny, "bunny.ply", normalise(bunny_path));

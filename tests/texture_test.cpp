@@ -6,16 +6,23 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
+#include <nlohmann/json.hpp>
 
 #include "colour_models.h"
+#include "coloured.h"
 #include "roving/core/colour.h"
+#include "roving/core/colour_science.h"
 #include "roving/core/colour_statistics.h"
 #include "roving/core/error.h"
+#include "roving/formats/coloured_mesh_writer.h"
 #include "roving/formats/mesh_io.h"
 #include "roving/formats/texture_io.h"
 #include "roving/registry/method_registry.h"
+#include "test_support.h"
 
 namespace roving {
 namespace {
@@ -263,6 +270,148 @@ TEST_F(TextureFiles, BadObjColourIsAnError) {
   mtl_error("newmtl a\nmap_Kd gone.png\n", {":2:", "map_Kd", "gone.png", "cannot open"});
   write("fake.png", "GIF89a not a png");
   mtl_error("newmtl a\nmap_Kd fake.png\n", {":2:", "fake.png", "expected a PNG or JPEG"});
+}
+
+}  // namespace
+}  // namespace roving
+
+namespace roving {
+namespace {
+
+// glTF colour: a vertex-coloured, textured bunny written as glTF and as OBJ + MTL (with the
+// texture as PNG) and read back gives every sample the same colour, to float's rounding of the
+// linear values glTF stores (a thousandth of a step); glTF's linear factors and COLOR_0 are the
+// sRGB code values' linear light.
+TEST_F(TextureFiles, ColouredMeshesRoundTripThroughGltfAndObj) {
+  TriangleMesh bunny =
+      with_planar_texture(testing::bunny(), std::make_shared<Texture>(procedural_texture(64, 0, 8)));
+  bunny.set_vertex_colours(procedural_colours(bunny));
+  write_texture(*bunny.texture_mapping()->materials[0].texture, path("atlas.png"));
+  write_coloured_gltf(bunny, path("bunny.gltf"), {"atlas.png"});
+  write_coloured_obj(bunny, path("bunny.obj"), path("bunny.mtl"), {"atlas.png"});
+  const SampleSet samples = make_samples(bunny, parse_sample_spec("area:3000"));
+  const std::vector<Colour> expected = sample_colours(bunny, samples);
+  for (const char* file : {"bunny.gltf", "bunny.obj"}) {
+    SCOPED_TRACE(file);
+    const TriangleMesh loaded = load_mesh(path(file)).mesh;
+    ASSERT_TRUE(loaded.has_colour());
+    ASSERT_EQ(loaded.triangle_count(), bunny.triangle_count());
+    const std::vector<Colour> colours = sample_colours(loaded, samples);
+    for (std::size_t k = 0; k < samples.size(); ++k) {
+      ASSERT_LT((colours[k] - expected[k]).cwiseAbs().maxCoeff(), 1e-3) << "sample " << k;
+    }
+  }
+  // glTF multiplies baseColorFactor and the texture in linear light: a factor of 0.5 in R is
+  // baked into the texels, each R' code(0.5 linear(R')), and the factor becomes white.
+  nlohmann::json gltf = nlohmann::json::parse(bytes_of("bunny.gltf"));
+  gltf["materials"][0]["pbrMetallicRoughness"]["baseColorFactor"] = {0.5, 1, 1, 1};
+  write("half.bin", bytes_of("bunny.bin"));
+  gltf["buffers"][0]["uri"] = "half.bin";
+  const TriangleMesh half = load_mesh(write("half.gltf", gltf.dump())).mesh;
+  const TextureMapping& mapping = *half.texture_mapping();
+  const Material& material = mapping.materials[mapping.face_material[0]];
+  EXPECT_EQ(material.factor, Colour::Constant(255));
+  const Texture& original = *bunny.texture_mapping()->materials[0].texture;
+  for (std::size_t i = 0; i < original.rgb.size(); i += 3) {
+    ASSERT_EQ(material.texture->rgb[i], std::lround(srgb_code(0.5 * srgb_linear(original.rgb[i])))) << i;
+    ASSERT_EQ(material.texture->rgb[i + 1], original.rgb[i + 1]);
+  }
+  EXPECT_NEAR(srgb_code(0.5), 187.5, 0.1);
+}
+
+TEST_F(TextureFiles, BadGltfColourIsAnError) {
+  const auto ramp = std::make_shared<Texture>(
+      make_texture(4, 4, [](int i, int j) { return Eigen::Vector3i(10 * i, 10 * j, 5); }));
+  TriangleMesh square = testing::textured_square(0, ramp);
+  square.set_vertex_colours({Colour(255, 0, 0), Colour(0, 255, 0), Colour(0, 0, 255), Colour(9, 9, 9)});
+  write_texture(*ramp, path("ramp.png"));
+  write_coloured_gltf(square, path("square.gltf"), {"ramp.png"});
+  const nlohmann::json good = nlohmann::json::parse(bytes_of("square.gltf"));
+  const TriangleMesh loaded = load_mesh(path("square.gltf")).mesh;
+  ASSERT_TRUE(loaded.has_colour());
+  // The image inside the buffer (as a GLB holds it): the same texels.
+  {
+    nlohmann::json embedded = good;
+    std::string bin = bytes_of("square.bin");
+    while (bin.size() % 4) bin.push_back('\0');
+    const std::string png = bytes_of("ramp.png");
+    embedded["bufferViews"].push_back(
+        {{"buffer", 0}, {"byteOffset", bin.size()}, {"byteLength", png.size()}});
+    embedded["buffers"][0] = {{"uri", "embedded.bin"}, {"byteLength", bin.size() + png.size()}};
+    embedded["images"][0] = {{"bufferView", embedded["bufferViews"].size() - 1}, {"mimeType", "image/png"}};
+    write("embedded.bin", bin + png);
+    const TriangleMesh inside = load_mesh(write("embedded.gltf", embedded.dump())).mesh;
+    const TextureMapping& mapping = *inside.texture_mapping();
+    EXPECT_EQ(mapping.materials[mapping.face_material[0]].texture->rgb, ramp->rgb);
+  }
+  // Each edit of the good file, and what its message must name.
+  const auto colour_accessor = good["meshes"][0]["primitives"][0]["attributes"]["COLOR_0"].get<int>();
+  const struct {
+    const char* name;
+    std::function<void(nlohmann::json&)> edit;
+    std::vector<std::string> fragments;
+  } cases[] = {
+      {"texcoord1",
+       [](nlohmann::json& g) {
+         g["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"]["texCoord"] = 1;
+       },
+       {"baseColorTexture", "texCoord 0"}},
+      {"transform",
+       [](nlohmann::json& g) {
+         g["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"]["extensions"]
+          ["KHR_texture_transform"] = nlohmann::json::object();
+       },
+       {"KHR_texture_transform"}},
+      {"no-uv",
+       [](nlohmann::json& g) { g["meshes"][0]["primitives"][0]["attributes"].erase("TEXCOORD_0"); },
+       {"primitives[0]", "no TEXCOORD_0"}},
+      {"factor",
+       [](nlohmann::json& g) {
+         g["materials"][0]["pbrMetallicRoughness"]["baseColorFactor"] = {1.5, 0, 0, 1};
+       },
+       {"materials[0]", "baseColorFactor", "1.5"}},
+      {"wrap", [](nlohmann::json& g) { g["samplers"][0]["wrapS"] = 1234; }, {"samplers[0]", "wrapS", "1234"}},
+      {"image",
+       [](nlohmann::json& g) { g["images"][0]["uri"] = "missing.png"; },
+       {"images[0]", "missing.png"}},
+      {"no-image", [](nlohmann::json& g) { g["textures"][0].erase("source"); }, {"textures[0]", "no source"}},
+      {"colour-type",
+       [&](nlohmann::json& g) { g["accessors"][colour_accessor]["componentType"] = 5121; },
+       {"COLOR_0", "normalized"}},
+      {"colour-count",
+       [&](nlohmann::json& g) { g["accessors"][colour_accessor]["count"] = 3; },
+       {"COLOR_0", "3 colours for 4"}},
+  };
+  for (const auto& c : cases) {
+    SCOPED_TRACE(c.name);
+    nlohmann::json edited = good;
+    c.edit(edited);
+    const std::string file = write(std::string(c.name) + ".gltf", edited.dump());
+    std::vector<std::string> fragments = c.fragments;
+    fragments.push_back(file);
+    expect_error([&] { load_mesh(file); }, fragments);
+  }
+  // COLOR_0 on an untextured material with a factor: glTF's product in linear light at each vertex.
+  {
+    nlohmann::json plain = good;
+    plain["materials"][0]["pbrMetallicRoughness"] = {{"baseColorFactor", {0.5, 1, 1, 1}}};
+    plain["meshes"][0]["primitives"][0]["attributes"].erase("TEXCOORD_0");
+    const TriangleMesh tinted = load_mesh(write("tinted.gltf", plain.dump())).mesh;
+    const Triangle& t = tinted.triangles()[0];
+    const auto at = [&](int corner) { return colour_on_face(tinted, 0, tinted.positions()[t[corner]]); };
+    const Colour expected[3] = {Colour(float(srgb_code(0.5)), 0, 0), Colour(0, 255, 0), Colour(0, 0, 255)};
+    for (int corner = 0; corner < 3; ++corner) {
+      EXPECT_LT((at(corner) - expected[t[corner] % 3]).cwiseAbs().maxCoeff(), 1e-3) << corner;
+    }
+  }
+  // COLOR_0 outside [0, 1] in the buffer itself.
+  std::string bin = bytes_of("square.bin");
+  const std::size_t view = good["accessors"][colour_accessor]["bufferView"].get<std::size_t>();
+  const std::size_t at = good["bufferViews"][view]["byteOffset"].get<std::size_t>();
+  const float bad = 2.5f;
+  std::memcpy(bin.data() + at, &bad, 4);
+  write("square.bin", bin);
+  expect_error([&] { load_mesh(path("square.gltf")); }, {"COLOR_0", "2.5", "expected 0 to 1"});
 }
 
 }  // namespace

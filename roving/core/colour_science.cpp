@@ -11,18 +11,22 @@ double radians(double degrees) {
   return degrees * kPi / 180;
 }
 
-// sRGB's transfer function inverted: a code value on [0, 255] to linear light on [0, 1].
-double linear_light(double code) {
-  const double c = code / 255;
-  return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
-}
-
 double lab_f(double t) {
   constexpr double delta = 6.0 / 29;
   return t > delta * delta * delta ? std::cbrt(t) : t / (3 * delta * delta) + 4.0 / 29;
 }
 
 }  // namespace
+
+double srgb_code(double linear) {
+  const double c = linear <= 0.0031308 ? 12.92 * linear : 1.055 * std::pow(linear, 1 / 2.4) - 0.055;
+  return 255 * c;
+}
+
+double srgb_linear(double code) {
+  const double c = code / 255;
+  return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
+}
 
 Vec3 ycbcr_bt709(const Vec3& rgb) {
   const double y = 0.2126 * rgb.x() + 0.7152 * rgb.y() + 0.0722 * rgb.z();
@@ -37,7 +41,7 @@ Vec3 srgb_to_lab(const Vec3& rgb) {
                                          0.0193339, 0.1191920, 0.9503041)
                                             .finished();
   static const Vec3 white = to_xyz * Vec3::Ones();
-  const Vec3 linear(linear_light(rgb.x()), linear_light(rgb.y()), linear_light(rgb.z()));
+  const Vec3 linear(srgb_linear(rgb.x()), srgb_linear(rgb.y()), srgb_linear(rgb.z()));
   const Vec3 xyz = (to_xyz * linear).cwiseQuotient(white);
   const double fx = lab_f(xyz.x()), fy = lab_f(xyz.y()), fz = lab_f(xyz.z());
   return Vec3(116 * fy - 16, 500 * (fx - fy), 200 * (fy - fz));

@@ -6,6 +6,11 @@
 
 namespace roving {
 
+// sRGB's transfer function (IEC 61966-2-1): linear light on [0, 1] to a code value on [0, 255],
+// and back.
+double srgb_code(double linear);
+double srgb_linear(double code);
+
 // BT.709 Y'CbCr of gamma-encoded R'G'B' on the same scale, full range with no offsets (as MPEG's
 // pc_error and mmetric convert): Y' = 0.2126 R' + 0.7152 G' + 0.0722 B', Cb = (B' - Y') / 1.8556,
 // Cr = (R' - Y') / 1.5748. Differences, and so PSNR, do not depend on the offsets.

@@ -5,18 +5,23 @@
 #include <fmt/format.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <deque>
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <map>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
 
+#include "roving/core/colour_science.h"
 #include "roving/core/error.h"
 #include "roving/core/memory_budget.h"
 #include "roving/formats/file_bytes.h"
+#include "roving/formats/texture_io.h"
 
 namespace roving {
 namespace {
@@ -92,6 +97,23 @@ class GltfReader {
     loaded.path = path_;
     loaded.dropped_repeated_vertex_faces = dropped_faces_;
     loaded.mesh = TriangleMesh(std::move(positions_), std::move(triangles_), path_);  // checks finite values
+    if (any_vertex_colour_) loaded.mesh.set_vertex_colours(std::move(vertex_colours_), path_);
+    if (any_material_colour_) {
+      align_material_arrays(loaded.mesh.triangle_count());
+      TextureMapping mapping;
+      // Only the materials some face uses (glTF's default among them where it is).
+      std::vector<int> renumbered(materials_.size(), -1);
+      for (int& m : face_material_) {
+        if (renumbered[m] < 0) {
+          renumbered[m] = static_cast<int>(mapping.materials.size());
+          mapping.materials.push_back(materials_[m]);
+        }
+        m = renumbered[m];
+      }
+      mapping.face_material = std::move(face_material_);
+      mapping.corner_uv = std::move(corner_uv_);
+      loaded.mesh.set_texture_mapping(std::move(mapping), path_);
+    }
     return loaded;
   }
 
@@ -226,20 +248,56 @@ class GltfReader {
   struct Accessor {
     std::string_view bytes;  // from the first element
     std::size_t count = 0, stride = 0;
-    std::size_t component_type = 0;
+    std::size_t component_type = 0, components = 0;
+    bool normalized = false;
   };
 
-  // Accessor `index` checked to lie in its view and its buffer; `type` its required type.
-  Accessor accessor(std::size_t index, const char* type, const std::string& role) {
+  // Element k's first `n` components of a float or normalized unsigned accessor (glTF's colours
+  // and texture coordinates), as doubles on the accessor's scale ([0, 1] for normalized ones).
+  void read_floats(const Accessor& a, std::size_t k, std::size_t n, double* out,
+                   const std::string& where) const {
+    const char* at = a.bytes.data() + k * a.stride;
+    for (std::size_t c = 0; c < n; ++c) {
+      if (a.component_type == 5126) {
+        float x;
+        std::memcpy(&x, at + 4 * c, 4);
+        out[c] = x;
+      } else if (a.component_type == 5121 && a.normalized) {
+        out[c] = static_cast<unsigned char>(at[c]) / 255.0;
+      } else if (a.component_type == 5123 && a.normalized) {
+        std::uint16_t x;
+        std::memcpy(&x, at + 2 * c, 2);
+        out[c] = x / 65535.0;
+      } else {
+        fail(
+            fmt::format("{}: expected float or normalized unsigned byte or short components, found "
+                        "componentType {}{}",
+                        where, a.component_type, a.normalized ? " (normalized)" : ""));
+      }
+    }
+  }
+
+  // Accessor `index` checked to lie in its view and its buffer; `types` its allowed types
+  // ("VEC3", or "VEC3|VEC4").
+  Accessor accessor(std::size_t index, const std::string& types, const std::string& role) {
     const std::string where = fmt::format("accessors[{}] ({})", index, role);
     const json& a = element("accessors", index, where);
     if (find(a, "sparse")) fail(where + ": sparse accessors are not read");
     const json* actual_type = find(a, "type");
-    if (!actual_type || *actual_type != type) {
-      fail(fmt::format("{}: expected type {}, found {}", where, type,
+    const std::string type = actual_type && actual_type->is_string() ? actual_type->get<std::string>() : "";
+    const std::size_t components = type == "SCALAR" ? 1
+                                   : type == "VEC2" ? 2
+                                   : type == "VEC3" ? 3
+                                   : type == "VEC4" ? 4
+                                                    : 0;
+    if (components == 0 || ("|" + types + "|").find("|" + type + "|") == std::string::npos) {
+      fail(fmt::format("{}: expected type {}, found {}", where, types,
                        actual_type ? actual_type->dump() : "none"));
     }
     Accessor out;
+    out.components = components;
+    const json* normalized = find(a, "normalized");
+    out.normalized = normalized && normalized->is_boolean() && normalized->get<bool>();
     out.component_type = natural(a, "componentType", where);
     out.count = natural(a, "count", where);
     std::size_t component_size = 0;
@@ -252,7 +310,7 @@ class GltfReader {
       case 5126: component_size = 4; break;
       default: fail(fmt::format("{}: unknown componentType {}", where, out.component_type));
     }
-    const std::size_t element_size = component_size * (std::string(type) == "VEC3" ? 3 : 1);
+    const std::size_t element_size = component_size * components;
     if (!find(a, "bufferView")) fail(where + " has no bufferView (all zeros); expected data");
     const std::size_t view_index = natural(a, "bufferView", where);
     const std::string view_where = fmt::format("bufferViews[{}]", view_index);
@@ -428,6 +486,9 @@ class GltfReader {
       const json* attributes = find(primitive, "attributes");
       if (!attributes || !find(*attributes, "POSITION")) fail(at + " has no POSITION attribute");
       const std::vector<Vec3> local = read_positions(natural(*attributes, "POSITION", at));
+      const std::size_t material = primitive_material(primitive, at);
+      std::vector<Colour> colours = read_colours(*attributes, local.size(), material, at);
+      const std::vector<TexCoord> uv = read_texture_coordinates(*attributes, local.size(), material, at);
       std::vector<std::uint32_t> corners;
       if (find(primitive, "indices")) {
         corners = read_indices(natural(primitive, "indices", at), local.size());
@@ -450,6 +511,11 @@ class GltfReader {
         fail("more vertices than a mesh can index");
       }
       for (const Vec3& q : local) positions_.push_back((world * q.homogeneous()).head<3>());
+      if (any_vertex_colour_) {  // white before the first COLOR_0 and where a primitive has none
+        vertex_colours_.resize(base, Colour::Constant(255));
+        if (colours.empty()) colours.resize(local.size(), Colour::Constant(255));
+        vertex_colours_.insert(vertex_colours_.end(), colours.begin(), colours.end());
+      }
       for (std::size_t t = 0; t < triangles; ++t) {
         std::uint32_t a, b, c;
         if (mode == 4)
@@ -464,7 +530,199 @@ class GltfReader {
         }
         triangles_.push_back(
             {static_cast<int>(base + a), static_cast<int>(base + b), static_cast<int>(base + c)});
+        if (any_material_colour_) {  // the default material before the first coloured one
+          align_material_arrays(triangles_.size() - 1);
+          face_material_.push_back(static_cast<int>(material));
+          for (const std::uint32_t corner : {a, b, c})
+            corner_uv_.push_back(uv.empty() ? TexCoord::Zero() : uv[corner]);
+        }
       }
+    }
+  }
+
+  // Material 0 (glTF's default) and no texture coordinates for the first `triangles` triangles
+  // where nothing was recorded: only a coloured model keeps per-triangle colour data.
+  void align_material_arrays(std::size_t triangles) {
+    face_material_.resize(triangles, 0);
+    corner_uv_.resize(3 * triangles, TexCoord::Zero());
+  }
+
+  // COLOR_0 in sRGB code values (glTF's colours are linear: the sRGB transfer function encodes
+  // them); empty where the primitive has none. On an untextured material whose factor is F (in
+  // code values), a colour c becomes 255 code(f c) / F, so that the rule's product of code values
+  // gives glTF's code(f c) at each vertex.
+  std::vector<Colour> read_colours(const json& attributes, std::size_t vertices, std::size_t material,
+                                   const std::string& at) {
+    if (!find(attributes, "COLOR_0")) return {};
+    const std::size_t index = natural(attributes, "COLOR_0", at);
+    const Accessor a = accessor(index, "VEC3|VEC4", "COLOR_0");
+    const std::string where = fmt::format("accessors[{}] (COLOR_0)", index);
+    if (a.count != vertices) fail(fmt::format("{}: {} colours for {} vertices", where, a.count, vertices));
+    std::vector<Colour> out(vertices);
+    for (std::size_t k = 0; k < vertices; ++k) {
+      double rgb[3];
+      read_floats(a, k, 3, rgb, where);
+      for (int c = 0; c < 3; ++c) {
+        if (!(rgb[c] >= 0 && rgb[c] <= 1)) {
+          fail(fmt::format("{}: colour {} has {}; expected 0 to 1", where, k, rgb[c]));
+        }
+        const double factor = material_linear_factor_[material][c];
+        const double code = materials_[material].factor[c];
+        out[k][c] = static_cast<float>(materials_[material].texture || code == 255 ? srgb_code(rgb[c])
+                                       : code > 0 ? 255 * srgb_code(factor * rgb[c]) / code
+                                                  : 0.0);
+      }
+    }
+    any_vertex_colour_ = true;
+    return out;
+  }
+
+  // TEXCOORD_0, where the primitive's material has a texture (glTF's: u right, v down).
+  std::vector<TexCoord> read_texture_coordinates(const json& attributes, std::size_t vertices,
+                                                 std::size_t material, const std::string& at) {
+    if (!materials_[material].texture) return {};
+    if (!find(attributes, "TEXCOORD_0")) {
+      fail(fmt::format("{}: its material has a baseColorTexture but it has no TEXCOORD_0", at));
+    }
+    const std::size_t index = natural(attributes, "TEXCOORD_0", at);
+    const Accessor a = accessor(index, "VEC2", "TEXCOORD_0");
+    const std::string where = fmt::format("accessors[{}] (TEXCOORD_0)", index);
+    if (a.count != vertices)
+      fail(fmt::format("{}: {} coordinates for {} vertices", where, a.count, vertices));
+    std::vector<TexCoord> out(vertices);
+    for (std::size_t k = 0; k < vertices; ++k) {
+      read_floats(a, k, 2, out[k].data(), where);
+      if (!out[k].allFinite()) fail(fmt::format("{}: coordinate {} is not finite", where, k));
+    }
+    return out;
+  }
+
+  // Our index of the primitive's material: glTF's default (white, untextured) where it names
+  // none. A material's base colour is its colour: baseColorFactor times baseColorTexture, which
+  // glTF multiplies in linear light. Untextured, the factor is encoded to code values; textured,
+  // it is baked into a copy of the texture texel by texel in linear light (rounded to 8 bits), so
+  // that at texel centres the colour is glTF's; the factor is then white.
+  std::size_t primitive_material(const json& primitive, const std::string& at) {
+    if (materials_.empty()) {
+      materials_.emplace_back().name = "glTF default";
+      material_linear_factor_.push_back(Vec3::Ones());
+    }
+    if (!find(primitive, "material")) return 0;
+    const std::size_t index = natural(primitive, "material", at);
+    if (const auto known = material_index_.find(index); known != material_index_.end()) return known->second;
+    const std::string where = fmt::format("materials[{}]", index);
+    const json& m = element("materials", index, at);
+    Material material;
+    material.name =
+        find(m, "name") && find(m, "name")->is_string() ? find(m, "name")->get<std::string>() : where;
+    Vec3 linear_factor = Vec3::Ones();
+    if (const json* pbr = find(m, "pbrMetallicRoughness")) {
+      if (const json* factor = find(*pbr, "baseColorFactor")) {
+        if (!factor->is_array() || factor->size() != 4)
+          fail(where + ": expected baseColorFactor of 4 numbers");
+        for (int c = 0; c < 3; ++c) {
+          const json& x = (*factor)[c];
+          if (!x.is_number() || !(x.get<double>() >= 0 && x.get<double>() <= 1)) {
+            fail(fmt::format("{}: baseColorFactor holds {}; expected 0 to 1", where, x.dump()));
+          }
+          linear_factor[c] = x.get<double>();
+          material.factor[c] = static_cast<float>(srgb_code(linear_factor[c]));
+        }
+        any_material_colour_ = true;
+      }
+      if (const json* info = find(*pbr, "baseColorTexture")) {
+        const std::string info_where = where + ".baseColorTexture";
+        if (natural(*info, "texCoord", info_where, 0) != 0) fail(info_where + ": only texCoord 0 is read");
+        if (const json* extensions = find(*info, "extensions");
+            extensions && find(*extensions, "KHR_texture_transform")) {
+          fail(info_where + ": KHR_texture_transform is not read; bake the transform into TEXCOORD_0");
+        }
+        read_texture(natural(*info, "index", info_where), material);
+        if (linear_factor != Vec3::Ones()) material.texture = with_factor(*material.texture, linear_factor);
+        material.factor = Colour::Constant(255);
+        any_material_colour_ = true;
+      }
+    }
+    materials_.push_back(std::move(material));
+    material_linear_factor_.push_back(linear_factor);
+    return material_index_[index] = materials_.size() - 1;
+  }
+
+  // `texture` with every texel multiplied by `factor` in linear light, as glTF multiplies them.
+  static std::shared_ptr<const Texture> with_factor(const Texture& texture, const Vec3& factor) {
+    auto baked = std::make_shared<Texture>(texture);
+    for (std::size_t i = 0; i < baked->rgb.size(); ++i) {
+      const double linear = srgb_linear(baked->rgb[i]) * factor[static_cast<int>(i % 3)];
+      baked->rgb[i] = static_cast<std::uint8_t>(std::lround(std::clamp(srgb_code(linear), 0.0, 255.0)));
+    }
+    return baked;
+  }
+
+  // textures[index]: its image (decoded once however many materials use it) and its sampler.
+  void read_texture(std::size_t index, Material& material) {
+    const std::string where = fmt::format("textures[{}]", index);
+    const json& t = element("textures", index, where);
+    if (!find(t, "source"))
+      fail(where + " has no source image (a texture extension this reader does not read?)");
+    const std::size_t source = natural(t, "source", where);
+    if (!images_[source]) images_[source] = std::make_shared<const Texture>(read_image(source));
+    material.texture = images_[source];
+    if (find(t, "sampler")) {
+      const std::size_t s = natural(t, "sampler", where);
+      const std::string sampler_where = fmt::format("samplers[{}]", s);
+      const json& sampler = element("samplers", s, where);
+      const auto wrap = [&](const char* key) {
+        const std::size_t mode = natural(sampler, key, sampler_where, 10497);
+        if (mode == 10497) return Wrap::Repeat;
+        if (mode == 33071) return Wrap::ClampToEdge;
+        if (mode == 33648) return Wrap::MirroredRepeat;
+        fail(fmt::format("{}: unknown {} {}", sampler_where, key, mode));
+      };
+      material.sampler.wrap_s = wrap("wrapS");
+      material.sampler.wrap_t = wrap("wrapT");
+      const std::size_t filter = natural(sampler, "magFilter", sampler_where, 9729);
+      if (filter != 9728 && filter != 9729)
+        fail(fmt::format("{}: unknown magFilter {}", sampler_where, filter));
+      material.sampler.filter = filter == 9728 ? Filter::Nearest : Filter::Linear;
+    }
+  }
+
+  // images[index] decoded: a file beside the .gltf, a data URI, or a buffer view (a GLB's).
+  Texture read_image(std::size_t index) {
+    const std::string where = fmt::format("images[{}]", index);
+    const json& image = element("images", index, where);
+    const std::string source = fmt::format("{} {}", path_, where);
+    try {
+      if (const json* uri = find(image, "uri")) {
+        if (!uri->is_string()) fail(where + ": expected 'uri' to be a string");
+        const std::string text = uri->get<std::string>();
+        if (text.rfind("data:", 0) == 0) {
+          const std::size_t comma = text.find(";base64,");
+          std::optional<std::string> decoded;
+          if (comma != std::string::npos) decoded = decode_base64(std::string_view(text).substr(comma + 8));
+          if (!decoded) fail(where + ": expected a base64 data URI");
+          return decode_texture(*decoded, source);
+        }
+        if (text.find("://") != std::string::npos) {
+          fail(fmt::format("{}: expected a data URI or a file beside the .gltf, found '{}'", where, text));
+        }
+        return ::roving::read_texture(resolve_reference(path_, text, where + "'s uri"));
+      }
+      const std::size_t view_index = natural(image, "bufferView", where);
+      const std::string view_where = fmt::format("bufferViews[{}]", view_index);
+      const json& view = element("bufferViews", view_index, where);
+      const std::string_view data = buffer(natural(view, "buffer", view_where));
+      const std::size_t offset = natural(view, "byteOffset", view_where, 0);
+      const std::size_t length = natural(view, "byteLength", view_where);
+      if (offset > data.size() || length > data.size() - offset) {
+        fail(fmt::format("{} spans bytes [{}, {} + {}) of a {}-byte buffer", view_where, offset, offset,
+                         length, data.size()));
+      }
+      return decode_texture(data.substr(offset, length), source);
+    } catch (const Error& e) {
+      const std::string message = e.what();
+      if (message.rfind(path_ + ":", 0) == 0) throw;
+      fail(fmt::format("{}: {}", where, message));
     }
   }
 
@@ -481,6 +739,17 @@ class GltfReader {
   std::vector<Vec3> positions_;
   std::vector<Triangle> triangles_;
   std::size_t dropped_faces_ = 0, skipped_primitives_ = 0;
+  // Colour, once a model has some: per vertex (white where a primitive has no COLOR_0), per
+  // triangle its material and its corners' texture coordinates; glTF's materials as read, by
+  // their index, and its images.
+  std::vector<Colour> vertex_colours_;
+  std::vector<Material> materials_;
+  std::vector<Vec3> material_linear_factor_;  // baseColorFactor as given, per material
+  std::vector<int> face_material_;
+  std::vector<TexCoord> corner_uv_;
+  std::map<std::size_t, std::size_t> material_index_;
+  std::map<std::size_t, std::shared_ptr<const Texture>> images_;
+  bool any_vertex_colour_ = false, any_material_colour_ = false;
 };
 
 }  // namespace

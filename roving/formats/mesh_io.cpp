@@ -125,14 +125,34 @@ namespace {
 void write_binary_ply(const TriangleMesh& mesh, const std::string& path) {
   AtomicFile out(path);
   std::FILE* file = out.stream();
+  // Vertex colours as MeshLab writes them (uchar) where they are whole code values, else as
+  // fractions of [0, 1] in float.
+  const std::vector<Colour>& colours = mesh.vertex_colours();
+  const bool whole = std::all_of(colours.begin(), colours.end(),
+                                 [](const Colour& c) { return c == c.array().round().matrix(); });
+  const char* colour_type = colours.empty() ? nullptr : whole ? "uchar" : "float";
   fmt::print(file,
              "ply\nformat binary_little_endian 1.0\nelement vertex {}\nproperty float x\nproperty float y\n"
-             "property float z\nelement face {}\nproperty list uchar int vertex_indices\nend_header\n",
-             mesh.vertex_count(), mesh.triangle_count());
+             "property float z\n",
+             mesh.vertex_count());
+  if (colour_type) fmt::print(file, "property {0} red\nproperty {0} green\nproperty {0} blue\n", colour_type);
+  fmt::print(file, "element face {}\nproperty list uchar int vertex_indices\nend_header\n",
+             mesh.triangle_count());
   static_assert(sizeof(float) == 4 && sizeof(std::int32_t) == 4);
-  for (const Vec3& p : mesh.positions()) {
+  for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
+    const Vec3& p = mesh.positions()[v];
     const float xyz[3] = {float(p.x()), float(p.y()), float(p.z())};
     std::fwrite(xyz, sizeof xyz, 1, file);
+    if (!colour_type) continue;
+    if (whole) {
+      const unsigned char rgb[3] = {static_cast<unsigned char>(colours[v].x()),
+                                    static_cast<unsigned char>(colours[v].y()),
+                                    static_cast<unsigned char>(colours[v].z())};
+      std::fwrite(rgb, sizeof rgb, 1, file);
+    } else {
+      const float rgb[3] = {colours[v].x() / 255, colours[v].y() / 255, colours[v].z() / 255};
+      std::fwrite(rgb, sizeof rgb, 1, file);
+    }
   }
   for (const Triangle& t : mesh.triangles()) {
     unsigned char record[13] = {3};

@@ -22,7 +22,8 @@ struct LoadedMesh {
 // coordinates, or has no triangle of non-zero area.
 LoadedMesh load_mesh(const std::string& path);
 
-// Writes `mesh` by extension (.obj .ply .off .stl); binary PLY/STL when `binary`. Throws on failure.
+// Writes `mesh` by extension (.obj .ply .off .stl); binary PLY/STL when `binary`, a binary PLY with
+// its vertex colours where it has them. Throws on failure.
 void save_mesh(const TriangleMesh& mesh, const std::string& path, bool binary = true);
 
 }  // namespace roving

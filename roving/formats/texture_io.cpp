@@ -254,7 +254,10 @@ void write_texture(const Texture& texture, const std::string& path, int jpeg_qua
 
 Texture read_texture(const std::string& path) {
   const FileBytes file(path, "a PNG or JPEG texture");
-  const std::string_view bytes = file.bytes();
+  return decode_texture(file.bytes(), path);
+}
+
+Texture decode_texture(std::string_view bytes, const std::string& path) {
   const auto* data = reinterpret_cast<const unsigned char*>(bytes.data());
   if (bytes.size() >= 8 && png_sig_cmp(data, 0, 8) == 0) return read_png(path, bytes);
   if (bytes.size() >= 3 && data[0] == 0xFF && data[1] == 0xD8 && data[2] == 0xFF)

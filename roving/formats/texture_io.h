@@ -3,6 +3,7 @@
 #pragma once
 
 #include <string>
+#include <string_view>
 
 #include "roving/core/texture.h"
 
@@ -19,6 +20,8 @@ constexpr long long kMaxTexturePixels = 1LL << 28;
 // corrupt or truncated stream (a JPEG's warnings included), a declared size beyond the limits or this
 // machine's memory.
 Texture read_texture(const std::string& path);
+// The same from bytes already in memory (a glTF's embedded image); `source` names them in messages.
+Texture decode_texture(std::string_view bytes, const std::string& source);
 
 // Writes `texture` whole or not at all (AtomicFile): PNG when `jpeg_quality` is 0, else baseline
 // JPEG at that quality (1-100, 4:2:0 as libjpeg's default). Throws roving::Error naming the file.
