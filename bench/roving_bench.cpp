@@ -12,14 +12,11 @@
 #include <map>
 #include <thread>
 
-#include "data_folder.h"
 #include "analytic.h"
+#include "colour_study.h"
+#include "data_folder.h"
 #include "decimate.h"
 #include "paper_models.h"
-#include "roving/reference_cgal/cgal_reference.h"
-#include "roving/reference_embree/certified_hausdorff.h"
-#include "roving/reference_embree/embree_reference.h"
-#include "subdivide.h"
 #include "report_table.h"
 #include "roving/core/error.h"
 #include "roving/core/normalise.h"
@@ -31,9 +28,13 @@
 #include "roving/html/distance_view.h"
 #include "roving/html/html_index.h"
 #include "roving/pictures/heatmap_picture.h"
+#include "roving/reference_cgal/cgal_reference.h"
+#include "roving/reference_embree/certified_hausdorff.h"
+#include "roving/reference_embree/embree_reference.h"
 #include "roving/registry/method_registry.h"
 #include "roving/representations/surfels.h"
 #include "roving/representations/voxel_surface.h"
+#include "subdivide.h"
 #include "voxelize.h"
 
 namespace fs = std::filesystem;
@@ -673,6 +674,41 @@ std::string machine_section(const Bench& bench) {
                             : "full (every face sample)");
 }
 
+// The colour table (colour_study.h): its tables join the others; its figures are checked with them.
+ColourStudy colour_table(Bench& bench) {
+  bench.progress.step("colour: sample-based figures by every method, and IBSM");
+  ColourStudy study = colour_study(bench.load("stanford-bunny.obj"), bench.options().quick, bench.backend(),
+                                   [&](const std::string& what) { bench.progress.step(what); });
+  bench.tables.insert(bench.tables.end(), study.tables.begin(), study.tables.end());
+  bench.figures.insert(study.figures.begin(), study.figures.end());
+  bench.failures.insert(bench.failures.end(), study.failures.begin(), study.failures.end());
+  return study;
+}
+
+// results/colour.md: the colour tables with how their models were made, and the picture.
+void write_colour_page(Bench& bench, const ColourStudy& study, const fs::path& out) {
+  std::string markdown = fmt::format(
+      "# Colour: the frame buffer beside the Z-buffer\n\nWritten by `roving-bench{}`; do not edit by hand. "
+      "The "
+      "paper's stated extension, colour by the frame buffer, against the exact colour (README \"Colour\") "
+      "and "
+      "against MPEG's image-based figure.\n\n",
+      bench.options().quick ? " --quick" : "");
+  for (const ReportTable& t : study.tables)
+    markdown += "## " + t.title + "\n\n" + t.settings + "\n\n" + t.markdown() + "\n";
+  markdown += study.notes + "\n";
+  fs::create_directories(out / "pictures");
+  for (const ColourStudy::PictureJob& job : study.pictures) {
+    bench.progress.step("picture: " + job.file);
+    AtomicFile file((out / "pictures" / job.file).string());
+    write_picture_png(file.stream(), bench.backend(), job.surface, job.picture);
+    file.close_stream();
+    file.commit();
+    markdown += fmt::format("![{}](pictures/{})\n\n", job.caption, job.file);
+  }
+  std::ofstream(out / "colour.md") << markdown + machine_section(bench);
+}
+
 // How far a recomputed figure may move. The CPU references compute each sample alone in double
 // and sum in order: 1e-6 relative. GL figures rest on llvmpipe's float rasterisation, whose
 // rounding may differ with the CPU's vector width: 1e-3 relative. An observation count moves
@@ -883,8 +919,10 @@ int main(int argc, char** argv) {
     surfel_study(bench);
     gates(bench);
     hausdorff_table(bench);
+    const ColourStudy colour = colour_table(bench);
     if (options.check) return check(bench, out / "accuracy.csv");
     write_results(bench, out);
+    write_colour_page(bench, colour, out);
     bench.progress.step(fmt::format("written to {}", out.string()));
     for (const std::string& f : bench.failures) std::fprintf(stderr, "roving-bench: %s\n", f.c_str());
     return bench.failures.empty() ? 0 : 1;

@@ -580,8 +580,8 @@ TEST(CliReport, JsonLayoutIsTheDocumentedOne) {
                                cubes.folder.file("redder.ply", coloured_cube_ply(0.55, 210));
   std::set<std::string> written;
   for (const std::string& arguments :
-       {coloured + " --symmetric", cubes.pair, cubes.pair + " --symmetric",
-        cubes.pair + " --semantics closest", cubes.pair + " --samples area:auto",
+       {coloured + " --symmetric", coloured + " --ibsm --ibsm-resolution 64", cubes.pair,
+        cubes.pair + " --symmetric", cubes.pair + " --semantics closest", cubes.pair + " --samples area:auto",
         cubes.pair + " --method cooperative --views 4x2 --resolution 64",
         teapot + " " + teapot + " --samples area:100", points + " " + cubes.small,
         cubes.small + " " + grid}) {

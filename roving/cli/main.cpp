@@ -116,6 +116,17 @@ void add_measurement_options(CLI::App& app, roving::MeasureArguments& args, bool
                  "of the surfaces, as a certified interval [lower, upper] at most this wide (a length or P% of the "
                  "diagonal), or none")
       ->capture_default_str();
+  app.add_flag(
+      "--ibsm", args.ibsm,
+      "also compare the models image by image as MPEG's IBSM does (mmetric): both drawn unlit from "
+      "--ibsm-views orthographic cameras on a Fibonacci sphere, back faces culled; colour PSNR (R'G'B', "
+      "Y'CbCr 6:1:1) and depth PSNR over the pixels both cover, and the unmatched pixels' share");
+  app.add_option("--ibsm-views", args.ibsm_views, "with --ibsm: cameras on the Fibonacci sphere")
+      ->check(CLI::Range(2, 1000))
+      ->capture_default_str();
+  app.add_option("--ibsm-resolution", args.ibsm_resolution, "with --ibsm: each camera's image side in pixels")
+      ->check(CLI::Range(16, 16384))
+      ->capture_default_str();
   app.add_option("--histogram-bins", args.histogram_bins, "bins of the signed-d histogram")
       ->check(CLI::Range(1, 100000))
       ->capture_default_str();

@@ -122,6 +122,8 @@ MeasurePlan plan_measurement(const MeasureArguments& args) {
   plan.gl.gpu_cameras = args.camera_geometry == "gpu";
   plan.gl.resolution = args.resolution;
   plan.method = make_method(args.method, plan.gl);
+  if (args.ibsm)
+    plan.image_based = ImageBasedOptions{plan.gl.backend, args.ibsm_views, args.ibsm_resolution, true};
   plan.sample_spec = parse_sample_spec(args.samples);
   if (args.seed) {
     if (plan.sample_spec.kind != SampleSpec::Kind::Area) {
@@ -353,6 +355,11 @@ void measure_models(const Model& a, const Model& b, MeasurePlan& plan, MeasureRe
     std::vector<std::string> found = result_warnings(d.statistics, plan.options.semantics);
     for (std::string& line : found) line = (d.label.empty() ? "" : d.label + ": ") + line;
     warn(found);
+  }
+  if (plan.image_based) {
+    stage = fmt::format("comparing {} and {} image by image (IBSM)", a.path(), b.path());
+    progress.stage("image-based comparison");
+    report.image_based = image_based_comparison(test_surface(a), test_surface(b), *plan.image_based);
   }
   progress.clear();
 }

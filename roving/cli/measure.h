@@ -9,11 +9,12 @@
 #include <vector>
 
 #include "gates.h"
-#include "roving/core/error.h"
 #include "progress.h"
 #include "report.h"
+#include "roving/core/error.h"
 #include "roving/formats/heatmap.h"
 #include "roving/gl_methods/gl_methods.h"
+#include "roving/gl_methods/image_based.h"
 
 namespace roving {
 
@@ -35,6 +36,8 @@ struct MeasureArguments {
   std::string camera_geometry = "cpu";    // or "gpu": where exact roving's cameras get their triangles
   std::string reference_type, test_type;  // empty: by extension
   int resolution = 1024;
+  bool ibsm = false;  // the image-based comparison (image_based.h) beside the sample-based one
+  int ibsm_views = 16, ibsm_resolution = 2048;
   bool symmetric = false;
   bool quiet = false;
   std::vector<std::string> gates;  // --fail-above METRIC=LIMIT
@@ -59,6 +62,7 @@ struct MeasurePlan {
   std::optional<MaxErrorSpec> heatmap_range;  // --heatmap-range; unset: the 99th percentile of |d|
   HeatmapQuantity heatmap_of = HeatmapQuantity::Distance;
   std::optional<double> heatmap_delta_e_range;  // --heatmap-range with --heatmap-of delta-e
+  std::optional<ImageBasedOptions> image_based;  // --ibsm
 };
 
 // A bad option value or combination on the command line: the tool exits 2, as for a parse error.

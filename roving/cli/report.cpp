@@ -376,6 +376,25 @@ std::string colour_lines(const DirectionReport& d) {
   return out;
 }
 
+// The image-based comparison (IBSM), as mmetric names its figures.
+std::string image_based_lines(const ImageBasedResult& ib) {
+  std::string out = fmt::format(
+      "\n  image-based (MPEG IBSM): {} orthographic views on a Fibonacci sphere, {} x {} pixels, back faces "
+      "culled\n"
+      "    {} pixels both models cover; unmatched (one model only) {:.4g}% of them; box ratio {:.5g}%\n"
+      "    depth PSNR {:.4g} dB (depth as a fraction of the view's depth)\n",
+      ib.views, ib.resolution, ib.resolution, ib.matched_pixels, ib.unmatched_percent, ib.box_ratio,
+      ib.depth_psnr);
+  if (ib.colour) {
+    out += fmt::format(
+        "    colour PSNR (8-bit frame buffers, peak 255): R'G'B' {:.4g} dB, Y'CbCr 6:1:1 {:.4g} dB (Y' "
+        "{:.4g}, Cb "
+        "{:.4g}, Cr {:.4g})\n",
+        ib.psnr_rgb, ib.psnr_ycbcr_611, ib.psnr_ycbcr[0], ib.psnr_ycbcr[1], ib.psnr_ycbcr[2]);
+  }
+  return out + fmt::format("    {:.3f} s\n", ib.seconds);
+}
+
 // "[lower, upper]" of a certified interval, with its width.
 std::string interval_text(double lower, double upper, double diagonal) {
   return fmt::format("[{:.6g}, {:.6g}] (/ diagonal [{:.6g}, {:.6g}]; width {:.3g})", lower, upper, lower / diagonal,
@@ -494,6 +513,7 @@ std::string format_body(const MeasureReport& r) {
                          interval_text(t.hausdorff_lower, t.hausdorff_upper, r.diagonal));
     }
   }
+  if (r.image_based) out += image_based_lines(*r.image_based);
   for (const DirectionReport& d : r.directions) {
     if (!d.result.gl) continue;
     if (!d.label.empty()) out += fmt::format("  {}:\n", d.label);
@@ -584,6 +604,25 @@ nlohmann::json to_json(const MeasureReport& r) {
         {{"max_abs", t.max_abs}, {"mean_both", t.mean_abs}, {"rms_both", t.rms}}, r.diagonal);
   } else {
     json.update(direction_json(r.directions.front(), r));
+  }
+  if (r.image_based) {
+    const ImageBasedResult& ib = *r.image_based;
+    json["image_based"] = {{"definition", "MPEG IBSM (mmetric compare --mode ibsm)"},
+                           {"views", ib.views},
+                           {"resolution", ib.resolution},
+                           {"back_faces_culled", true},
+                           {"matched_pixels", ib.matched_pixels},
+                           {"unmatched_pixels", ib.unmatched_pixels},
+                           {"unmatched_percent", ib.unmatched_percent},
+                           {"box_ratio", ib.box_ratio},
+                           {"depth_psnr", ib.depth_psnr},
+                           {"seconds", ib.seconds}};
+    if (ib.colour) {
+      json["image_based"]["colour"] = {{"psnr_rgb", ib.psnr_rgb},     {"psnr_ycbcr_611", ib.psnr_ycbcr_611},
+                                       {"psnr_y", ib.psnr_ycbcr[0]},  {"psnr_cb", ib.psnr_ycbcr[1]},
+                                       {"psnr_cr", ib.psnr_ycbcr[2]}, {"mse_rgb", ib.rgb_mse},
+                                       {"mse_ycbcr", ib.ycbcr_mse}};
+    }
   }
   json["seconds"]["load_reference"] = r.load_seconds[0];
   json["seconds"]["load_test"] = r.load_seconds[1];

@@ -11,6 +11,7 @@
 #include "roving/core/confidence.h"
 #include "roving/core/distance_method.h"
 #include "roving/core/statistics.h"
+#include "roving/gl_methods/image_based.h"
 #include "roving/reference_embree/certified_hausdorff.h"
 #include "roving/representations/model.h"
 
@@ -72,6 +73,7 @@ struct MeasureReport {
   std::uint64_t seed = 0;
   nlohmann::json provenance;  // tool, command line, inputs
   std::vector<std::string> warnings;
+  std::optional<ImageBasedResult> image_based;  // --ibsm
   double load_seconds[2] = {0, 0};  // A (the reference), B (the test)
   double total_seconds = 0;
 

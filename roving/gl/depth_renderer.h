@@ -85,6 +85,17 @@ class DepthRenderer {
   // has none), for render_coloured_tiles(). Throws roving::Error naming a texture larger than
   // the context allows.
   virtual void upload_materials(const std::vector<Material>& materials) = 0;
+  // Uploads M_C for render_shaded_view(): its triangles with each corner's shade (three a
+  // triangle, corner_shades[3 f + c]) and each triangle's material (empty: all material 0); the
+  // materials themselves by upload_materials().
+  virtual void upload_shaded_model(const TriangleMesh& mesh, const std::vector<TileShade>& corner_shades,
+                                   const std::vector<std::uint32_t>& face_materials) = 0;
+  // Draws the shaded model through `camera`, unlit: each fragment the colour the tiles give it
+  // (render_coloured_tiles()), back faces culled when `cull_back_faces` (a triangle's front is
+  // counter-clockwise). Returns the depth as render_view() does and each pixel's colour in code
+  // values (NaN where nothing was drawn), row by row from the bottom.
+  virtual void render_shaded_view(const OrthoCamera& camera, int resolution, bool cull_back_faces,
+                                  std::vector<float>& depth, std::vector<Colour>& colour) = 0;
   // Draws the uploaded model through `camera` into a resolution x resolution 32-bit float depth
   // buffer and returns it row by row from the bottom (x along `right`); 1 where nothing was drawn.
   // With `triangles`, also which triangle each pixel shows: 1 + its index in the model, 0 for none.

@@ -1,7 +1,6 @@
 // What the three GL methods share: the scene (renderer, uploaded model, culling grid), option
 // checks, and the --views parser.
 #include <fmt/format.h>
-#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <charconv>
@@ -10,7 +9,6 @@
 
 #include "gl_passes.h"
 #include "roving/core/error.h"
-#include "roving/core/geometry.h"
 #include "roving/core/stopwatch.h"
 #include "roving/gl_methods/gl_methods.h"
 
@@ -119,59 +117,14 @@ void GlScene::build(GlBackend backend, const TriangleMesh& test_model, bool came
   gpu_cameras = cameras_on_gpu;
   grid = std::make_unique<TriangleGrid>(test_model);
   clusters.reset();
-  corner_shades.clear();
-  face_materials.clear();
+  shades = {};
   test = &test_model;
 }
 
 void GlScene::prepare_colour() {
-  if (!corner_shades.empty()) return;
-  const TriangleMesh& mesh = *test;
-  const TextureMapping* mapping = mesh.texture_mapping();
-  const std::vector<Material> materials = mapping ? mapping->materials : std::vector<Material>(1);
-  renderer->upload_materials(materials);
-  material_count = static_cast<std::uint32_t>(materials.size());
-  if (materials.size() > 1)
-    face_materials.assign(mapping->face_material.begin(), mapping->face_material.end());
-  const std::vector<Colour>& vertex_colours = mesh.vertex_colours();
-  corner_shades.resize(3 * mesh.triangle_count());
-  tbb::parallel_for(std::size_t(0), mesh.triangle_count(), [&](std::size_t face) {
-    const Material& material = materials[mapping ? mapping->face_material[face] : 0];
-    const bool textured = mapping && material.texture;
-    // A whole number of repeats (two of mirrored ones) off the coordinates changes no colour,
-    // and keeps them small enough for float.
-    TexCoord shift = TexCoord::Zero();
-    if (textured) {
-      const TexCoord* uv = &mapping->corner_uv[3 * face];
-      const TexCoord lowest = uv[0].cwiseMin(uv[1]).cwiseMin(uv[2]);
-      const Wrap wraps[2] = {material.sampler.wrap_s, material.sampler.wrap_t};
-      for (int axis = 0; axis < 2; ++axis) {
-        if (wraps[axis] == Wrap::Repeat) shift[axis] = std::floor(lowest[axis]);
-        if (wraps[axis] == Wrap::MirroredRepeat) shift[axis] = 2 * std::floor(lowest[axis] / 2);
-      }
-    }
-    for (int c = 0; c < 3; ++c) {
-      const int v = mesh.triangles()[face][c];
-      const Eigen::Vector3d factor =
-          (vertex_colours.empty() ? Eigen::Vector3d::Ones()
-                                  : Eigen::Vector3d(vertex_colours[v].cast<double>() / 255))
-              .cwiseProduct(material.factor.cast<double>() / 255);
-      const TexCoord uv = textured ? TexCoord(mapping->corner_uv[3 * face + c] - shift) : TexCoord::Zero();
-      corner_shades[3 * face + c] = {float(factor.x()), float(factor.y()), float(factor.z()), float(uv.x()),
-                                     float(uv.y())};
-    }
-  });
-}
-
-TileShade GlScene::shade_at(std::uint32_t face, const Vec3& p) const {
-  const Triangle& t = test->triangles()[face];
-  const auto& positions = test->positions();
-  const Vec3 w = closest_on_triangle(p, positions[t[0]], positions[t[1]], positions[t[2]]).weights;
-  const TileShade* corner = &corner_shades[3 * face];
-  const auto mix = [&](float TileShade::*channel) {
-    return float(w[0] * corner[0].*channel + w[1] * corner[1].*channel + w[2] * corner[2].*channel);
-  };
-  return {mix(&TileShade::r), mix(&TileShade::g), mix(&TileShade::b), mix(&TileShade::u), mix(&TileShade::v)};
+  if (!shades.corners.empty()) return;
+  shades = surface_shades(*test);
+  renderer->upload_materials(shades.materials);
 }
 
 void GlScene::release() {

@@ -12,6 +12,7 @@
 #include "roving/core/distance_method.h"
 #include "roving/gl/depth_renderer.h"
 #include "roving/gl_methods/gl_methods.h"
+#include "surface_shades.h"
 #include "triangle_clusters.h"
 #include "triangle_grid.h"
 
@@ -25,21 +26,11 @@ struct GlScene {
   std::unique_ptr<TriangleClusters> clusters;
   const TriangleMesh* test = nullptr;
   bool gpu_cameras = false;  // GlMethodOptions::gpu_cameras
-  // Colour (prepare_colour()): M_C's shade at each triangle corner (three a triangle), as the
-  // tiles interpolate it, and each triangle's material (empty: all material 0).
-  std::vector<TileShade> corner_shades;
-  std::vector<std::uint32_t> face_materials;
-  std::uint32_t material_count = 1;
-
+  SurfaceShades shades;      // colour (prepare_colour()); empty corners: none drawn
   void build(GlBackend backend, const TriangleMesh& test_model, bool cameras_on_gpu);
-  // Uploads M_C's materials and makes corner_shades, once: then the passes can draw colour.
+  // Uploads M_C's materials and makes its shades, once: then the passes can draw colour.
   // Requires test->has_colour().
   void prepare_colour();
-  std::uint32_t material_of(std::uint32_t face) const {
-    return face_materials.empty() ? 0 : face_materials[face];
-  }
-  // M_C's shade at the point of triangle `face` nearest p, interpolated as the tiles do.
-  TileShade shade_at(std::uint32_t face, const Vec3& p) const;
   // Frees the culling structures (the renderer and its context stay, to be reused).
   void release();
   std::string renderer_name() const;

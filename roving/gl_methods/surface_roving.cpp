@@ -127,8 +127,8 @@ void emit_triangles(const GlScene& scene, const OrthoCamera& camera, std::uint32
         return;
       }
     }
-    TileBatch& out = batch_of(shaded ? scene.material_of(face) : 0);
-    const TileShade* corner = shaded ? &scene.corner_shades[3 * face] : nullptr;
+    TileBatch& out = batch_of(shaded ? scene.shades.material_of(face) : 0);
+    const TileShade* corner = shaded ? &scene.shades.corners[3 * face] : nullptr;
     const auto emit = [&](const Vec3& p, int edge, double along) {
       out.vertices.push_back({float(p.x()), float(p.y()), float(p.z()), tile});
       if (!corner) return;
@@ -182,7 +182,7 @@ std::size_t rove(GlScene& scene, const SampleSet& samples, const std::vector<std
   const bool shaded = static_cast<bool>(coloured);
   const bool on_gpu = scene.gpu_cameras && !shaded;
   report.gpu_cameras = on_gpu;
-  const std::uint32_t materials = shaded ? scene.material_count : 1;
+  const std::uint32_t materials = shaded ? static_cast<std::uint32_t>(scene.shades.materials.size()) : 1;
   const auto emit_batch = [&](std::size_t first, TileBatch& batch) {
     const Stopwatch building;
     const std::size_t count = std::min(kTilesPerBatch, indices.size() - first);

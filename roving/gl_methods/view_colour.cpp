@@ -45,7 +45,7 @@ void shade_view_hits(GlScene& scene, const std::vector<ViewHit>& hits, const Col
   std::vector<std::uint32_t> order(hits.size());
   for (std::uint32_t i = 0; i < order.size(); ++i) order[i] = i;
   std::stable_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
-    return scene.material_of(hits[a].face) < scene.material_of(hits[b].face);
+    return scene.shades.material_of(hits[a].face) < scene.shades.material_of(hits[b].face);
   });
   std::vector<TileVertex> vertices;
   std::vector<TileShade> shades;
@@ -57,10 +57,10 @@ void shade_view_hits(GlScene& scene, const std::vector<ViewHit>& hits, const Col
     vertices.clear(), shades.clear(), runs.clear();
     for (std::size_t tile = 0; tile < count; ++tile) {
       const ViewHit& hit = hits[order[first + tile]];
-      const std::uint32_t material = scene.material_of(hit.face);
+      const std::uint32_t material = scene.shades.material_of(hit.face);
       if (runs.empty() || runs.back().material != material) runs.push_back({material, 0});
       runs.back().vertex_count += 6;
-      const TileShade shade = scene.shade_at(hit.face, hit.point);
+      const TileShade shade = scene.shades.at(*scene.test, hit.face, hit.point);
       const auto t = static_cast<std::uint32_t>(tile);
       for (const auto& [x, y] : {std::pair(-1.0f, -1.0f),
                                  {1.0f, -1.0f},
