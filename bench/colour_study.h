@@ -28,9 +28,9 @@ struct ColourStudy {
   std::string notes;  // Markdown: how the models were made, and what the two correspondences show
 };
 
-// `bunny`: normalised to longest side 128. Quick: 8,000 samples, three pairs,
-// IBSM at 512 pixels. `step` hears of each pair.
-ColourStudy colour_study(const TriangleMesh& bunny, bool quick, GlBackend backend,
+// `bunny` and `rocker_arm` (the 20k one; used unless quick): normalised to longest side 128.
+// Quick: 8,000 samples, three pairs, IBSM at 512 pixels. `step` hears of each pair.
+ColourStudy colour_study(const TriangleMesh& bunny, const TriangleMesh* rocker_arm, bool quick, GlBackend backend,
                          const std::function<void(const std::string&)>& step);
 
 }  // namespace roving

@@ -113,11 +113,7 @@ class Bench {
   std::vector<std::string> failures;
   std::vector<ReportTable> tables;
   std::map<std::string, std::string> chart_data;  // CSV files bench/charts.py draws from
-  struct PictureJob {
-    std::string file, caption;
-    ColouredSurface surface;
-    Picture picture;
-  };
+  using PictureJob = ColourStudy::PictureJob;
   std::vector<PictureJob> pictures;  // rendered into results/pictures/ by write_results()
   std::vector<HtmlView> figure8_views;  // results/figure8.html: the same heat maps, in 3D
 
@@ -674,10 +670,26 @@ std::string machine_section(const Bench& bench) {
                             : "full (every face sample)");
 }
 
+// Renders `pictures` into out/pictures/; returns the Markdown that shows them.
+std::string write_pictures(Bench& bench, const std::vector<Bench::PictureJob>& pictures, const fs::path& out) {
+  fs::create_directories(out / "pictures");
+  std::string markdown;
+  for (const Bench::PictureJob& job : pictures) {
+    bench.progress.step("picture: " + job.file);
+    AtomicFile file((out / "pictures" / job.file).string());
+    write_picture_png(file.stream(), bench.backend(), job.surface, job.picture);
+    file.close_stream();
+    file.commit();
+    markdown += fmt::format("![{}](pictures/{})\n\n", job.caption, job.file);
+  }
+  return markdown;
+}
+
 // The colour table (colour_study.h): its tables join the others; its figures are checked with them.
 ColourStudy colour_table(Bench& bench) {
   bench.progress.step("colour: sample-based figures by every method, and IBSM");
-  ColourStudy study = colour_study(bench.load("stanford-bunny.obj"), bench.options().quick, bench.backend(),
+  const TriangleMesh rocker = bench.options().quick ? TriangleMesh() : bench.load("rocker-arm.obj");
+  ColourStudy study = colour_study(bench.load("stanford-bunny.obj"), &rocker, bench.options().quick, bench.backend(),
                                    [&](const std::string& what) { bench.progress.step(what); });
   bench.tables.insert(bench.tables.end(), study.tables.begin(), study.tables.end());
   bench.figures.insert(study.figures.begin(), study.figures.end());
@@ -697,15 +709,7 @@ void write_colour_page(Bench& bench, const ColourStudy& study, const fs::path& o
   for (const ReportTable& t : study.tables)
     markdown += "## " + t.title + "\n\n" + t.settings + "\n\n" + t.markdown() + "\n";
   markdown += study.notes + "\n";
-  fs::create_directories(out / "pictures");
-  for (const ColourStudy::PictureJob& job : study.pictures) {
-    bench.progress.step("picture: " + job.file);
-    AtomicFile file((out / "pictures" / job.file).string());
-    write_picture_png(file.stream(), bench.backend(), job.surface, job.picture);
-    file.close_stream();
-    file.commit();
-    markdown += fmt::format("![{}](pictures/{})\n\n", job.caption, job.file);
-  }
+  markdown += write_pictures(bench, study.pictures, out);
   std::ofstream(out / "colour.md") << markdown + machine_section(bench);
 }
 
@@ -877,15 +881,7 @@ void write_results(Bench& bench, const fs::path& out) {
         "## Pictures\n\nRendered by the tool's own GL renderer (as `roving measure --heatmap-png` does): the "
         "paper's "
         "Figure 8 with the error in colour, and its Figure 5b.\n\n";
-    fs::create_directories(out / "pictures");
-    for (const Bench::PictureJob& job : bench.pictures) {
-      bench.progress.step("picture: " + job.file);
-      AtomicFile file((out / "pictures" / job.file).string());
-      write_picture_png(file.stream(), bench.backend(), job.surface, job.picture);
-      file.close_stream();
-      file.commit();
-      markdown += fmt::format("![{}](pictures/{})\n\n", job.caption, job.file);
-    }
+    markdown += write_pictures(bench, bench.pictures, out);
   }
   std::ofstream(out / "README.md") << markdown + machine_section(bench);
   write_html(bench, out);

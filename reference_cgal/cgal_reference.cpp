@@ -82,7 +82,6 @@ class CgalAabbMethod final : public DistanceMethod {
       : name_(std::move(name)), semantics_(std::move(semantics)) {}
 
   std::string name() const override { return name_; }
-  bool reports_colour() const override { return true; }
   std::vector<Semantics> supported_semantics() const override { return semantics_; }
 
   double build(const TriangleMesh& test) override {

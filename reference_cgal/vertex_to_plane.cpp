@@ -15,20 +15,23 @@ class NaiveVertexToPlane final : public ClosestPointBaseline {
     corners_.reserve(test.triangle_count());
     const auto& p = test.positions();
     for (const Triangle& t : test.triangles()) corners_.push_back({p[t[0]], p[t[1]], p[t[2]]});
+    test_ = &test;
     built_ = true;
     return watch.seconds();
   }
 
  protected:
-  Vec3 nearest(const Vec3& x) const override {
+  bool nearest_is_a_vertex() const override { return false; }
+  Nearest nearest(const Vec3& x) const override {
     double best = std::numeric_limits<double>::infinity();
-    Vec3 best_point = x;
-    for (const auto& [a, b, c] : corners_) {
+    Nearest found{x, 0};
+    for (std::size_t f = 0; f < corners_.size(); ++f) {
+      const auto& [a, b, c] = corners_[f];
       const Vec3 candidate = closest_point_on_triangle(x, a, b, c);
       const double d = (candidate - x).squaredNorm();
-      if (d < best) best = d, best_point = candidate;
+      if (d < best) best = d, found = {candidate, static_cast<std::uint32_t>(f)};
     }
-    return best_point;
+    return found;
   }
 
  private:

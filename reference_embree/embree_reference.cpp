@@ -74,7 +74,6 @@ class EmbreeReference final : public DistanceMethod {
   }
 
   std::string name() const override { return "embree"; }
-  bool reports_colour() const override { return true; }
   std::vector<Semantics> supported_semantics() const override {
     return {Semantics::FirstHit, Semantics::Nearest, Semantics::Closest};
   }

@@ -519,13 +519,13 @@ TEST(CliReport, ColourFiguresGatesAndSamplesTable) {
 
 // --heatmap-of delta-e: the heat map of each sample's colour difference on the sequential map,
 // its legend in delta E, from the same values as the samples table's delta_e; refused where a
-// model has no colour, for a method without colour, and with a range in % of the diagonal.
+// model has no colour and with a range in % of the diagonal.
 TEST(CliReport, ColourHeatMapShowsEachSamplesDeltaE) {
   const Folder folder;
   const std::string ref = folder.file("ref.ply", coloured_cube_ply(0.5, 200));
   const std::string test = folder.file("test.ply", coloured_cube_ply(0.55, 210));
   const std::string ply = folder.file("de.ply"), png = folder.file("de.png"), csv = folder.file("s.csv");
-  for (const char* method : {"embree", "roving"}) {
+  for (const char* method : {"embree", "roving", "v2v-kdtree"}) {
     SCOPED_TRACE(method);
     const CliRun run = run_cli("measure " + ref + " " + test + " --method " + method +
                                " --samples vertices --heatmap-of delta-e --heatmap-range 20 --heatmap " +
@@ -555,8 +555,6 @@ TEST(CliReport, ColourHeatMapShowsEachSamplesDeltaE) {
   const std::string plain = folder.file("plain.obj", cube_obj(0.55));
   expect_error("measure " + ref + " " + plain + " --heatmap-of delta-e --heatmap " + ply,
                {"--heatmap-of delta-e", "colour on both models", plain.c_str()});
-  expect_error("measure " + ref + " " + test + " --method v2v-kdtree --heatmap-of delta-e",
-               {"v2v-kdtree", "no colour"});
   expect_error("measure " + ref + " " + test + " --heatmap-of delta-e --heatmap-range 5%",
                {"--heatmap-range", "5%"});
   expect_error("measure " + ref + " " + test + " --heatmap-of colour", {"--heatmap-of", "colour"});

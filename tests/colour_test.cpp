@@ -158,6 +158,26 @@ TEST(ColourRule, GradientPlaneMovedByAKnownOffset) {
   }
 }
 
+// The baselines' correspondences: v2p-naive's nearest point of a face (the closed form holds
+// anywhere), v2v's nearest vertex (straight above each vertex sample here, so it holds there).
+TEST(ColourRule, BaselinesGiveTheColourAtTheirCorrespondence) {
+  const TriangleMesh reference = gradient_plane(0, 0);
+  const TriangleMesh test = gradient_plane(0.5, 0.5);
+  const std::pair<const char*, const char*> runs[] = {{"v2p-naive", "faces"}, {"v2p-naive", "area:500"},
+                                                      {"v2v-naive", "vertices"}, {"v2v-kdtree", "vertices"}};
+  for (const auto& [method, kind] : runs) {
+    SCOPED_TRACE(std::string(method) + " " + kind);
+    const SampleSet samples = make_samples(reference, parse_sample_spec(kind));
+    auto m = make_method(method);
+    const DistanceResult result = measure_distances(*m, test, samples, {Semantics::Closest, 1.0, true});
+    EXPECT_EQ(result.colour_source, std::string(method).rfind("v2v", 0) == 0 ? "at the nearest vertex" : "on the hit's face");
+    const ColourPairs pairs = colour_pairs(reference, samples, test, result, Semantics::Closest);
+    for (std::size_t k = 0; k < samples.size(); ++k) {
+      ASSERT_LT((pairs.test[k] - (pairs.reference[k] - Colour(5, 0, 0))).cwiseAbs().maxCoeff(), 1e-4) << "sample " << k;
+    }
+  }
+}
+
 TEST(ColourRule, NoHitHasNoColour) {
   // TEST beyond h: every sample a no-hit under first-hit, and none is compared.
   const TriangleMesh reference = gradient_plane(0, 0);

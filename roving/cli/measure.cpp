@@ -137,11 +137,6 @@ MeasurePlan plan_measurement(const MeasureArguments& args) {
   }
   if (args.heatmap_of == "delta-e") {
     plan.heatmap_of = HeatmapQuantity::DeltaE;
-    if (!plan.method->reports_colour()) {
-      throw Error(
-          fmt::format("--heatmap-of delta-e: {} gives no colour at its hits; use embree, cgal or a GL method",
-                      plan.method->name()));
-    }
     if (!args.heatmap_range.empty()) {
       const MaxErrorSpec range = parse_length("--heatmap-range", args.heatmap_range);
       if (range.percent_of_diagonal) {

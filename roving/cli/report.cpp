@@ -23,12 +23,6 @@ std::vector<const Texture*> textures_of(const TriangleMesh& m) {
   return textures;
 }
 
-// How TEST's colour at each hit was found: drawn by a GL method, or taken on the face an exact
-// method found.
-std::string test_colour_source(const DirectionReport& d) {
-  return d.result.hit_colour.empty() ? "on the hit's face" : "drawn in the frame buffer";
-}
-
 // Where a mesh's colour comes from, for the report's model line.
 std::string colour_source(const TriangleMesh& m) {
   if (!m.has_colour()) return "";
@@ -309,7 +303,7 @@ nlohmann::json direction_json(const DirectionReport& d, const MeasureReport& r) 
   if (d.result.gl) json["gl"] = gl_json(*d.result.gl);
   if (d.colour) {
     json["colour"] = colour_json(*d.colour);
-    json["colour"]["test_colour"] = test_colour_source(d);
+    json["colour"]["test_colour"] = d.result.colour_source;
   }
   if (d.auto_sampling) {
     json["samples"]["auto"] = {{"usiad_half_width_asked", d.auto_sampling->target},
@@ -354,7 +348,7 @@ std::string colour_lines(const DirectionReport& d) {
   std::string out = fmt::format(
       "  {}colour: REF's at the sample against TEST's where d was measured ({}):\n"
       "    {} hits compared, {} no-hits without a colour\n",
-      d.label.empty() ? "" : d.label + ": ", test_colour_source(d), c.compared, c.no_hit);
+      d.label.empty() ? "" : d.label + ": ", d.result.colour_source, c.compared, c.no_hit);
   if (c.compared == 0) return out + "    no colour figures: no hit to compare\n";
   out += fmt::format("    {:<34}", "sRGB code values (0-255)");
   for (const char* name : {"R'", "G'", "B'", "Y'", "Cb", "Cr"}) out += fmt::format(" {:>9}", name);

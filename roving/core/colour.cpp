@@ -47,6 +47,16 @@ std::vector<int> first_face_of_vertices(const TriangleMesh& mesh) {
 
 }  // namespace
 
+std::vector<Colour> vertex_colours_by_rule(const TriangleMesh& mesh) {
+  if (!mesh.texture_mapping()) return mesh.vertex_colours();
+  const std::vector<int> face = first_face_of_vertices(mesh);
+  std::vector<Colour> colours(mesh.vertex_count(), Colour::Constant(std::numeric_limits<float>::quiet_NaN()));
+  tbb::parallel_for(std::size_t(0), mesh.vertex_count(), [&](std::size_t v) {
+    if (face[v] >= 0) colours[v] = colour_on_face(mesh, face[v], mesh.positions()[v]);
+  });
+  return colours;
+}
+
 std::vector<Colour> sample_colours(const TriangleMesh& reference, const SampleSet& samples) {
   const bool vertex_samples = samples.kind == "vertices";
   const std::vector<int> vertex_face =

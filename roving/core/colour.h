@@ -29,6 +29,10 @@ inline Vec3 correspondence_point(const Vec3& x, const Vec3& n, double d, Semanti
 // Requires reference.has_colour() and samples of `reference`.
 std::vector<Colour> sample_colours(const TriangleMesh& reference, const SampleSet& samples);
 
+// Each vertex's colour by the rule: its own, or on a textured mesh its lowest face's colour at it
+// (a seam gives a vertex several); NaN for a vertex no face uses. Requires mesh.has_colour().
+std::vector<Colour> vertex_colours_by_rule(const TriangleMesh& mesh);
+
 // Both colours of every sample: REF's (`reference`, one per sample) and TEST's, as a GL method
 // drew it (`result.hit_colour`) or else at the correspondence on the face `result.hit_face`
 // names. A no-hit has no TEST colour (NaN).

@@ -58,10 +58,10 @@ using ProgressFn = std::function<void(const char* stage, std::size_t done, std::
 struct DistanceOptions {
   Semantics semantics = Semantics::FirstHit;
   double max_error = 0;  // h: half-height of the view volume, model units, > 0
-  // Also report TEST's colour at each hit, for the colour figures: the exact references give the
-  // face each hit lies on (DistanceResult::hit_face; colour.h then takes the colour there), the GL
-  // methods draw the colour in the frame buffer beside the depth (hit_colour, where TEST has
-  // colour); the baselines give neither.
+  // Also report TEST's colour at each hit, for the colour figures: the exact references and the
+  // nearest-point baselines give the face each hit lies on (DistanceResult::hit_face; colour.h then
+  // takes the colour there), the GL methods draw the colour in the frame buffer beside the depth
+  // and the nearest-vertex baselines take their vertex's (hit_colour), where TEST has colour.
   bool colour = false;
 };
 
@@ -97,9 +97,13 @@ struct DistanceResult {
   // The face of TEST where each hit lies (DistanceOptions::colour); empty when not asked for
   // or not known. Where the line meets several faces at the chosen d, the lowest index.
   std::vector<std::uint32_t> hit_face;
-  // TEST's colour at each hit as a GL method drew it (DistanceOptions::colour), code values; NaN
-  // where no colour was drawn; empty when not asked for or not drawn.
+  // TEST's colour at each hit as the method found it itself (DistanceOptions::colour): a GL
+  // method's frame buffer, a vertex baseline's nearest vertex; code values, NaN where there is
+  // none; empty when not asked for or not given this way.
   std::vector<Colour> hit_colour;
+  // How TEST's colour at each hit is found, for the report: "on the hit's face" (hit_face), "drawn
+  // in the frame buffer" or "at the nearest vertex" (hit_colour); empty without colour.
+  std::string colour_source;
   double build_seconds = 0;    // acceleration structures, uploads: once per test model
   double query_seconds = 0;    // all samples
   std::optional<GlReport> gl;  // GL methods only
@@ -120,9 +124,6 @@ class DistanceMethod {
   virtual std::string name() const = 0;
   // The semantics this method can compute; the first is its default.
   virtual std::vector<Semantics> supported_semantics() const = 0;
-  // Whether DistanceOptions::colour gets TEST's colour at each hit from it (a face or a drawn
-  // colour); the baselines have no such correspondence.
-  virtual bool reports_colour() const { return false; }
 
   // Prepares for queries against `test` (kept by reference: it must outlive the method).
   // Returns the build time in seconds.
@@ -165,7 +166,10 @@ DistanceResult measure_in_blocks(std::size_t count, const MakeWorker& make_worke
   DistanceResult result;
   result.signed_distance.assign(count, 0.0);
   result.hit.assign(count, 0);
-  if (answers_faces && keep_faces) result.hit_face.assign(count, 0);
+  if (answers_faces && keep_faces) {
+    result.hit_face.assign(count, 0);
+    result.colour_source = "on the hit's face";
+  }
   std::atomic<std::size_t> done{0};
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, 256),
                     [&](const tbb::blocked_range<std::size_t>& range) {

@@ -196,6 +196,22 @@ class GltfReader {
     return items[index];
   }
 
+  // The bytes of a base64 data URI; nullopt for a file name. Fails on a malformed data URI and
+  // on any other scheme: only files beside the .gltf are read.
+  std::optional<std::string> data_uri_bytes(const std::string& text, const std::string& where) const {
+    if (text.rfind("data:", 0) == 0) {
+      const std::size_t comma = text.find(";base64,");
+      std::optional<std::string> decoded;
+      if (comma != std::string::npos) decoded = decode_base64(std::string_view(text).substr(comma + 8));
+      if (!decoded) fail(where + ": expected a base64 data URI");
+      return decoded;
+    }
+    if (text.find("://") != std::string::npos) {
+      fail(fmt::format("{}: expected a data URI or a file beside the .gltf, found '{}'", where, text));
+    }
+    return std::nullopt;
+  }
+
   // The bytes of buffer `index`, at least its declared byteLength: the GLB's binary chunk, a
   // base64 data URI, or a file beside the .gltf.
   std::string_view buffer(std::size_t index) {
@@ -211,16 +227,9 @@ class GltfReader {
     } else {
       if (!uri->is_string()) fail(where + ": expected 'uri' to be a string");
       const std::string text = uri->get<std::string>();
-      if (text.rfind("data:", 0) == 0) {
-        const std::size_t comma = text.find(";base64,");
-        std::optional<std::string> decoded;
-        if (comma != std::string::npos) decoded = decode_base64(std::string_view(text).substr(comma + 8));
-        if (!decoded) fail(where + ": expected a base64 data URI");
+      if (std::optional<std::string> decoded = data_uri_bytes(text, where)) {
         storage_.push_back(std::move(*decoded));
       } else {
-        if (text.find("://") != std::string::npos) {
-          fail(fmt::format("{}: expected a data URI or a file beside the .gltf, found '{}'", where, text));
-        }
         const fs::path file = resolve_reference(path_, text, where + "'s uri");
         try {
           require_regular_file(file.string(), where + "'s bytes");
@@ -696,15 +705,8 @@ class GltfReader {
       if (const json* uri = find(image, "uri")) {
         if (!uri->is_string()) fail(where + ": expected 'uri' to be a string");
         const std::string text = uri->get<std::string>();
-        if (text.rfind("data:", 0) == 0) {
-          const std::size_t comma = text.find(";base64,");
-          std::optional<std::string> decoded;
-          if (comma != std::string::npos) decoded = decode_base64(std::string_view(text).substr(comma + 8));
-          if (!decoded) fail(where + ": expected a base64 data URI");
+        if (const std::optional<std::string> decoded = data_uri_bytes(text, where)) {
           return decode_texture(*decoded, source);
-        }
-        if (text.find("://") != std::string::npos) {
-          fail(fmt::format("{}: expected a data URI or a file beside the .gltf, found '{}'", where, text));
         }
         return ::roving::read_texture(resolve_reference(path_, text, where + "'s uri"));
       }

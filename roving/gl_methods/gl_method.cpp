@@ -171,6 +171,7 @@ DistanceResult GlMethod::measure(const SampleSet& samples, const DistanceOptions
   if (options.colour && scene_.test->has_colour()) {
     scene_.prepare_colour();
     result.hit_colour.assign(samples.size(), Colour::Constant(std::numeric_limits<float>::quiet_NaN()));
+    result.colour_source = "drawn in the frame buffer";
     coloured = [&](std::uint32_t k, const Colour& colour) { result.hit_colour[k] = colour; };
   }
   resolve(

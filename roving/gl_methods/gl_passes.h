@@ -119,7 +119,6 @@ class GlMethod : public DistanceMethod {
  public:
   explicit GlMethod(GlMethodOptions options) : options_(options) {}
   std::vector<Semantics> supported_semantics() const override { return {Semantics::FirstHit}; }
-  bool reports_colour() const override { return true; }
   double build(const TriangleMesh& test) override;
   void release() override { scene_.release(); }
   DistanceResult measure(const SampleSet& samples, const DistanceOptions& options) final;
