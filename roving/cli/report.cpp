@@ -364,8 +364,8 @@ std::string colour_lines(const DirectionReport& d) {
   out += row("RMS", &ChannelErrors::rms);
   out += row("PSNR (dB, peak 255)", &ChannelErrors::psnr);
   out += fmt::format(
-      "    PSNR R'G'B' {:.4g} dB, Y'CbCr 6:1:1 (MPEG) {:.4g} dB; CIEDE2000 delta E mean {:.4g}, p95 {:.4g}, "
-      "max {:.4g}\n",
+      "    PSNR R'G'B' {:.4g} dB, Y'CbCr 6:1:1 (MPEG) {:.4g} dB\n"
+      "    CIEDE2000 delta E mean {:.4g}, p95 {:.4g}, max {:.4g}\n",
       c.psnr_rgb, c.psnr_ycbcr_611, c.delta_e_mean, c.delta_e_p95, c.delta_e_max);
   return out;
 }
@@ -373,17 +373,14 @@ std::string colour_lines(const DirectionReport& d) {
 // The image-based comparison (IBSM), as mmetric names its figures.
 std::string image_based_lines(const ImageBasedResult& ib) {
   std::string out = fmt::format(
-      "\n  image-based (MPEG IBSM): {} orthographic views on a Fibonacci sphere, {} x {} pixels, back faces "
-      "culled\n"
-      "    {} pixels both models cover; unmatched (one model only) {:.4g}% of them; box ratio {:.5g}%\n"
+      "\n  image-based (MPEG IBSM): {} views on a Fibonacci sphere, {} x {} px, back faces culled\n"
+      "    {} pixels both models cover; unmatched (one only) {:.4g}% of them; box ratio {:.5g}%\n"
       "    depth PSNR {:.4g} dB (depth as a fraction of the view's depth)\n",
-      ib.views, ib.resolution, ib.resolution, ib.matched_pixels, ib.unmatched_percent, ib.box_ratio,
-      ib.depth_psnr);
+      ib.views, ib.resolution, ib.resolution, ib.matched_pixels, ib.unmatched_percent, ib.box_ratio, ib.depth_psnr);
   if (ib.colour) {
     out += fmt::format(
-        "    colour PSNR (8-bit frame buffers, peak 255): R'G'B' {:.4g} dB, Y'CbCr 6:1:1 {:.4g} dB (Y' "
-        "{:.4g}, Cb "
-        "{:.4g}, Cr {:.4g})\n",
+        "    colour PSNR (8-bit pixels, peak 255): R'G'B' {:.4g} dB, Y'CbCr 6:1:1 {:.4g} dB\n"
+        "      (Y' {:.4g}, Cb {:.4g}, Cr {:.4g})\n",
         ib.psnr_rgb, ib.psnr_ycbcr_611, ib.psnr_ycbcr[0], ib.psnr_ycbcr[1], ib.psnr_ycbcr[2]);
   }
   return out + fmt::format("    {:.3f} s\n", ib.seconds);
