@@ -254,6 +254,20 @@ class GltfReader {
     return *buffers_[index];
   }
 
+  // The bytes of bufferViews[index] (`where` names who refers to it), checked to lie in its buffer.
+  std::string_view view_bytes(std::size_t index, const std::string& where) {
+    const std::string view_where = fmt::format("bufferViews[{}]", index);
+    const json& view = element("bufferViews", index, where);
+    const std::string_view data = buffer(natural(view, "buffer", view_where));
+    const std::size_t offset = natural(view, "byteOffset", view_where, 0);
+    const std::size_t length = natural(view, "byteLength", view_where);
+    if (offset > data.size() || length > data.size() - offset) {
+      fail(fmt::format("{} spans bytes [{}, {} + {}) of a {}-byte buffer", view_where, offset, offset, length,
+                       data.size()));
+    }
+    return data.substr(offset, length);
+  }
+
   struct Accessor {
     std::string_view bytes;  // from the first element
     std::size_t count = 0, stride = 0;
@@ -324,13 +338,8 @@ class GltfReader {
     const std::size_t view_index = natural(a, "bufferView", where);
     const std::string view_where = fmt::format("bufferViews[{}]", view_index);
     const json& view = element("bufferViews", view_index, where);
-    const std::string_view data = buffer(natural(view, "buffer", view_where));
-    const std::size_t view_offset = natural(view, "byteOffset", view_where, 0);
-    const std::size_t view_length = natural(view, "byteLength", view_where);
-    if (view_offset > data.size() || view_length > data.size() - view_offset) {
-      fail(fmt::format("{} spans bytes [{}, {} + {}) of a {}-byte buffer", view_where, view_offset,
-                       view_offset, view_length, data.size()));
-    }
+    const std::string_view view_data = view_bytes(view_index, where);
+    const std::size_t view_length = view_data.size();
     out.stride = natural(view, "byteStride", view_where, element_size);
     if (out.stride < element_size)
       fail(fmt::format("{}: byteStride {} is less than an element ({})", view_where, out.stride,
@@ -342,7 +351,7 @@ class GltfReader {
       fail(fmt::format("{}: {} elements from byte {} do not fit in {} of {} bytes", where, out.count, offset,
                        view_where, view_length));
     }
-    out.bytes = data.substr(view_offset + offset);
+    out.bytes = view_data.substr(offset);
     return out;
   }
 
@@ -710,17 +719,7 @@ class GltfReader {
         }
         return ::roving::read_texture(resolve_reference(path_, text, where + "'s uri"));
       }
-      const std::size_t view_index = natural(image, "bufferView", where);
-      const std::string view_where = fmt::format("bufferViews[{}]", view_index);
-      const json& view = element("bufferViews", view_index, where);
-      const std::string_view data = buffer(natural(view, "buffer", view_where));
-      const std::size_t offset = natural(view, "byteOffset", view_where, 0);
-      const std::size_t length = natural(view, "byteLength", view_where);
-      if (offset > data.size() || length > data.size() - offset) {
-        fail(fmt::format("{} spans bytes [{}, {} + {}) of a {}-byte buffer", view_where, offset, offset,
-                         length, data.size()));
-      }
-      return decode_texture(data.substr(offset, length), source);
+      return decode_texture(view_bytes(natural(image, "bufferView", where), where), source);
     } catch (const Error& e) {
       const std::string message = e.what();
       if (message.rfind(path_ + ":", 0) == 0) throw;

@@ -9,13 +9,12 @@
 
 namespace roving {
 
-std::array<unsigned char, 3> diverging_colour(double s) {
-  // RdBu, 11 classes, from blue to red (Brewer 2002).
-  static constexpr unsigned char stops[11][3] = {{5, 48, 97},    {33, 102, 172}, {67, 147, 195}, {146, 197, 222},
-                                                 {209, 229, 240}, {247, 247, 247}, {253, 219, 199}, {244, 165, 130},
-                                                 {214, 96, 77},   {178, 24, 43},  {103, 0, 31}};
-  const double position = (std::clamp(std::isnan(s) ? 0.0 : s, -1.0, 1.0) + 1) * 5;  // 0..10
-  const int low = std::min(static_cast<int>(position), 9);
+namespace {
+
+// The colour at `position` (0 to N - 1) along N stops, interpolated linearly between neighbours.
+template <std::size_t N>
+std::array<unsigned char, 3> between_stops(const unsigned char (&stops)[N][3], double position) {
+  const int low = std::min(static_cast<int>(position), static_cast<int>(N) - 2);
   const double t = position - low;
   std::array<unsigned char, 3> colour;
   for (int c = 0; c < 3; ++c) {
@@ -24,19 +23,22 @@ std::array<unsigned char, 3> diverging_colour(double s) {
   return colour;
 }
 
+}  // namespace
+
+std::array<unsigned char, 3> diverging_colour(double s) {
+  // RdBu, 11 classes, from blue to red (Brewer 2002).
+  static constexpr unsigned char stops[11][3] = {{5, 48, 97},    {33, 102, 172}, {67, 147, 195}, {146, 197, 222},
+                                                 {209, 229, 240}, {247, 247, 247}, {253, 219, 199}, {244, 165, 130},
+                                                 {214, 96, 77},   {178, 24, 43},  {103, 0, 31}};
+  return between_stops(stops, (std::clamp(std::isnan(s) ? 0.0 : s, -1.0, 1.0) + 1) * 5);  // 0..10
+}
+
 std::array<unsigned char, 3> sequential_colour(double s) {
   // YlOrRd, 9 classes (Brewer 2002).
   static constexpr unsigned char stops[9][3] = {{255, 255, 204}, {255, 237, 160}, {254, 217, 118},
                                                 {254, 178, 76},  {253, 141, 60},  {252, 78, 42},
                                                 {227, 26, 28},   {189, 0, 38},    {128, 0, 38}};
-  const double position = std::clamp(std::isnan(s) ? 0.0 : s, 0.0, 1.0) * 8;  // 0..8
-  const int low = std::min(static_cast<int>(position), 7);
-  const double t = position - low;
-  std::array<unsigned char, 3> colour;
-  for (int c = 0; c < 3; ++c) {
-    colour[c] = static_cast<unsigned char>(std::lround((1 - t) * stops[low][c] + t * stops[low + 1][c]));
-  }
-  return colour;
+  return between_stops(stops, std::clamp(std::isnan(s) ? 0.0 : s, 0.0, 1.0) * 8);  // 0..8
 }
 
 std::array<unsigned char, 3> HeatmapScale::colour(float value) const {
