@@ -4,12 +4,14 @@
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
 #include <GL/osmesa.h>
+#include <dlfcn.h>
 #include <fmt/format.h>
 
 #include <cstdlib>
 #include <cstring>
 #include <mutex>
 #include <thread>
+#include <type_traits>
 #include <vector>
 
 #include "roving/core/error.h"
@@ -17,9 +19,45 @@
 namespace roving::gl {
 namespace {
 
+// OSMesa is opened when a context is first asked for, not linked: it pulls in LLVM (llvmpipe),
+// whose relocations alone cost ~50 MB of resident memory and 20 ms at start, which every run of
+// a CPU method would pay for nothing.
+struct OsMesaLibrary {
+  decltype(&OSMesaCreateContextAttribs) create_context = nullptr;
+  decltype(&OSMesaMakeCurrent) make_current = nullptr;
+  decltype(&OSMesaDestroyContext) destroy_context = nullptr;
+  decltype(&OSMesaGetProcAddress) get_proc_address = nullptr;
+  decltype(&OSMesaGetCurrentContext) get_current_context = nullptr;
+};
+
+const OsMesaLibrary& osmesa() {
+  static const OsMesaLibrary library = [] {
+    void* handle = dlopen("libOSMesa.so.8", RTLD_NOW | RTLD_LOCAL);
+    if (!handle) handle = dlopen("libOSMesa.so", RTLD_NOW | RTLD_LOCAL);
+    if (!handle) {
+      const char* why = dlerror();
+      throw Error(
+          fmt::format("osmesa: cannot open libOSMesa.so.8 ({}); install libosmesa6 or use --backend egl",
+                      why ? why : "not found"));
+    }
+    OsMesaLibrary l;
+    const auto load = [handle](auto& function, const char* name) {
+      function = reinterpret_cast<std::remove_reference_t<decltype(function)>>(dlsym(handle, name));
+      if (!function) throw Error(fmt::format("osmesa: libOSMesa has no {}", name));
+    };
+    load(l.create_context, "OSMesaCreateContextAttribs");
+    load(l.make_current, "OSMesaMakeCurrent");
+    load(l.destroy_context, "OSMesaDestroyContext");
+    load(l.get_proc_address, "OSMesaGetProcAddress");
+    load(l.get_current_context, "OSMesaGetCurrentContext");
+    return l;  // the library stays open for the process's life
+  }();
+  return library;
+}
+
 class OsMesaContext final : public Context {
  public:
-  OsMesaContext() {
+  OsMesaContext() : osmesa_(osmesa()) {
     const int attributes[] = {OSMESA_FORMAT,
                               OSMESA_RGBA,
                               OSMESA_DEPTH_BITS,
@@ -31,29 +69,30 @@ class OsMesaContext final : public Context {
                               OSMESA_CONTEXT_MINOR_VERSION,
                               5,
                               0};
-    context_ = OSMesaCreateContextAttribs(attributes, nullptr);
+    context_ = osmesa_.create_context(attributes, nullptr);
     if (!context_)
       throw Error("osmesa: cannot create a GL 4.5 core context (OSMesaCreateContextAttribs failed)");
     // OSMesa needs a colour buffer to be current; all rendering goes to FBOs, so 1 x 1 will do.
-    if (!OSMesaMakeCurrent(context_, pixel_, GL_UNSIGNED_BYTE, 1, 1)) {
-      OSMesaDestroyContext(context_);
+    if (!osmesa_.make_current(context_, pixel_, GL_UNSIGNED_BYTE, 1, 1)) {
+      osmesa_.destroy_context(context_);
       throw Error("osmesa: cannot make the context current");
     }
   }
-  ~OsMesaContext() override { OSMesaDestroyContext(context_); }
+  ~OsMesaContext() override { osmesa_.destroy_context(context_); }
 
   void* proc_address(const char* name) const override {
-    return reinterpret_cast<void*>(OSMesaGetProcAddress(name));
+    return reinterpret_cast<void*>(osmesa_.get_proc_address(name));
   }
   std::string platform() const override { return "osmesa"; }
   void make_current() override {
-    if (OSMesaGetCurrentContext() != context_ &&
-        !OSMesaMakeCurrent(context_, pixel_, GL_UNSIGNED_BYTE, 1, 1)) {
+    if (osmesa_.get_current_context() != context_ &&
+        !osmesa_.make_current(context_, pixel_, GL_UNSIGNED_BYTE, 1, 1)) {
       throw Error("osmesa: cannot make the context current again");
     }
   }
 
  private:
+  const OsMesaLibrary& osmesa_;
   OSMesaContext context_ = nullptr;
   unsigned char pixel_[4] = {};
 };
