@@ -40,6 +40,37 @@ TEST(Cli, MeasuresAndWritesEveryOutput) {
   fs::remove_all(folder);
 }
 
+// A plain run gives up REF's geometry once it is sampled (run_measure); one with a heat map keeps
+// it. The report and every sample's figures must not tell them apart.
+TEST(Cli, ReleasingTheReferenceChangesNothingReported) {
+  const fs::path folder = fs::temp_directory_path() / ("roving-cli-release-" + std::to_string(::getpid()));
+  fs::create_directories(folder);
+  const std::string cube = (folder / "cube.obj").string();
+  std::ofstream(cube) << cube_obj(0.05);
+  for (const char* samples : {"vertices", "faces"}) {
+    std::string csv[2];
+    nlohmann::json report[2];
+    for (int keep = 0; keep < 2; ++keep) {
+      csv[keep] = (folder / fmt::format("{}-{}.csv", samples, keep)).string();
+      const std::string heatmap = keep ? " --heatmap " + (folder / "heat.ply").string() : "";
+      const CliRun run =
+          run_cli(fmt::format("measure {} {} --semantics closest --hausdorff-bound none --samples {} "
+                              "--json - --samples-out {}{}",
+                              bunny(), cube, samples, csv[keep], heatmap));
+      ASSERT_EQ(run.exit_code, 0) << run.err;
+      report[keep] = nlohmann::json::parse(run.out);
+      for (const char* volatile_key : {"seconds", "provenance", "outputs", "command_line"})
+        report[keep].erase(volatile_key);
+    }
+    std::ifstream released(csv[0]), kept(csv[1]);
+    EXPECT_EQ(std::string(std::istreambuf_iterator<char>(released), {}),
+              std::string(std::istreambuf_iterator<char>(kept), {}))
+        << samples;
+    EXPECT_EQ(report[0].dump(), report[1].dump()) << samples;
+  }
+  fs::remove_all(folder);
+}
+
 TEST(Cli, TextReportShowsTheMetroFields) {
   const CliRun run = run_cli("measure " + bunny() + " " + bunny() + " --samples area:200 --method cgal");
   ASSERT_EQ(run.exit_code, 0) << run.err;

@@ -37,6 +37,29 @@ TEST(Samples, VertexSamplingSkipsTheBunnysUnreferencedVertices) {
   for (const Vec3& n : samples.normals) ASSERT_NEAR(n.norm(), 1.0, 1e-12);
 }
 
+// The bunny has unreferenced vertices, so vertex samples are compacted; each kind must come out
+// the same whether the mesh keeps its geometry or gives it up, and the mesh must still report
+// what it was.
+TEST(Samples, ReleasingTheReferenceGivesTheSameSamples) {
+  for (const SampleSpec& spec :
+       {SampleSpec{}, SampleSpec{SampleSpec::Kind::Vertices}, SampleSpec{SampleSpec::Kind::Area, 500}}) {
+    const SampleSet kept = make_samples(testing::bunny(), spec);
+    TriangleMesh bunny = testing::bunny();
+    const SampleSet released = make_samples_releasing(bunny, spec);
+    EXPECT_EQ(released.positions, kept.positions) << spec.to_string();
+    EXPECT_EQ(released.normals, kept.normals) << spec.to_string();
+    EXPECT_EQ(released.weights, kept.weights) << spec.to_string();
+    EXPECT_EQ(released.elements, kept.elements) << spec.to_string();
+    EXPECT_EQ(released.skipped_unreferenced_vertices, kept.skipped_unreferenced_vertices);
+    EXPECT_EQ(released.kind, kept.kind);
+    EXPECT_TRUE(bunny.positions().empty() && bunny.triangles().empty()) << "the geometry is gone";
+    EXPECT_EQ(bunny.vertex_count(), 35947u);
+    EXPECT_EQ(bunny.triangle_count(), 69451u);
+    EXPECT_EQ(bunny.total_area(), testing::bunny().total_area());
+    EXPECT_EQ(bunny.bounding_box().diagonal(), testing::bunny().bounding_box().diagonal());
+  }
+}
+
 TEST(Samples, AreaSamplingIsReproducibleAndLiesOnTheSurface) {
   const TriangleMesh cube = testing::box(1.0);
   const SampleSet a = make_samples(cube, parse_sample_spec("area:1000"));

@@ -269,8 +269,8 @@ void describe_pair(const Model& a, const Model& b, MeasurePlan& plan, MeasureRep
 }
 
 void measure_models(const Model& a, const Model& b, MeasurePlan& plan, MeasureReport& report,
-                    Progress& progress, std::string& stage, const WarnFn& warn,
-                    const SampleSet* samples_of_a) {
+                    Progress& progress, std::string& stage, const WarnFn& warn, const SampleSet* samples_of_a,
+                    Model* releasable_a) {
   warn(alignment_warnings(a, b, plan.options.max_error));
   if (has_colour(a) != has_colour(b)) {
     const Model& coloured = has_colour(a) ? a : b;
@@ -302,6 +302,8 @@ void measure_models(const Model& a, const Model& b, MeasurePlan& plan, MeasureRe
     for (int round = 1;; ++round) {
       if (reference == &a && samples_of_a && !spec.automatic) {
         d.samples = *samples_of_a;
+      } else if (reference == releasable_a && !spec.automatic) {
+        d.samples = reference_samples_releasing(*releasable_a, spec);
       } else {
         d.samples = reference_samples(*reference, spec);
       }
@@ -363,6 +365,19 @@ nlohmann::json input_json(const std::string& role, const std::string& path, cons
   return {{"role", role}, {"path", path}, {"bytes", std::filesystem::file_size(path)}, {"sha256", sha256}};
 }
 
+namespace {
+
+// Whether nothing after sampling reads REF's geometry: one direction, sampled once, and no figure
+// or output that measures or draws REF itself (the certified Hausdorff bound, colour, IBSM, heat
+// maps, the web page).
+bool reference_only_sampled(const MeasureArguments& args, const MeasurePlan& plan) {
+  return !plan.symmetric && !plan.sample_spec.automatic && !plan.hausdorff_bound && !plan.options.colour &&
+         !plan.image_based && args.heatmap_path.empty() && args.heatmap_png_path.empty() &&
+         args.html_path.empty();
+}
+
+}  // namespace
+
 int run_measure(const MeasureArguments& args, std::string& stage) {
   const Stopwatch total;
   // Parse every option before the (slow) loads, so a typo fails at once.
@@ -376,7 +391,7 @@ int run_measure(const MeasureArguments& args, std::string& stage) {
   Stopwatch watch;
   stage = fmt::format("loading the reference {}", args.reference_path);
   progress.stage("loading " + file_name(args.reference_path));
-  const Model a = load_model(args.reference_path, plan.reference_type);
+  Model a = load_model(args.reference_path, plan.reference_type);
   report.load_seconds[0] = watch.seconds();
   watch = Stopwatch();
   stage = fmt::format("loading the test {}", args.test_path);
@@ -403,7 +418,8 @@ int run_measure(const MeasureArguments& args, std::string& stage) {
     progress.clear();
     write_stdout(format_header(a, b, report));
   }
-  measure_models(a, b, plan, report, progress, stage, warn, nullptr);
+  measure_models(a, b, plan, report, progress, stage, warn, nullptr,
+                 reference_only_sampled(args, plan) ? &a : nullptr);
   require_gate_values(plan.gates, gate_values(report));
 
   // Every output file is written whole to a temporary file first; only when all succeeded are

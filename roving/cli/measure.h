@@ -97,9 +97,12 @@ void describe_pair(const Model& a, const Model& b, MeasurePlan& plan, MeasureRep
 
 // After describe_pair, measures: a's samples against b (and b's against a when symmetric), filling
 // `report` but for its provenance and load times; warnings go to `warn` as found. `samples_of_a`,
-// when given, are a's samples already made (a batch reuses them across pairs).
-void measure_models(const Model& a, const Model& b, MeasurePlan& plan, MeasureReport& report, Progress& progress,
-                    std::string& stage, const WarnFn& warn, const SampleSet* samples_of_a);
+// when given, are a's samples already made (a batch reuses them across pairs). `releasable_a`,
+// when given, is `a` itself, whose geometry nothing reads once it is sampled: it gives it up
+// then, so that the query runs without it.
+void measure_models(const Model& a, const Model& b, MeasurePlan& plan, MeasureReport& report,
+                    Progress& progress, std::string& stage, const WarnFn& warn, const SampleSet* samples_of_a,
+                    Model* releasable_a = nullptr);
 
 // An entry of the report's `inputs`.
 nlohmann::json input_json(const std::string& role, const std::string& path, const std::string& sha256);

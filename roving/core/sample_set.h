@@ -48,4 +48,8 @@ struct SampleSet {
 // Builds samples on `reference`; throws roving::Error if none can be made.
 SampleSet make_samples(const TriangleMesh& reference, const SampleSpec& spec);
 
+// The same samples, made while `reference` gives up its geometry (release_geometry): vertex
+// samples take its positions rather than copy them. For a reference nothing reads once sampled.
+SampleSet make_samples_releasing(TriangleMesh& reference, const SampleSpec& spec);
+
 }  // namespace roving

@@ -14,7 +14,10 @@ namespace roving {
 
 TriangleMesh::TriangleMesh(std::vector<Vec3> positions, std::vector<Triangle> triangles,
                            const std::string& source)
-    : positions_(std::move(positions)), triangles_(std::move(triangles)) {
+    : positions_(std::move(positions)),
+      triangles_(std::move(triangles)),
+      vertex_count_(positions_.size()),
+      triangle_count_(triangles_.size()) {
   for (std::size_t i = 0; i < positions_.size(); ++i) {
     if (!positions_[i].allFinite()) {
       throw Error(
@@ -115,6 +118,11 @@ std::vector<Vec3> TriangleMesh::vertex_normals(std::vector<double>* third_areas)
     normal = length > 0 ? Vec3(normal / length) : Vec3::Zero();
   }
   return normals;
+}
+
+std::vector<Vec3> TriangleMesh::release_geometry() {
+  std::vector<Triangle>().swap(triangles_);
+  return std::move(positions_);
 }
 
 TriangleMesh TriangleMesh::transformed(const Vec3& origin, double scale) const {

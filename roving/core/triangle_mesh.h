@@ -45,8 +45,14 @@ class TriangleMesh {
 
   const std::vector<Vec3>& positions() const { return positions_; }
   const std::vector<Triangle>& triangles() const { return triangles_; }
-  std::size_t vertex_count() const { return positions_.size(); }
-  std::size_t triangle_count() const { return triangles_.size(); }
+  // Counts as loaded (they stay after release_geometry(); the arrays do not).
+  std::size_t vertex_count() const { return vertex_count_; }
+  std::size_t triangle_count() const { return triangle_count_; }
+
+  // Hands over the positions and frees the triangles, keeping what reports name (counts, area,
+  // box, colour): for a reference nothing reads once it is sampled, so that the query runs
+  // without it (240 MB at 10 M triangles). No method that reads geometry may be called after.
+  std::vector<Vec3> release_geometry();
 
   // Unit face normal (right-hand rule); zero for a degenerate face. Face normals, areas and
   // vertex normals are computed when asked rather than stored: at 10 M triangles storing them
@@ -95,6 +101,7 @@ class TriangleMesh {
 
   std::vector<Vec3> positions_;
   std::vector<Triangle> triangles_;
+  std::size_t vertex_count_ = 0, triangle_count_ = 0;
   std::vector<Colour> vertex_colours_;
   std::shared_ptr<const TextureMapping> texture_mapping_;  // shared: transformed() copies keep it
   std::vector<bool> vertex_referenced_;

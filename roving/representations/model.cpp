@@ -126,15 +126,29 @@ Model load_model(const std::string& path, std::optional<ModelType> type) {
   return model;
 }
 
-SampleSet reference_samples(const Model& reference, const SampleSpec& spec) {
+namespace {
+
+// make(), with the file named in its errors: the sampling code knows only the surface.
+template <class Make>
+SampleSet naming_the_file(const Model& reference, const Make& make) {
   try {
-    return samples_of(reference, spec);
+    return make();
   } catch (const Error& e) {
-    // Name the file: the sampling code knows only the surface.
     const std::string message = e.what();
     if (message.rfind(reference.path(), 0) == 0 || message.rfind("--samples", 0) == 0) throw;
     throw Error(fmt::format("{}: {}", reference.path(), message));
   }
+}
+
+}  // namespace
+
+SampleSet reference_samples(const Model& reference, const SampleSpec& spec) {
+  return naming_the_file(reference, [&] { return samples_of(reference, spec); });
+}
+
+SampleSet reference_samples_releasing(Model& reference, const SampleSpec& spec) {
+  if (reference.type != ModelType::Mesh) return reference_samples(reference, spec);
+  return naming_the_file(reference, [&] { return make_samples_releasing(reference.mesh.mesh, spec); });
 }
 
 namespace {

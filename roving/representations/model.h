@@ -52,6 +52,8 @@ Model load_model(const std::string& path, std::optional<ModelType> type = std::n
 // tessellation grid, vertices: its nodes, area:N uniform by area). Throws roving::Error naming `--samples`
 // for a kind the representation does not have.
 SampleSet reference_samples(const Model& reference, const SampleSpec& spec);
+// The same samples; a mesh reference gives up its geometry to make them (make_samples_releasing).
+SampleSet reference_samples_releasing(Model& reference, const SampleSpec& spec);
 
 // The surface a test model offers: a point cloud's surfels (made on the first call, which
 // throws roving::Error for what make_surfels refuses), or the model's own triangles.
