@@ -93,7 +93,10 @@ class EmbreeReference final : public DistanceMethod {
     // each in double, exactly as the CGAL reference and GL roving's rule do.
     scene_ = rtcNewScene(device_);
     rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
-    rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_MEDIUM);
+    // Embree's fast (Morton) builder: user geometry builds 1.7x slower than a triangle BVH at
+    // medium quality, 1.2x at low; queries lose 5-15%, the build gains more at every size we
+    // measured end to end, and the tree is smaller (20 MB less at 669 k triangles).
+    rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_LOW);
     RTCGeometry geometry = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_USER);
     rtcSetGeometryUserPrimitiveCount(geometry, static_cast<unsigned>(test.triangle_count()));
     rtcSetGeometryUserData(geometry, this);

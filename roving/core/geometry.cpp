@@ -1,53 +1,31 @@
-// Closest point on a triangle (Ericson, Real-Time Collision Detection, 5.1.5), with its weights.
+// Morton codes of points in a box (the closest-point kernels are inline in geometry.h).
 #include "roving/core/geometry.h"
+
+#include <algorithm>
 
 namespace roving {
 
-TrianglePoint closest_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
-  // Voronoi regions of the vertices, then the edges, then the interior.
-  const Vec3 ab = b - a, ac = c - a, ap = p - a;
-  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
-  if (d1 <= 0 && d2 <= 0) return {a, Vec3(1, 0, 0)};
+namespace {
 
-  const Vec3 bp = p - b;
-  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
-  if (d3 >= 0 && d4 <= d3) return {b, Vec3(0, 1, 0)};
-
-  const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0 && d1 >= 0 && d3 <= 0) {
-    const double v = d1 / (d1 - d3);
-    return {a + v * ab, Vec3(1 - v, v, 0)};
-  }
-
-  const Vec3 cp = p - c;
-  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
-  if (d6 >= 0 && d5 <= d6) return {c, Vec3(0, 0, 1)};
-
-  const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0 && d2 >= 0 && d6 <= 0) {
-    const double w = d2 / (d2 - d6);
-    return {a + w * ac, Vec3(1 - w, 0, w)};
-  }
-
-  const double va = d3 * d6 - d5 * d4;
-  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
-    const double w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
-    return {b + w * (c - b), Vec3(0, 1 - w, w)};
-  }
-
-  const double denominator = va + vb + vc;
-  if (!(denominator > 0)) {
-    // Degenerate triangle that fell through the edge tests (collinear corners): nearest corner.
-    const double da = (p - a).squaredNorm(), db = (p - b).squaredNorm(), dc = (p - c).squaredNorm();
-    if (da <= db && da <= dc) return {a, Vec3(1, 0, 0)};
-    return db <= dc ? TrianglePoint{b, Vec3(0, 1, 0)} : TrianglePoint{c, Vec3(0, 0, 1)};
-  }
-  const double v = vb / denominator, w = vc / denominator;
-  return {a + v * ab + w * ac, Vec3(1 - v - w, v, w)};
+// The low 10 bits of v spread to every third position (one axis of a Morton code).
+std::uint64_t spread_bits(std::uint32_t v) {
+  std::uint64_t x = v & 0x3ff;
+  x = (x | (x << 16)) & 0x30000ff;
+  x = (x | (x << 8)) & 0x300f00f;
+  x = (x | (x << 4)) & 0x30c30c3;
+  x = (x | (x << 2)) & 0x9249249;
+  return x;
 }
 
-Vec3 closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
-  return closest_on_triangle(p, a, b, c).point;
+}  // namespace
+
+std::uint64_t morton_code(const Vec3& p, const BoundingBox& box) {
+  const Vec3 scale = (1023.0 / box.size().array().max(1e-300)).matrix();
+  const Vec3 cell = (p - box.min).cwiseProduct(scale);
+  std::uint64_t code = 0;
+  for (int axis = 0; axis < 3; ++axis)
+    code |= spread_bits(static_cast<std::uint32_t>(std::clamp(cell[axis], 0.0, 1023.0))) << axis;
+  return code;
 }
 
 }  // namespace roving

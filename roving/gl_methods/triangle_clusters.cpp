@@ -10,18 +10,10 @@
 #include <cmath>
 #include <utility>
 
+#include "roving/core/geometry.h"
+
 namespace roving {
 namespace {
-
-// The bits of v spread to every third position (Morton code of one axis).
-std::uint64_t spread_bits(std::uint32_t v) {
-  std::uint64_t x = v & 0x3ff;
-  x = (x | (x << 16)) & 0x30000ff;
-  x = (x | (x << 8)) & 0x300f00f;
-  x = (x | (x << 4)) & 0x30c30c3;
-  x = (x | (x << 2)) & 0x9249249;
-  return x;
-}
 
 // The box with its centre rounded to float and its half-size rounded up from the distance to
 // that centre, so that the float box still holds every corner.
@@ -43,18 +35,11 @@ TriangleClusters::TriangleClusters(const TriangleMesh& mesh)
   const auto& triangles = mesh.triangles();
   const auto& positions = mesh.positions();
   const BoundingBox& box = mesh.bounding_box();
-  const Vec3 scale = (1023.0 / box.size().array().max(1e-300)).matrix();
   std::vector<std::pair<std::uint64_t, std::uint32_t>> keyed(triangles.size());
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, triangles.size(), 4096),
                     [&](const tbb::blocked_range<std::size_t>& range) {
                       for (std::size_t t = range.begin(); t != range.end(); ++t) {
-                        const Vec3 cell = (mesh.centroid(t) - box.min).cwiseProduct(scale);
-                        std::uint64_t code = 0;
-                        for (int axis = 0; axis < 3; ++axis) {
-                          code |= spread_bits(static_cast<std::uint32_t>(std::clamp(cell[axis], 0.0, 1023.0)))
-                                  << axis;
-                        }
-                        keyed[t] = {code, static_cast<std::uint32_t>(t)};
+                        keyed[t] = {morton_code(mesh.centroid(t), box), static_cast<std::uint32_t>(t)};
                       }
                     });
   tbb::parallel_sort(keyed.begin(), keyed.end());
