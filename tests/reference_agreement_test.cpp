@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include "analytic.h"
+#include "roving/reference_cgal/cgal_reference.h"
+#include "roving/reference_embree/embree_reference.h"
 #include "roving/registry/method_registry.h"
 #include "test_support.h"
 
@@ -67,6 +69,37 @@ INSTANTIATE_TEST_SUITE_P(EachSemantics, BunnyAgainstPerturbedCopy,
                            name.erase(std::remove(name.begin(), name.end(), '-'), name.end());
                            return name;
                          });
+
+// The libraries' own queries (roving-bench's raw limits) answer the same questions: on the
+// bunny against its perturbed copy they agree with the exact references wherever the rule's
+// tolerance does not decide (the same bar as Embree's and CGAL's agreement above).
+TEST(RawQueries, AgreeWithTheExactReferences) {
+  const TriangleMesh& bunny = testing::bunny();
+  const double diagonal = bunny.bounding_box().diagonal(), h = 0.05 * diagonal;
+  const TriangleMesh test = smoothly_perturbed(bunny, 0.01 * diagonal, 0.2 * diagonal);
+  const SampleSet samples = make_samples(bunny, {SampleSpec::Kind::Area, 5000});
+  for (const Semantics semantics : {Semantics::FirstHit, Semantics::Nearest, Semantics::Closest}) {
+    auto embree = make_method("embree");
+    const DistanceResult exact = measure_distances(*embree, test, samples, {semantics, h});
+    for (const RawRun& raw :
+         {raw_embree_queries(test, samples, semantics, h), raw_cgal_queries(test, samples, semantics, h)}) {
+      ASSERT_EQ(raw.distance.size(), samples.size());
+      std::size_t same_flag = 0, common = 0, close = 0;
+      for (std::size_t k = 0; k < samples.size(); ++k) {
+        const bool raw_hit = !std::isnan(raw.distance[k]);
+        same_flag += raw_hit == bool(exact.hit[k]);
+        if (!raw_hit || !exact.hit[k]) continue;
+        ++common;
+        const double d =
+            semantics == Semantics::Closest ? std::abs(exact.signed_distance[k]) : exact.signed_distance[k];
+        close += std::abs(d - raw.distance[k]) <= 1e-5 * diagonal;
+      }
+      EXPECT_GE(same_flag, 0.999 * samples.size()) << to_string(semantics);
+      EXPECT_GE(close, 0.9999 * common) << to_string(semantics);
+      EXPECT_GT(raw.query_seconds, 0.0);
+    }
+  }
+}
 
 TEST(Baselines, NaiveAndAcceleratedAgreeOnTheBunny) {
   const TriangleMesh& bunny = testing::bunny();

@@ -6,6 +6,8 @@
 #include <string>
 
 #include "roving/core/distance_method.h"
+#include "roving/core/raw_queries.h"
+#include "roving/core/sample_set.h"
 
 namespace roving {
 
@@ -15,6 +17,11 @@ namespace roving {
 // First-hit and nearest come from one query: every triangle the segment [x + h n, x - h n]
 // meets (exact predicate), each crossing computed against the triangle's plane in double.
 std::unique_ptr<DistanceMethod> make_cgal_reference();
+
+// CGAL's own AABB tree and queries on the same samples, without the shared rule: first-hit by
+// first_intersection of a ray from x + h n along -n (within 2h), nearest by one ray each way from
+// x (within h), closest by closest_point (roving/core/raw_queries.h).
+RawRun raw_cgal_queries(const TriangleMesh& test, const SampleSet& samples, Semantics semantics, double h);
 
 enum class Search {
   Naive,        // brute force over every test element, as the paper timed it (multi-threaded)

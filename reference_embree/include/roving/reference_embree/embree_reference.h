@@ -5,16 +5,21 @@
 #include <string>
 
 #include "roving/core/distance_method.h"
+#include "roving/core/raw_queries.h"
+#include "roving/core/sample_set.h"
 
 namespace roving {
 
-// All three semantics: first-hit (rays in packets of 8) and nearest-on-line from one ray from x + h n along
-// -n over [0, 2h] (nearest collects every crossing with a context filter and keeps the one closest to x), and
-// closest point (Embree point queries). Robust traversal; a ray that still misses is re-cast from four
-// origins offset by 1e-6 of the diagonal across it, and any triangle they hit is intersected with the
-// original line: a line through a shared edge or vertex is not lost. Hit distances are recomputed in double
-// against the hit triangle's plane. Multi-threaded with TBB.
+// All three semantics: first-hit and nearest on the line from one ray from x + h n along -n over
+// [0, 2h], Embree's BVH finding the candidate triangles and the shared rule (normal_line.h)
+// deciding each in double, so that it agrees with the CGAL reference bit for bit; closest point
+// by Embree's point queries. Multi-threaded with TBB.
 std::unique_ptr<DistanceMethod> make_embree_reference();
+
+// Embree's own triangle BVH (robust) and queries on the same samples, without the shared rule:
+// first-hit by rtcIntersect1 from x + h n along -n over 2h, nearest by one ray each way from x
+// over h, closest by rtcPointQuery (roving/core/raw_queries.h).
+RawRun raw_embree_queries(const TriangleMesh& test, const SampleSet& samples, Semantics semantics, double h);
 
 // Embree's version, for reports.
 std::string embree_version();
