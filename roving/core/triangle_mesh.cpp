@@ -3,6 +3,7 @@
 
 #include <fmt/format.h>
 #include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <atomic>
@@ -105,18 +106,30 @@ double TriangleMesh::face_area(std::size_t face) const {
 std::vector<Vec3> TriangleMesh::vertex_normals(std::vector<double>* third_areas) const {
   std::vector<Vec3> normals(positions_.size(), Vec3::Zero());
   if (third_areas) third_areas->assign(positions_.size(), 0.0);
-  for (const Triangle& t : triangles_) {
-    const Vec3 cross = (positions_[t[1]] - positions_[t[0]]).cross(positions_[t[2]] - positions_[t[0]]);
-    const double third_area = 0.5 * cross.norm() / 3.0;
-    for (int corner : t) {
-      normals[corner] += cross;  // |cross| = 2 * area: area weighting for free
-      if (third_areas) (*third_areas)[corner] += third_area;
+  // Each thread owns a range of vertices and scans every triangle for the corners in its range:
+  // no two threads add to one vertex, and each vertex sums its faces in file order, so the
+  // normals are the same bits on any number of threads, with no copy per thread.
+  const std::size_t parts = std::max(1, tbb::this_task_arena::max_concurrency());
+  const std::size_t per_part = (positions_.size() + parts - 1) / parts;
+  tbb::parallel_for(std::size_t{0}, parts, [&](std::size_t part) {
+    const auto low = static_cast<int>(part * per_part);
+    const auto high = static_cast<int>(std::min(positions_.size(), (part + 1) * per_part));
+    for (const Triangle& t : triangles_) {
+      const auto mine = [&](int corner) { return corner >= low && corner < high; };
+      if (!mine(t[0]) && !mine(t[1]) && !mine(t[2])) continue;
+      const Vec3 cross = (positions_[t[1]] - positions_[t[0]]).cross(positions_[t[2]] - positions_[t[0]]);
+      const double third_area = 0.5 * cross.norm() / 3.0;
+      for (int corner : t) {
+        if (!mine(corner)) continue;
+        normals[corner] += cross;  // |cross| = 2 * area: area weighting for free
+        if (third_areas) (*third_areas)[corner] += third_area;
+      }
     }
-  }
-  for (Vec3& normal : normals) {
-    const double length = normal.norm();
-    normal = length > 0 ? Vec3(normal / length) : Vec3::Zero();
-  }
+    for (int v = low; v < high; ++v) {
+      const double length = normals[v].norm();
+      normals[v] = length > 0 ? Vec3(normals[v] / length) : Vec3::Zero();
+    }
+  });
   return normals;
 }
 
