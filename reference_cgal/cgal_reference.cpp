@@ -103,7 +103,7 @@ class CgalAabbMethod final : public DistanceMethod {
     // only on the side of letting a box in.
     box_margin_ = 1e-9 * (test.bounding_box().diagonal() + test.bounding_box().max.cwiseAbs().maxCoeff() +
                           test.bounding_box().min.cwiseAbs().maxCoeff());
-    if (supports(Semantics::Closest)) tree_.accelerate_distance_queries();
+    distance_accelerated_ = false;
     built_ = true;
     return watch.seconds();
   }
@@ -117,6 +117,12 @@ class CgalAabbMethod final : public DistanceMethod {
   DistanceResult measure(const SampleSet& samples, const DistanceOptions& options) override {
     if (!built_) throw Error(name_ + ": measure() called before build()");
     validate_options(*this, options);
+    // Closest-point queries need CGAL's search tree of the triangles' points, the others never
+    // read it: made by the first closest-point measure, not by every build.
+    if (options.semantics == Semantics::Closest && !distance_accelerated_) {
+      tree_.accelerate_distance_queries();
+      distance_accelerated_ = true;
+    }
     return measure_each(
         samples.size(),
         [&](std::size_t k) {
@@ -164,7 +170,7 @@ class CgalAabbMethod final : public DistanceMethod {
   double tolerance_ = 0;
   Tree tree_;
   double box_margin_ = 0;
-  bool built_ = false;
+  bool built_ = false, distance_accelerated_ = false;
 };
 
 }  // namespace
