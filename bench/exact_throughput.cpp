@@ -74,10 +74,6 @@ std::string raw_disagreement(const DistanceResult& exact, const RawRun& raw, Sem
                           common);
 }
 
-struct Timing {
-  double build, query;
-};
-
 }  // namespace
 
 ThroughputStudy exact_throughput(const std::vector<ThroughputPair>& pairs, int repeats,
@@ -88,24 +84,19 @@ ThroughputStudy exact_throughput(const std::vector<ThroughputPair>& pairs, int r
   t.header = {"pair",        "samples",   "exact method",  "raw limit",     "build ms",  "raw build ms",
               "build / raw", "samples/s", "Morton-sorted", "raw samples/s", "time / raw"};
   t.settings = fmt::format(
-      "Each exact method (the shared rule of roving/core/normal_line.h, bit for bit the same answers by "
-      "Embree and "
-      "CGAL) against the library's own query on the same samples and lines, 2 threads, medians of {} "
-      "interleaved "
-      "runs: Embree's robust triangle BVH with rtcIntersect1 (first hit: one ray from x + h n along -n over "
-      "2h; "
-      "nearest: one ray each way from x over h) and rtcPointQuery with a closest-point callback; CGAL 5.5's "
-      "AABB tree "
-      "with first_intersection on rays and closest_point. Raw queries ignore the tolerance, ties and edge-on "
-      "triangles; they were checked against the exact answers first (same hit flag on >= 99%: raw rays slip "
-      "between the triangles at 0.3% of the self-test's vertices; d within 1e-5 of the "
-      "diagonal on >= 99.9% of common hits; closest on every sample). Samples are taken in their own order "
-      "(faces' or "
-      "vertices' order in the file); Morton-sorted: the same samples stored sorted along a Z-order curve "
-      "beforehand "
-      "(the sort not timed), checked to give the same answers bit for bit. Time / raw: our query time over "
-      "the raw "
-      "query's, both in the samples' own order.",
+      "Each exact method (the shared rule of roving/core/normal_line.h: bit for bit the same answers by "
+      "Embree and CGAL) against the library's own query on the same samples and lines, 2 threads, medians "
+      "of {} interleaved runs: Embree's robust triangle BVH with rtcIntersect1 (first hit: one ray from x "
+      "+ h n along -n over 2h; nearest: one ray each way from x over h) and rtcPointQuery with a "
+      "closest-point callback; CGAL 5.5's AABB tree with first_intersection on rays and closest_point. "
+      "Raw queries ignore the tolerance, ties and edge-on triangles; they were checked against the exact "
+      "answers first (the same hit flag on >= 99%: raw rays slip between the triangles at 0.3% of the "
+      "self-test's vertices; d within 1e-5 of the diagonal on >= 99.9% of common hits; closest on every "
+      "sample). Samples are taken in their own order (the faces' or vertices' order in the file); "
+      "Morton-sorted: the same samples stored sorted along a Z-order curve beforehand (the sort not "
+      "timed), checked to give the same answers bit for bit. Time / raw: our query time over the raw "
+      "query's, both in the samples' own order. Builds: our Embree BVH over widened boxes at low quality "
+      "(Embree's Morton builder), the raw triangle BVH at Embree's default (medium).",
       repeats);
   const Semantics all[] = {Semantics::FirstHit, Semantics::Nearest, Semantics::Closest};
   for (const ThroughputPair& pair : pairs) {
