@@ -2,10 +2,6 @@
 // vertex-to-plane baseline, which is its closest-point query.
 #include "roving/reference_cgal/cgal_reference.h"
 
-#include <CGAL/AABB_traits.h>
-#include <CGAL/AABB_tree.h>
-#include <CGAL/AABB_triangle_primitive.h>
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/version.h>
 
 #include <algorithm>
@@ -13,6 +9,7 @@
 #include <limits>
 #include <optional>
 
+#include "aabb_tree.h"
 #include "roving/core/error.h"
 #include "roving/core/geometry.h"
 #include "roving/core/normal_line.h"
@@ -21,19 +18,8 @@
 namespace roving {
 namespace {
 
-using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
-using Point = Kernel::Point_3;
+using namespace aabb;
 using Segment = Kernel::Segment_3;
-using TriangleList = std::vector<Kernel::Triangle_3>;
-using Primitive = CGAL::AABB_triangle_primitive<Kernel, TriangleList::const_iterator>;
-using Tree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, Primitive>>;
-
-Point to_point(const Vec3& v) {
-  return Point(v.x(), v.y(), v.z());
-}
-Vec3 to_vec(const Point& p) {
-  return Vec3(p.x(), p.y(), p.z());
-}
 
 // Traversal that lists every triangle a segment meets. CGAL's own listing tests boxes with
 // interval arithmetic, which was most of the query time; here boxes are tested in plain double
@@ -86,14 +72,9 @@ class CgalAabbMethod final : public DistanceMethod {
 
   double build(const TriangleMesh& test) override {
     const Stopwatch watch;
-    triangles_.clear();
-    triangles_.reserve(test.triangle_count());
-    const auto& p = test.positions();
     // Every triangle, degenerate ones too: under the shared rule a zero-area triangle is a
     // segment or a point, met by a line passing within the tolerance.
-    for (const Triangle& t : test.triangles()) {
-      triangles_.emplace_back(to_point(p[t[0]]), to_point(p[t[1]]), to_point(p[t[2]]));
-    }
+    triangles_ = triangles_of(test);
     test_ = &test;
     tolerance_ = kNormalLineTolerance * test.bounding_box().diagonal();
     tree_.clear();

@@ -103,30 +103,19 @@ RawRun raw_embree_queries(const TriangleMesh& test, const SampleSet& samples, Se
   const Stopwatch build;
   build_embree(scene, test);
   run.build_seconds = build.seconds();
-  const auto& x = samples.positions;
-  const auto& n = samples.normals;
-  switch (semantics) {
-    case Semantics::FirstHit:
-      time_raw_queries(run, samples.size(), [&](std::size_t k) {
-        return raw_first_hit(cast(scene, x[k] + h * n[k], -n[k], 2 * h), h);
-      });
-      break;
-    case Semantics::Nearest:
-      time_raw_queries(run, samples.size(), [&](std::size_t k) {
-        return raw_nearest(cast(scene, x[k], n[k], h), cast(scene, x[k], -n[k], h));
-      });
-      break;
-    case Semantics::Closest:
-      time_raw_queries(run, samples.size(), [&](std::size_t k) {
-        ClosestState state{&test, x[k]};
-        RTCPointQuery query = point_query(x[k] - scene.origin, std::numeric_limits<float>::infinity());
+  time_raw_queries(
+      run, samples, semantics, h,
+      [&](const Vec3& from, const Vec3& direction, double length) {
+        return cast(scene, from, direction, length);
+      },
+      [&](const Vec3& x) {
+        ClosestState state{&test, x};
+        RTCPointQuery query = point_query(x - scene.origin, std::numeric_limits<float>::infinity());
         RTCPointQueryContext context;
         rtcInitPointQueryContext(&context);
         rtcPointQuery(scene.scene, &query, &context, nullptr, &state);
         return state.distance;
       });
-      break;
-  }
   return run;
 }
 

@@ -11,6 +11,8 @@
 #include <limits>
 #include <vector>
 
+#include "roving/core/distance_method.h"
+#include "roving/core/sample_set.h"
 #include "roving/core/stopwatch.h"
 
 namespace roving {
@@ -21,22 +23,30 @@ struct RawRun {
   double build_seconds = 0, query_seconds = 0;
 };
 
-// d from a first-hit ray's t (from x + h n along -n), or from the nearer of the two rays from x
-// (t along n and along -n); infinity for a ray that found nothing.
-inline double raw_first_hit(double t, double h) {
-  return std::isfinite(t) ? h - t : std::numeric_limits<double>::quiet_NaN();
-}
-inline double raw_nearest(double along, double against) {
-  if (!std::isfinite(along) && !std::isfinite(against)) return std::numeric_limits<double>::quiet_NaN();
-  return along <= against ? along : -against;
-}
-
-// Fills run.distance with answer(k) on all cores and times it.
-template <class Answer>
-void time_raw_queries(RawRun& run, std::size_t count, const Answer& answer) {
-  run.distance.resize(count);
+// The raw run of `semantics` from a library's two queries, timed on all cores: cast(from,
+// direction, length), the distance along a ray to the first triangle within `length` (infinity
+// for none), and closest(x), the distance from x to the nearest point of the surface. First-hit
+// casts one ray from x + h n along -n over 2h (d = h - t); nearest one each way from x over h
+// and keeps the nearer.
+template <class Cast, class Closest>
+void time_raw_queries(RawRun& run, const SampleSet& samples, Semantics semantics, double h, const Cast& cast,
+                      const Closest& closest) {
+  constexpr double kNoHit = std::numeric_limits<double>::quiet_NaN();
+  const auto& x = samples.positions;
+  const auto& n = samples.normals;
+  const auto answer = [&](std::size_t k) {
+    if (semantics == Semantics::Closest) return closest(x[k]);
+    if (semantics == Semantics::FirstHit) {
+      const double t = cast(Vec3(x[k] + h * n[k]), Vec3(-n[k]), 2 * h);
+      return std::isfinite(t) ? h - t : kNoHit;
+    }
+    const double along = cast(x[k], n[k], h), against = cast(x[k], Vec3(-n[k]), h);
+    if (!std::isfinite(along) && !std::isfinite(against)) return kNoHit;
+    return along <= against ? along : -against;
+  };
+  run.distance.resize(samples.size());
   const Stopwatch watch;
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, 256),
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, samples.size(), 256),
                     [&](const tbb::blocked_range<std::size_t>& r) {
                       for (std::size_t k = r.begin(); k != r.end(); ++k) run.distance[k] = answer(k);
                     });
