@@ -32,7 +32,9 @@ cp data/fandisk.obj "$root/tmp/app/"
 step "apt-get install ./$(basename "$deb") in the clean tree (and g++, cmake for a consumer)" in_root sh -c \
   "apt-get update -qq && apt-get install -y -qq --no-install-recommends /tmp/$(basename "$deb") g++ cmake ninja-build >/dev/null"
 in_root sh -c 'cd /tmp && [ "$(command -v roving)" = /usr/bin/roving ] && roving --version'
+# A GL method: OSMesa is opened at run time, so only the package's own Depends can bring it.
+in_root sh -c 'cd /tmp/app && roving measure fandisk.obj fandisk.obj --method roving --samples area:2000 --quiet > gl.txt && grep "^method" gl.txt'
 in_root sh -c 'cd /tmp/app && cmake -S . -B build -G Ninja >/dev/null && cmake --build build >/dev/null && ./build/app fandisk.obj fandisk.obj'
 in_root sh -c 'cd /tmp && python3 -c "import roving; print(\"import roving:\", roving.__file__, \"methods:\", \", \".join(roving.methods))"'
 in_root apt-get remove -y -qq roving >/dev/null
-echo "test-package: in a clean Debian 12 tree, apt installs the package; roving on PATH, find_package(roving) and import roving work"
+echo "test-package: in a clean Debian 12 tree, apt installs the package; roving on PATH (a GL method included), find_package(roving) and import roving work"
