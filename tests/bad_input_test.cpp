@@ -133,6 +133,71 @@ TEST_F(BadFiles, TruncatedBinaryFiles) {
   }
 }
 
+// A binary little-endian PLY: float vertices, and faces as a uchar count and int indices.
+std::string binary_ply(const std::vector<Vec3>& vertices,
+                       const std::vector<std::vector<std::int32_t>>& faces) {
+  std::string bytes = fmt::format(
+      "ply\nformat binary_little_endian 1.0\nelement vertex {}\nproperty float x\nproperty float y\n"
+      "property float z\nelement face {}\nproperty list uchar int vertex_indices\nend_header\n",
+      vertices.size(), faces.size());
+  for (const Vec3& v : vertices) {
+    const float xyz[3] = {float(v.x()), float(v.y()), float(v.z())};
+    bytes.append(reinterpret_cast<const char*>(xyz), sizeof xyz);
+  }
+  for (const auto& face : faces) {
+    bytes += static_cast<char>(face.size());
+    bytes.append(reinterpret_cast<const char*>(face.data()), 4 * face.size());
+  }
+  return bytes;
+}
+
+TEST_F(BadFiles, BinaryPlyFacesOfEveryKind) {
+  // Triangles are read on all cores; any other face sends the whole element through the general
+  // reader, which counts, triangulates or reports exactly as before.
+  const std::vector<Vec3> square = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+  LoadedMesh mixed = load_mesh(write("mixed.ply", binary_ply(square, {{0, 1, 2}, {0, 1, 2, 3}, {0, 0, 1}})));
+  EXPECT_EQ(mixed.mesh.triangle_count(), 3u);
+  EXPECT_EQ(mixed.triangulated_polygons, 1u);
+  EXPECT_EQ(mixed.dropped_repeated_vertex_faces, 1u);
+  expect_error(write("index-high.ply", binary_ply(square, {{0, 1, 2}, {0, 1, 4}})),
+               {"face 1", "vertex 4", "[0, 4)"});
+  expect_error(write("index-negative.ply", binary_ply(square, {{0, 1, 2}, {0, -1, 2}})),
+               {"face 1", "vertex -1"});
+  const std::string cut = binary_ply(square, {{0, 1, 2}, {0, 2, 3}});
+  expect_error(write("cut.ply", cut.substr(0, cut.size() - 5)), {"truncated"});
+}
+
+TEST_F(BadFiles, BinaryPlyReadsTheSameAsAscii) {
+  // A grid of 2 x 120 x 120 triangles (more than one block of the parallel reader), binary and ASCII.
+  std::vector<Vec3> vertices;
+  std::vector<std::vector<std::int32_t>> faces;
+  std::string ascii;
+  constexpr int n = 121;
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < n; ++j) {
+      vertices.emplace_back(0.25 * i, 0.5 * j, 0.125 * ((i * j) % 7));
+      ascii += fmt::format("{} {} {}\n", vertices.back().x(), vertices.back().y(), vertices.back().z());
+    }
+  }
+  for (int i = 0; i + 1 < n; ++i) {
+    for (int j = 0; j + 1 < n; ++j) {
+      const int v = i * n + j;
+      faces.push_back({v, v + 1, v + n + 1});
+      faces.push_back({v, v + n + 1, v + n});
+    }
+  }
+  std::string header = fmt::format(
+      "ply\nformat ascii 1.0\nelement vertex {}\nproperty float x\nproperty float y\nproperty float z\n"
+      "element face {}\nproperty list uchar int vertex_indices\nend_header\n",
+      vertices.size(), faces.size());
+  for (const auto& f : faces) ascii += fmt::format("3 {} {} {}\n", f[0], f[1], f[2]);
+  const TriangleMesh binary = load_mesh(write("grid.ply", binary_ply(vertices, faces))).mesh;
+  const TriangleMesh text = load_mesh(write("grid-ascii.ply", header + ascii)).mesh;
+  ASSERT_EQ(binary.triangle_count(), faces.size());
+  EXPECT_EQ(binary.triangles(), text.triangles());
+  EXPECT_EQ(binary.positions(), text.positions());
+}
+
 TEST_F(BadFiles, OffTruncatedOrBadIndex) {
   expect_error(write("short.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n"), {"truncated"});
   expect_error(write("counts.off", "OFF\nthree 1 0\n"), {"whole-number", "'three 1'"});

@@ -6,8 +6,12 @@
 #include "ply_reader.h"
 
 #include <fmt/format.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <atomic>
+#include <cstdint>
 #include <cstring>
 #include <optional>
 #include <type_traits>
@@ -249,6 +253,7 @@ class BinaryBody {
     return 0;
   }
   std::size_t remaining() const { return bytes_.size() - position_; }
+  const char* peek() const { return bytes_.data() + position_; }
   bool swapped() const { return swap_; }
 
   // The next `size` bytes, bounds-checked.
@@ -331,6 +336,39 @@ class AsciiBody {
   unsigned long long item_ = 0;
 };
 
+// A face element of triangles only, each a count byte of 3 and three 4-byte indices, every index
+// valid and the three distinct (a scan's or a tool's output): read on all cores. False, with
+// nothing read, for any other face; the general loop then reads (and reports) the file.
+bool read_plain_triangles(const Element& element, BinaryBody& body, std::size_t vertex_count,
+                          std::vector<Triangle>& triangles) {
+  constexpr std::size_t kItem = 1 + 3 * 4;
+  if (body.remaining() / kItem < element.count) return false;
+  const char* items = body.peek();
+  triangles.resize(element.count);
+  std::atomic<bool> plain{true};
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, element.count, 16384), [&](const tbb::blocked_range<
+                                                                                  std::size_t>& range) {
+    for (std::size_t item = range.begin(); item != range.end() && plain; ++item) {
+      const char* raw = items + kItem * item;
+      std::uint32_t index[3];
+      std::memcpy(index, raw + 1, sizeof index);
+      // A negative int32 reads as a uint32 above any vertex count (< 2^31).
+      if (raw[0] != 3 || index[0] >= vertex_count || index[1] >= vertex_count || index[2] >= vertex_count ||
+          index[0] == index[1] || index[1] == index[2] || index[0] == index[2]) {
+        plain = false;
+        break;
+      }
+      triangles[item] = {static_cast<int>(index[0]), static_cast<int>(index[1]), static_cast<int>(index[2])};
+    }
+  });
+  if (!plain) {
+    triangles.clear();
+    return false;
+  }
+  body.take(kItem * element.count, element, 0);
+  return true;
+}
+
 // The layouts nearly every binary PLY uses, read without per-value dispatch (in native byte
 // order): vertices of float properties only, and faces of one list of uchar count and 32-bit
 // indices. Same checks as the general path; false when `element` has another layout.
@@ -347,8 +385,26 @@ bool read_plain_layout(const Element& element, BinaryBody& body, std::vector<Vec
       const Role role = element.properties[i].role;
       if (role != Role::Skip && role != Role::Corners) slot[static_cast<int>(role) - 1] = static_cast<int>(i);
     }
-    float values[256];
     if (stride > 256) return false;
+    // Fixed-size items: all on all cores, once the bytes are known to be there (if not, the loop
+    // below names the item where the file ends).
+    if (body.remaining() / (4 * stride) >= element.count) {
+      const char* items = body.take(4 * stride * element.count, element, 0);
+      positions.resize(element.count);
+      if (have_normals) normals.resize(element.count);
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, element.count, 16384),
+                        [&](const tbb::blocked_range<std::size_t>& range) {
+                          float values[256];
+                          for (std::size_t item = range.begin(); item != range.end(); ++item) {
+                            std::memcpy(values, items + 4 * stride * item, 4 * stride);
+                            positions[item] = Vec3(values[slot[0]], values[slot[1]], values[slot[2]]);
+                            if (have_normals)
+                              normals[item] = Vec3(values[slot[3]], values[slot[4]], values[slot[5]]);
+                          }
+                        });
+      return true;
+    }
+    float values[256];
     for (unsigned long long item = 0; item < element.count; ++item) {
       std::memcpy(values, body.take(4 * stride, element, item), 4 * stride);
       positions.emplace_back(values[slot[0]], values[slot[1]], values[slot[2]]);
@@ -359,6 +415,7 @@ bool read_plain_layout(const Element& element, BinaryBody& body, std::vector<Vec
   if (element.name == "face" && element.properties.size() == 1) {
     const Property& p = element.properties[0];
     if (p.role != Role::Corners || p.count_type != Scalar::UInt8 || size_of(p.type) != 4) return false;
+    if (read_plain_triangles(element, body, positions.size(), triangles)) return true;
     const bool is_signed = p.type == Scalar::Int32;
     std::vector<long long> corners;
     for (unsigned long long item = 0; item < element.count; ++item) {
