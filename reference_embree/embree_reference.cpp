@@ -203,8 +203,7 @@ class EmbreeReference final : public DistanceMethod {
     write_bounds(low, high, args->bounds_o);
   }
 
-  // A candidate triangle: decided by the shared rule; for first-hit the ray is then shortened
-  // to just past the best crossing, so boxes wholly behind it are skipped.
+  // A candidate triangle, decided by the shared rule.
   static void intersect_line(const RTCIntersectFunctionNArguments* args) {
     if (!args->valid[0]) return;
     auto* context = reinterpret_cast<LineContext*>(args->context);
@@ -214,11 +213,13 @@ class EmbreeReference final : public DistanceMethod {
     const auto crossing = context->line->crossing(p[t[0]], p[t[1]], p[t[2]]);
     if (!crossing) return;
     context->choice->consider(*crossing, args->primID);
-    if (context->first_hit) {
-      const double t_best = context->max_error - *context->choice->chosen();
-      float& tfar = RTCRayN_tfar(RTCRayHitN_RayN(args->rayhit, args->N), args->N, 0);
-      tfar = std::min(tfar, std::nextafter(static_cast<float>(t_best + 2 * self->tolerance_), INFINITY));
-    }
+    // The ray is then shortened to just past the farthest crossing that can still be chosen:
+    // for first-hit the best one (d = h - t); for nearest one as far on x's other side as the
+    // best is from x. Boxes wholly beyond it are skipped.
+    const double best = *context->choice->chosen();
+    const double t_last = context->max_error + (context->first_hit ? -best : std::abs(best));
+    float& tfar = RTCRayN_tfar(RTCRayHitN_RayN(args->rayhit, args->N), args->N, 0);
+    tfar = std::min(tfar, std::nextafter(static_cast<float>(t_last + 2 * self->tolerance_), INFINITY));
   }
 
   // The point of TEST closest to x and its face, given a bound on its distance (infinity for none).
