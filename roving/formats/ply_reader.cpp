@@ -336,9 +336,21 @@ class AsciiBody {
   unsigned long long item_ = 0;
 };
 
-// A face element of triangles only, each a count byte of 3 and three 4-byte indices, every index
-// valid and the three distinct (a scan's or a tool's output): read on all cores. False, with
-// nothing read, for any other face; the general loop then reads (and reports) the file.
+// One face of a binary file as a triangle: a count byte of 3 and three 4-byte indices (host
+// order), every index below `vertex_count` and the three distinct. False for anything else.
+bool plain_triangle(const char* raw, std::size_t vertex_count, Triangle& triangle) {
+  std::uint32_t index[3];
+  std::memcpy(index, raw + 1, sizeof index);
+  // A negative int32 reads as a uint32 above any vertex count (< 2^31).
+  if (raw[0] != 3 || index[0] >= vertex_count || index[1] >= vertex_count || index[2] >= vertex_count ||
+      index[0] == index[1] || index[1] == index[2] || index[0] == index[2])
+    return false;
+  triangle = {static_cast<int>(index[0]), static_cast<int>(index[1]), static_cast<int>(index[2])};
+  return true;
+}
+
+// A face element of plain triangles only (a scan's or a tool's output) read on all cores. False,
+// with nothing read, when any face is another; the general loop then reads (and reports) them.
 bool read_plain_triangles(const Element& element, BinaryBody& body, std::size_t vertex_count,
                           std::vector<Triangle>& triangles) {
   constexpr std::size_t kItem = 1 + 3 * 4;
@@ -346,21 +358,12 @@ bool read_plain_triangles(const Element& element, BinaryBody& body, std::size_t 
   const char* items = body.peek();
   triangles.resize(element.count);
   std::atomic<bool> plain{true};
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, element.count, 16384), [&](const tbb::blocked_range<
-                                                                                  std::size_t>& range) {
-    for (std::size_t item = range.begin(); item != range.end() && plain; ++item) {
-      const char* raw = items + kItem * item;
-      std::uint32_t index[3];
-      std::memcpy(index, raw + 1, sizeof index);
-      // A negative int32 reads as a uint32 above any vertex count (< 2^31).
-      if (raw[0] != 3 || index[0] >= vertex_count || index[1] >= vertex_count || index[2] >= vertex_count ||
-          index[0] == index[1] || index[1] == index[2] || index[0] == index[2]) {
-        plain = false;
-        break;
-      }
-      triangles[item] = {static_cast<int>(index[0]), static_cast<int>(index[1]), static_cast<int>(index[2])};
-    }
-  });
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, element.count, 16384),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
+                      for (std::size_t f = range.begin(); f != range.end() && plain; ++f) {
+                        if (!plain_triangle(items + kItem * f, vertex_count, triangles[f])) plain = false;
+                      }
+                    });
   if (!plain) {
     triangles.clear();
     return false;
