@@ -127,11 +127,12 @@ class CgalAabbMethod final : public DistanceMethod {
     CrossedTriangles traversal(segment, box_margin_ + tolerance_, crossed);
     tree_.traversal(segment, traversal);
     const NormalLine line(x, n, h, tolerance_);
-    CrossingChoice choice(options.semantics);
+    CrossingChoice choice(options.semantics, h);
     const auto& p = test_->positions();
     for (const Primitive::Id& id : crossed) {
       const Triangle& t = test_->triangles()[id - triangles_.begin()];
       const auto face = static_cast<std::uint32_t>(id - triangles_.begin());
+      if (choice.settled_for(face)) continue;
       if (const auto crossing = line.crossing(p[t[0]], p[t[1]], p[t[2]])) choice.consider(*crossing, face);
     }
     return choice.chosen_hit();

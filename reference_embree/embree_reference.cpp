@@ -163,7 +163,7 @@ class EmbreeReference final : public DistanceMethod {
   // traversal and each candidate decided on the double line.
   std::optional<FaceHit> along_normal(const Vec3& x, const Vec3& n, double h, Semantics semantics) const {
     const NormalLine line(x, n, h, tolerance_);
-    CrossingChoice choice(semantics);
+    CrossingChoice choice(semantics, h);
     LineContext context{{}, this, &line, &choice, h, semantics == Semantics::FirstHit};
     rtcInitIntersectContext(&context.embree);
     const Vec3 origin = x + h * n - origin_;
@@ -207,6 +207,7 @@ class EmbreeReference final : public DistanceMethod {
   static void intersect_line(const RTCIntersectFunctionNArguments* args) {
     if (!args->valid[0]) return;
     auto* context = reinterpret_cast<LineContext*>(args->context);
+    if (context->choice->settled_for(args->primID)) return;
     const EmbreeReference* self = context->self;
     const Triangle& t = self->test_->triangles()[args->primID];
     const auto& p = self->test_->positions();

@@ -67,10 +67,38 @@ TEST(NormalLine, QuickRejectionKeepsTrianglesAtTheTolerance) {
 
 TEST(NormalLine, NearestPrefersTheOuterOfTwoEquallyNearCrossings) {
   for (bool reversed : {false, true}) {
-    CrossingChoice choice(Semantics::Nearest);
+    CrossingChoice choice(Semantics::Nearest, 1.0);
     choice.consider({reversed ? 0.1 : -0.1, reversed ? 0.1 : -0.1}, 0);
     choice.consider({reversed ? -0.1 : 0.1, reversed ? -0.1 : 0.1}, 1);
     EXPECT_EQ(*choice.chosen(), 0.1);
+  }
+}
+
+// Once the chosen d cannot be bettered (0 for nearest, h for first-hit, where crossings are
+// clamped), only a lower face can change the choice: settled_for says so, and it is true, for
+// every value and sign a higher face's crossing might bring.
+TEST(NormalLine, ASettledChoiceIsOnlyChangedByALowerFace) {
+  const double h = 0.5;
+  for (const Semantics semantics : {Semantics::Nearest, Semantics::FirstHit}) {
+    const double best = semantics == Semantics::Nearest ? 0.0 : h;
+    CrossingChoice choice(semantics, h);
+    EXPECT_FALSE(choice.settled_for(7));
+    choice.consider({0.25, 0.25}, 9);
+    EXPECT_FALSE(choice.settled_for(12)) << "d = 0.25 can still be bettered";
+    choice.consider({best, best}, 7);
+    EXPECT_TRUE(choice.settled_for(8));
+    EXPECT_FALSE(choice.settled_for(7));
+    EXPECT_FALSE(choice.settled_for(3));
+    for (const double d : {-h, -0.0, 0.0, 0.1, h}) {
+      CrossingChoice higher = choice;
+      higher.consider({d, d}, 8);
+      EXPECT_EQ(higher.chosen_hit()->face, 7u);
+      EXPECT_EQ(std::signbit(*higher.chosen()), std::signbit(best));
+      EXPECT_EQ(*higher.chosen(), best);
+    }
+    CrossingChoice lower = choice;
+    lower.consider({best, best}, 3);
+    EXPECT_EQ(lower.chosen_hit()->face, 3u);
   }
 }
 

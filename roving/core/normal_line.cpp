@@ -113,6 +113,11 @@ void CrossingChoice::keep(double d, std::uint32_t face) {
   face_ = face;
 }
 
+bool CrossingChoice::settled_for(std::uint32_t face) const {
+  if (!best_ || face <= face_) return false;
+  return semantics_ == Semantics::FirstHit ? *best_ == max_error_ : *best_ == 0;
+}
+
 void CrossingChoice::consider(const NormalLine::Interval& crossing, std::uint32_t face) {
   if (semantics_ == Semantics::FirstHit) {
     if (!best_ || crossing.high >= *best_) keep(crossing.high, face);

@@ -50,10 +50,16 @@ class NormalLine {
 // Keeps the crossing a semantics chooses among all those of one line.
 class CrossingChoice {
  public:
-  explicit CrossingChoice(Semantics semantics) : semantics_(semantics) {}
+  // `max_error` is h, the largest d a first-hit crossing is clamped to.
+  CrossingChoice(Semantics semantics, double max_error) : semantics_(semantics), max_error_(max_error) {}
   // A crossing of triangle `face`. Where several give the chosen d, the lowest face is kept, so
   // the choice does not depend on the order crossings come in.
   void consider(const NormalLine::Interval& crossing, std::uint32_t face);
+  // Whether no crossing of `face` could change the choice, whatever its interval: the chosen d
+  // cannot be bettered (h for first-hit, which clamps to it; 0 for nearest) and only a lower
+  // face wins the tie. Self-tests meet this on nearly every line: each passes through a vertex,
+  // d = 0, and the triangles around it need not all be decided.
+  bool settled_for(std::uint32_t face) const;
   // The chosen d; nullopt when no crossing was considered (a no-hit).
   const std::optional<double>& chosen() const { return best_; }
   // The chosen d with its face; nullopt for a no-hit.
@@ -64,6 +70,7 @@ class CrossingChoice {
  private:
   void keep(double d, std::uint32_t face);
   Semantics semantics_;
+  double max_error_;
   std::optional<double> best_;
   std::uint32_t face_ = 0;
 };
