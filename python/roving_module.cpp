@@ -134,7 +134,7 @@ PYBIND11_MODULE(roving, m) {
       },
       py::arg("reference"), py::arg("test"), py::arg("method") = "embree", py::arg("semantics") = "",
       py::arg("samples") = "faces", py::arg("max_error") = "5%", py::arg("views") = "24x12",
-      py::arg("resolution") = 1024, py::arg("backend") = "osmesa",
+      py::arg("resolution") = 1024, py::arg("backend") = "",
       R"doc(Measures the reference model's samples against the test model, as `roving measure REF TEST` does.
 
 Arguments:
@@ -151,7 +151,8 @@ Arguments:
               percentage of REF's bounding-box diagonal ('5%'); a no-hit counts as d = +h
   views       the GL methods' view directions 'HxV' (e.g. '24x12'), or 'auto' / 'auto:HxV'
   resolution  the GL views' size in pixels (viewpoint and cooperative)
-  backend     'osmesa' (Mesa's llvmpipe, always there) or 'egl' (a GPU where a driver exists)
+  backend     'osmesa' (Mesa's llvmpipe, always there) or 'egl' (a GPU where a driver exists); by
+              default $ROVING_GL_BACKEND, else 'osmesa'
 
 Returns a dict: 'statistics' (siad, usiad, rms, max_abs, the percentiles, the area-weighted forms, ...:
 the JSON report's statistics), 'distance' (signed d per sample; 0 where 'hit' is False), 'hit' (bool per
@@ -198,7 +199,7 @@ Raises roving.Error (a ValueError) with a one-line message naming the file or ar
       py::arg("reference_vertices"), py::arg("reference_faces"), py::arg("test_vertices"), py::arg("test_faces"),
       py::arg("sample_points") = py::none(), py::arg("sample_normals") = py::none(), py::arg("method") = "embree",
       py::arg("semantics") = "", py::arg("samples") = "faces", py::arg("max_error") = "5%",
-      py::arg("views") = "24x12", py::arg("resolution") = 1024, py::arg("backend") = "osmesa",
+      py::arg("views") = "24x12", py::arg("resolution") = 1024, py::arg("backend") = "",
       R"doc(Measures a reference mesh against a test mesh given as NumPy arrays.
 
 Arguments:

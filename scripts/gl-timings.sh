@@ -7,7 +7,9 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
 bash scripts/build.sh
-./build/datasets_gen/roving-datasets --data "${ROVING_DATA:-data}" --out build/datasets --scaling
+for only in --quick --scaling; do  # the bunny's pairs, then the scaling pairs
+  ./build/datasets_gen/roving-datasets --data "${ROVING_DATA:-data}" --out build/datasets "$only"
+done
 out=results/gpu-cameras.md
 backends=osmesa
 args=()

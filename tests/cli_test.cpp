@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -104,6 +105,22 @@ TEST(Cli, BadOptionsGiveOneLineErrors) {
                {"--camera-geometry", "'shader'"});
   expect_error("measure " + pair + " --method viewpoint --resolution 0", {"--resolution"});
   expect_error("measure " + pair + " --method roving --semantics nearest", {"--semantics", "roving"});
+}
+
+// The default backend comes from ROVING_GL_BACKEND; any other value than osmesa or egl is an error
+// naming the variable, as a bad --backend names the option.
+TEST(Cli, BadGlBackendInTheEnvironmentIsAnError) {
+  const char* before = std::getenv("ROVING_GL_BACKEND");
+  const std::string saved = before ? before : "";
+  setenv("ROVING_GL_BACKEND", "vulkan", 1);
+  const std::string pair = bunny() + " " + bunny();
+  expect_error("measure " + pair + " --method roving", {"ROVING_GL_BACKEND", "'vulkan'"});
+  expect_error("measure " + pair + " --method cooperative --views 4x2", {"ROVING_GL_BACKEND", "'vulkan'"});
+  if (before) {
+    setenv("ROVING_GL_BACKEND", saved.c_str(), 1);
+  } else {
+    unsetenv("ROVING_GL_BACKEND");
+  }
 }
 
 TEST(Cli, GlMethodsReportObservations) {

@@ -116,7 +116,7 @@ Model model_named(const std::string& name) {
 }
 
 TEST_P(EveryModel, AgainstItselfHasNoNoHitAndOneAnswer) {
-  REQUIRE_GL_CONTEXT(GlBackend::OSMesa);
+  REQUIRE_GL_CONTEXT(default_gl_backend());
   const auto embree = make_method("embree"), cgal = make_method("cgal"), roving = make_method("roving");
   const std::string name = GetParam();
   const Model model = model_named(name);
@@ -171,7 +171,7 @@ INSTANTIATE_TEST_SUITE_P(RealModels, EveryModel,
 // give the same hit flag on >= 99.99% of samples.
 TEST(Exactness, LinesThroughTestVerticesGetOneHitFlag) {
   const auto embree = make_method("embree"), cgal = make_method("cgal");
-  REQUIRE_GL_CONTEXT(GlBackend::OSMesa);
+  REQUIRE_GL_CONTEXT(default_gl_backend());
   const auto roving = make_method("roving");
   for (const char* file : {"stanford-bunny.obj", "fandisk.obj", "rocker-arm.obj"}) {
     const TriangleMesh reference = load_mesh(testing::data_file(file)).mesh;

@@ -133,7 +133,7 @@ INSTANTIATE_TEST_SUITE_P(Backends, EachBackend, ::testing::Values(GlBackend::OSM
 // 2 samples each (ties between equally near directions go to the first), so viewpoint sampling
 // renders exactly 6 views; the paper's voxel remark (Section 4.3).
 TEST(GlObservations, FixedSmallCaseIsExact) {
-  REQUIRE_GL_CONTEXT(GlBackend::OSMesa);
+  REQUIRE_GL_CONTEXT(default_gl_backend());
   const TriangleMesh cube = testing::box(1.0);
   const SampleSet samples = make_samples(cube, {});
   ASSERT_EQ(samples.size(), 12u);
@@ -268,7 +268,7 @@ class BunnyGates : public ::testing::Test {
 };
 
 TEST_F(BunnyGates, ExactRovingAgreesWithEmbree) {
-  REQUIRE_GL_CONTEXT(GlBackend::OSMesa);
+  REQUIRE_GL_CONTEXT(default_gl_backend());
   auto roving = make_method("roving");
   const DistanceResult r = measure_distances(*roving, *test_, *samples_, {Semantics::FirstHit, h()});
   const Agreement a = agreement(*embree_, r, roving_tolerance(*r.gl));
@@ -282,7 +282,7 @@ TEST_F(BunnyGates, ExactRovingAgreesWithEmbree) {
 // A point cloud as the test model: the bunny's vertices with their normals, drawn as surfels,
 // measured from the bunny's face samples. Exact roving meets Embree's gates on the same disks.
 TEST_F(BunnyGates, ExactRovingAgreesWithEmbreeOnSurfels) {
-  REQUIRE_GL_CONTEXT(GlBackend::OSMesa);
+  REQUIRE_GL_CONTEXT(default_gl_backend());
   const TriangleMesh bunny = normalised(testing::bunny());
   PointCloud cloud;
   const std::vector<Vec3> normals = bunny.vertex_normals();
@@ -304,7 +304,7 @@ TEST_F(BunnyGates, ExactRovingAgreesWithEmbreeOnSurfels) {
 }
 
 TEST_F(BunnyGates, CooperativeAgreesWithRovingAndItsViewsWithEmbree) {
-  REQUIRE_GL_CONTEXT(GlBackend::OSMesa);
+  REQUIRE_GL_CONTEXT(default_gl_backend());
   auto roving = make_method("roving");
   auto cooperative = make_method("cooperative");  // 24 x 12, 1024 px
   const Statistics exact = stats(measure_distances(*roving, *test_, *samples_, {Semantics::FirstHit, h()}));
@@ -331,7 +331,7 @@ namespace {
 // its views' are within the views' tolerance of Embree; its observations are what it did. At
 // 24 x 12 on this pair it draws none here; at 4 x 2 now none, now one.
 TEST_F(BunnyGates, CooperativeAutoViewsKeepsItsAccuracyAndCountsHonestly) {
-  REQUIRE_GL_CONTEXT(GlBackend::OSMesa);
+  REQUIRE_GL_CONTEXT(default_gl_backend());
   auto roving = make_method("roving");
   const DistanceResult exact = measure_distances(*roving, *test_, *samples_, {Semantics::FirstHit, h()});
   for (const std::string views : {"auto", "auto:8x4"}) {
@@ -388,7 +388,7 @@ TEST(ViewBudget, DrawsAViewOnlyWhileItCostsLessThanTheCamerasItSaves) {
 // float depth image's 1% (the distance floor's promise). With the ridge along a pixel axis (the
 // case a 2 x 2 planarity test misses) and turned 30 degrees.
 TEST(CooperativeViews, ResolveBesideACreaseExactly) {
-  REQUIRE_GL_CONTEXT(GlBackend::OSMesa);
+  REQUIRE_GL_CONTEXT(default_gl_backend());
   const double slope = std::tan(5 * M_PI / 180);
   for (const double turn : {0.0, 30.0}) {
     const Eigen::Matrix3d rotation = Eigen::AngleAxisd(turn * M_PI / 180, Vec3::UnitZ()).toRotationMatrix();
@@ -431,7 +431,7 @@ TEST(CooperativeViews, ResolveBesideACreaseExactly) {
 // The cooperative method's error is bounded on every kind of pair (the full matrix, 4 shapes x
 // 4 kinds of test x 2 h, is in results/gl-accuracy.md): a CI-sized subset, against Embree.
 TEST(CooperativeBound, WithinOnePercentOnEveryKindOfPair) {
-  REQUIRE_GL_CONTEXT(GlBackend::OSMesa);
+  REQUIRE_GL_CONTEXT(default_gl_backend());
   const auto embree = make_method("embree"), cooperative = make_method("cooperative");
   const auto check = [&](const std::string& label, const TriangleMesh& reference, const TriangleMesh& test,
                          const SampleSet& samples, double h) {
@@ -471,14 +471,14 @@ namespace {
 // the paper's read at the sample) and whatever the direction; also with both models far from
 // the origin, where float coordinates keep fewer digits of the model's size.
 TEST(ViewCulling, EveryPixelReadHasTheWholeViewsDepth) {
-  REQUIRE_GL_CONTEXT(GlBackend::OSMesa);
+  REQUIRE_GL_CONTEXT(default_gl_backend());
   const TriangleMesh bunny = normalised(testing::bunny());
   const TriangleMesh perturbed =
       smoothly_perturbed(decimate_quadric(bunny, 10459), 0.01 * bunny.bounding_box().diagonal(),
                          0.5 * bunny.bounding_box().diagonal());
   const double h = 0.05 * bunny.bounding_box().diagonal();
   const int resolution = 1024;
-  auto renderer = make_depth_renderer(GlBackend::OSMesa);
+  auto renderer = make_depth_renderer(default_gl_backend());
   for (const Vec3& offset : {Vec3(0, 0, 0), Vec3(1e5, -2e5, 3e5)}) {
     const auto moved = [&](const TriangleMesh& mesh) {
       std::vector<Vec3> positions = mesh.positions();
@@ -528,7 +528,7 @@ TEST(ViewCulling, EveryPixelReadHasTheWholeViewsDepth) {
 
 // And so the GL methods give the same distances, hits and resolutions with and without it.
 TEST(ViewCulling, CooperativeIsIdenticalWithAndWithout) {
-  REQUIRE_GL_CONTEXT(GlBackend::OSMesa);
+  REQUIRE_GL_CONTEXT(default_gl_backend());
   const TriangleMesh bunny = normalised(testing::bunny());
   const double diagonal = bunny.bounding_box().diagonal();
   const TriangleMesh test =

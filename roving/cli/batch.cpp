@@ -20,6 +20,7 @@
 #include "roving/formats/atomic_file.h"
 #include "roving/formats/file_bytes.h"
 #include "roving/formats/file_hash.h"
+#include "roving/gl/depth_renderer.h"
 #include "html_output.h"
 #include "provenance.h"
 #include "roving/html/html_index.h"
@@ -222,7 +223,7 @@ std::string pair_key(const MeasureArguments& a, const std::string& reference_sha
       "{}|{}|method={}|semantics={}|samples={}|seed={}|max_error={}|views={}|resolution={}|backend={}|"
       "camera_geometry={}|symmetric={}|ref_type={}|test_type={}|bins={}|hausdorff_bound={}",
       reference_sha, test_sha, a.method, a.semantics, a.samples, a.seed ? std::to_string(*a.seed) : "",
-      a.max_error, a.views, a.resolution, a.backend, a.camera_geometry, a.symmetric, a.reference_type,
+      a.max_error, a.views, a.resolution, to_string(parse_gl_backend(a.backend)), a.camera_geometry, a.symmetric, a.reference_type,
       a.test_type, a.histogram_bins, a.hausdorff_bound);
   unsigned char digest[EVP_MAX_MD_SIZE];
   unsigned int length = 0;

@@ -250,7 +250,9 @@ nlohmann::json gl_json(const GlReport& g) {
           {"camera_depth_step", g.camera_depth_step},
           {"camera_geometry", g.gpu_cameras ? "gpu" : "cpu"},
           {"camera_build_seconds", g.camera_build_seconds},
-          {"camera_render_seconds", g.camera_render_seconds}};
+          {"camera_render_seconds", g.camera_render_seconds},
+          {"view_cpu_seconds", g.view_cpu_seconds},
+          {"view_draw_seconds", g.view_draw_seconds}};
 }
 
 std::string samples_line(const SampleSet& samples, std::uint64_t seed) {

@@ -86,6 +86,9 @@ struct GlReport {
   // Where the cameras' time went: building their batches (CPU threads, beside the draws) and
   // rendering them (GL thread: upload, any compute stage, draw, read back).
   double camera_build_seconds = 0, camera_render_seconds = 0;
+  // And the views': preparing (footprint, culling) and reading them (each sample's line) on the
+  // CPU threads, beside the drawing; drawing them on the GL thread (draw, read back).
+  double view_cpu_seconds = 0, view_draw_seconds = 0;
 
   std::size_t observations() const { return views_rendered + sample_cameras; }
 };

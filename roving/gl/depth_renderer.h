@@ -14,8 +14,13 @@ namespace roving {
 
 enum class GlBackend { OSMesa, Egl };
 const char* to_string(GlBackend backend);
-// Parses "osmesa" or "egl"; throws roving::Error naming `--backend` otherwise.
+// Parses "osmesa" or "egl"; throws roving::Error naming `--backend` otherwise. An empty text is
+// default_gl_backend().
 GlBackend parse_gl_backend(const std::string& text);
+// The backend used where none is named: $ROVING_GL_BACKEND (osmesa or egl; a GPU machine sets it
+// once, as MUJOCO_GL or PYOPENGL_PLATFORM are set), else osmesa. Throws roving::Error naming the
+// variable on any other value.
+GlBackend default_gl_backend();
 
 // An orthographic camera: it looks along `forward` at the box centred on `centre` with half
 // extents `half_width` (along `right`), `half_height` (along `up`) and `half_depth` (along

@@ -2,6 +2,8 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <cstdlib>
+#include <string>
 
 #include "roving/core/error.h"
 #include "roving/gl/depth_renderer.h"
@@ -13,9 +15,17 @@ const char* to_string(GlBackend backend) {
 }
 
 GlBackend parse_gl_backend(const std::string& text) {
+  if (text.empty()) return default_gl_backend();
   if (text == "osmesa") return GlBackend::OSMesa;
   if (text == "egl") return GlBackend::Egl;
   throw Error(fmt::format("--backend: expected osmesa or egl, found '{}'", text));
+}
+
+GlBackend default_gl_backend() {
+  const char* text = std::getenv("ROVING_GL_BACKEND");
+  if (!text || !*text || std::string(text) == "osmesa") return GlBackend::OSMesa;
+  if (std::string(text) == "egl") return GlBackend::Egl;
+  throw Error(fmt::format("ROVING_GL_BACKEND: expected osmesa or egl, found '{}'", text));
 }
 
 OrthoCamera OrthoCamera::looking_along(const Vec3& forward, const Vec3& centre, double half_width,

@@ -12,7 +12,7 @@
 namespace roving {
 
 struct GlMethodOptions {
-  GlBackend backend = GlBackend::OSMesa;
+  GlBackend backend = default_gl_backend();
   int views_h = 24, views_v = 12;  // viewpoint sampling: H longitudes x V latitudes (15 degrees)
   int resolution = 1024;           // side of a viewpoint-sampling view, pixels
   // How a view is read at a sample (measured in results/view-reading.md): bilinear between the

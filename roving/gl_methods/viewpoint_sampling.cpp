@@ -359,19 +359,30 @@ void view_sample(GlScene& scene, const SampleSet& samples, const std::vector<std
     ++report.views_rendered;
     const Stopwatch watch;
     std::size_t previous_resolved = 0;
+    double cpu_seconds = 0, draw_seconds = 0;
     run_beside(
         [&] {
+          const Stopwatch cpu;
           if (i > 0) previous_resolved = read(ring[(i - 1) % 3]);
           if (i + 1 < views) prepare(ring[(i + 1) % 3], order[i + 1]);
+          cpu_seconds = cpu.seconds();
         },
-        [&] { draw(ring[i % 3]); });
+        [&] {
+          const Stopwatch gl;
+          draw(ring[i % 3]);
+          draw_seconds = gl.seconds();
+        });
+    report.view_cpu_seconds += cpu_seconds;
+    report.view_draw_seconds += draw_seconds;
     if (budget) {
       budget->record_step(watch.seconds());
       if (i > 0) budget->record_read(groups[order[i - 1]].size(), previous_resolved);
     }
   }
   if (drawn > 0) {
+    const Stopwatch cpu;
     const std::size_t resolved = read(ring[(drawn - 1) % 3]);
+    report.view_cpu_seconds += cpu.seconds();
     if (budget) budget->record_read(groups[order[drawn - 1]].size(), resolved);
   }
   if (colour) shade_view_hits(scene, hits, coloured);
