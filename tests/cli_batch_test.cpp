@@ -88,6 +88,34 @@ TEST(CliBatch, EveryPairGetsAReportAndAFailureDoesNotStopTheOthers) {
   EXPECT_EQ(reports, 4u);
 }
 
+// --ibsm's figures in the summary (colour ones empty: the cubes have none), and a key of its own:
+// reports made without it are not taken for reports with it.
+TEST(CliBatch, ImageBasedFiguresInTheSummaryAndTheKey) {
+  const Dataset data;
+  EXPECT_EQ(run_cli("batch " + data.manifest + " --out " + data.out("results")).exit_code, 4);
+  const CliRun run =
+      run_cli("batch " + data.manifest + " --ibsm --ibsm-resolution 64 --html --out " + data.out("results"));
+  EXPECT_EQ(run.exit_code, 4) << run.err;
+  EXPECT_NE(run.out.find("4 measured, 0 already done"), std::string::npos) << run.out;
+  const auto rows = read_csv(data.out("results") + "/summary.csv");
+  const auto column = [&](const std::string& name) {
+    const auto found = std::find(rows[0].begin(), rows[0].end(), name);
+    EXPECT_NE(found, rows[0].end()) << name;
+    return found - rows[0].begin();
+  };
+  ASSERT_EQ(rows.size(), 6u);
+  for (int k = 1; k <= 4; ++k) {
+    // TEST a cube 0.01 k larger about the same centre: a depth difference, pixels only it covers.
+    EXPECT_GT(std::stod(rows[k][column("ibsm_depth_psnr")]), 0) << k;
+    EXPECT_GT(std::stod(rows[k][column("ibsm_unmatched_percent")]), 0) << k;
+    EXPECT_EQ(rows[k][column("ibsm_psnr_rgb")], "") << k;
+  }
+  std::ifstream index(data.out("results") + "/index.html");
+  std::stringstream page;
+  page << index.rdbuf();
+  EXPECT_NE(page.str().find("ibsm_depth_psnr"), std::string::npos);
+}
+
 TEST(CliBatch, TwoShardsTogetherEqualOneRun) {
   const Dataset data;
   EXPECT_EQ(run_cli("batch " + data.manifest + " --out " + data.out("whole")).exit_code, 4);

@@ -4,7 +4,13 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
+#include <map>
 #include <memory>
+#include <regex>
+#include <sstream>
+#include <string>
+#include <tuple>
 
 #include "analytic.h"
 #include "colour_models.h"
@@ -13,6 +19,7 @@
 #include "roving/core/colour_statistics.h"
 #include "roving/core/error.h"
 #include "roving/core/normalise.h"
+#include "roving/formats/mesh_io.h"
 #include "roving/gl_methods/gl_methods.h"
 #include "roving/gl_methods/image_based.h"
 #include "roving/registry/method_registry.h"
@@ -173,7 +180,7 @@ ColourAgreement colour_agreement(const ColourPairs& exact, const ColourPairs& dr
 // projected along z. Every GL method's colour is within one step of Embree's on >= 99.9% of the
 // samples both hit, and its PSNRs within 0.1 dB.
 TEST(BunnyColour, GlMethodsAgreeWithEmbree) {
-  REQUIRE_GL_CONTEXT(GlBackend::OSMesa);
+  REQUIRE_GL_CONTEXT(default_gl_backend());
   const TriangleMesh bunny = normalised(testing::bunny());
   const double diagonal = bunny.bounding_box().diagonal();
   const TriangleMesh moved = smoothly_perturbed(bunny, 0.005 * diagonal, 0.3 * diagonal);
@@ -218,11 +225,12 @@ TEST(BunnyColour, GlMethodsAgreeWithEmbree) {
 namespace roving {
 namespace {
 
-// The image-based comparison (MPEG's IBSM) on closed forms: identical models agree exactly;
-// a colour moved by 5 in R' on every pixel gives R's PSNR of 20 log10(255 / 5) and the others
-// infinite; a TEST covering half of REF's square leaves as many pixels unmatched as matched.
+// The image-based comparison (MPEG's IBSM) on closed forms: identical models agree exactly
+// (mmetric's 99.99 dB); a colour moved by 5 in R' on every pixel gives R's PSNR of
+// 20 log10(255 / 5) and the others 99.99; a TEST covering half of REF's square leaves as many pixels
+// unmatched as matched.
 TEST(ImageBased, ClosedForms) {
-  REQUIRE_GL_CONTEXT(GlBackend::OSMesa);
+  REQUIRE_GL_CONTEXT(default_gl_backend());
   const auto square = [](double width, float red) {
     TriangleMesh mesh({Vec3(0, 0, 0), Vec3(width, 0, 0), Vec3(width, 10, 0), Vec3(0, 10, 0)},
                       {{0, 1, 2}, {0, 2, 3}});
@@ -234,12 +242,16 @@ TEST(ImageBased, ClosedForms) {
   const ImageBasedResult same = image_based_comparison(square(10, 100), square(10, 100), options);
   EXPECT_GT(same.matched_pixels, 0u);
   EXPECT_EQ(same.unmatched_pixels, 0u);
-  EXPECT_TRUE(std::isinf(same.psnr_rgb) && std::isinf(same.psnr_ycbcr_611) && std::isinf(same.depth_psnr));
+  EXPECT_EQ(same.psnr_rgb, 99.99);
+  EXPECT_EQ(same.psnr_ycbcr_611, 99.99);
+  EXPECT_EQ(same.depth_psnr, 99.99);
   const ImageBasedResult red = image_based_comparison(square(10, 100), square(10, 105), options);
   EXPECT_EQ(red.matched_pixels, same.matched_pixels);
   EXPECT_DOUBLE_EQ(red.rgb_mse[0], 25);
   EXPECT_DOUBLE_EQ(red.rgb_mse[1], 0);
   EXPECT_NEAR(red.psnr_rgb, 10 * std::log10(255.0 * 255 / (25.0 / 3)), 1e-9);
+  EXPECT_NEAR(red.psnr_rgb_channels[0], 20 * std::log10(255.0 / 5), 1e-9);
+  EXPECT_EQ(red.psnr_rgb_channels[1], 99.99);
   EXPECT_NEAR(red.ycbcr_mse[0], std::pow(0.2126 * 5, 2), 1e-9);
   // Half the square: the matched pixels are TEST's, the unmatched REF's other half, as many. Pixel
   // edges (1/512 of the view, 0.028 units) along a 25-unit boundary err by under 2% of 50 units^2.
@@ -255,6 +267,50 @@ TEST(ImageBased, ClosedForms) {
   for (const Vec3& d : directions) EXPECT_NEAR(d.norm(), 1, 1e-12);
   options.views = 1;
   EXPECT_THROW(image_based_comparison(square(10, 100), square(10, 100), options), Error);
+}
+
+// mmetric's own figures (v1.1.7, tests/ibsm/README.md: how it was built and run) on our pairs:
+// vertex colours on a closed and an open model, textures whose UVs reach 0 and 1, a coarser model
+// under the same texture, and models of different size. Every figure it prints agrees within
+// 0.01 dB (0.01 points for the percentages): float depths and edge pixels are where the two
+// rasterisers may differ.
+std::map<std::string, double> mmetric_figures(const std::string& path) {
+  std::ifstream file(path);
+  std::stringstream text;
+  text << file.rdbuf();
+  std::map<std::string, double> figures;
+  const std::string output = text.str();
+  const std::regex line(R"(^(\w+)\s+PSNR = ([0-9.]+)$|^(UnmatchedPixelPercentage|BoxRatio) = ([0-9.e+-]+)$)",
+                        std::regex::multiline);
+  for (auto it = std::sregex_iterator(output.begin(), output.end(), line); it != std::sregex_iterator(); ++it) {
+    const std::smatch& m = *it;
+    figures[m[1].matched ? m[1].str() : m[3].str()] = std::stod(m[1].matched ? m[2].str() : m[4].str());
+  }
+  return figures;
+}
+
+TEST(ImageBased, MmetricsOwnFiguresOnOurPairs) {
+  REQUIRE_GL_CONTEXT(default_gl_backend());
+  const std::string folder = std::string(ROVING_SOURCE_DIR) + "/tests/ibsm/";
+  for (const auto& [name, a, b] : {std::tuple{"sphere", "sphere-a.ply", "sphere-b.ply"},
+                                   {"cap", "cap-a.ply", "cap-b.ply"},
+                                   {"torus", "torus-a.obj", "torus-b.obj"},
+                                   {"globe", "globe-a.obj", "globe-b.obj"}}) {
+    SCOPED_TRACE(name);
+    const std::map<std::string, double> mmetric = mmetric_figures(folder + "mmetric-1.1.7/" + name + ".txt");
+    ASSERT_EQ(mmetric.size(), 11u);
+    const ImageBasedResult ours =
+        image_based_comparison(load_mesh(folder + a).mesh, load_mesh(folder + b).mesh, ImageBasedOptions{});
+    ASSERT_TRUE(ours.colour);
+    const std::map<std::string, double> figures = {
+        {"R", ours.psnr_rgb_channels[0]}, {"G", ours.psnr_rgb_channels[1]}, {"B", ours.psnr_rgb_channels[2]},
+        {"RGB", ours.psnr_rgb},           {"Y", ours.psnr_ycbcr[0]},        {"U", ours.psnr_ycbcr[1]},
+        {"V", ours.psnr_ycbcr[2]},        {"YUV", ours.psnr_ycbcr_611},     {"GEO", ours.depth_psnr},
+        {"UnmatchedPixelPercentage", ours.unmatched_percent},             {"BoxRatio", ours.box_ratio}};
+    for (const auto& [figure, value] : figures) {
+      EXPECT_NEAR(value, mmetric.at(figure), 0.01) << figure;
+    }
+  }
 }
 
 }  // namespace

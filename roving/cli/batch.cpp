@@ -219,12 +219,14 @@ MeasureArguments arguments_for(const Pair& pair, const MeasureArguments& default
 // What decides a pair's result: its inputs' bytes and every option. Two runs, or two shards,
 // with the same key would write the same report.
 std::string pair_key(const MeasureArguments& a, const std::string& reference_sha, const std::string& test_sha) {
-  const std::string identity = fmt::format(
+  std::string identity = fmt::format(
       "{}|{}|method={}|semantics={}|samples={}|seed={}|max_error={}|views={}|resolution={}|backend={}|"
       "camera_geometry={}|symmetric={}|ref_type={}|test_type={}|bins={}|hausdorff_bound={}",
       reference_sha, test_sha, a.method, a.semantics, a.samples, a.seed ? std::to_string(*a.seed) : "",
       a.max_error, a.views, a.resolution, to_string(parse_gl_backend(a.backend)), a.camera_geometry, a.symmetric, a.reference_type,
       a.test_type, a.histogram_bins, a.hausdorff_bound);
+  // Added only when asked for, so that the keys of reports without it stay what they were.
+  if (a.ibsm) identity += fmt::format("|ibsm={}x{}", a.ibsm_views, a.ibsm_resolution);
   unsigned char digest[EVP_MAX_MD_SIZE];
   unsigned int length = 0;
   EVP_Digest(identity.data(), identity.size(), digest, &length, EVP_sha256(), nullptr);
@@ -262,6 +264,14 @@ std::vector<std::string> summary_row(const nlohmann::json& report) {
   for (const char* key : {"hausdorff", "mean_both", "rms_both"}) {
     row.push_back(ok && report.contains("two_sided") ? number(report["two_sided"][key]) : "");
   }
+  // IBSM's figures (--ibsm), empty where it was not asked for or a model has no colour.
+  const auto field = [&](const nlohmann::json& object, const char* key) {
+    return object.is_object() && object.contains(key) ? number(object[key]) : std::string();
+  };
+  const nlohmann::json ibsm = ok && report.contains("image_based") ? report["image_based"] : nlohmann::json();
+  const nlohmann::json ibsm_colour = ibsm.is_object() && ibsm.contains("colour") ? ibsm["colour"] : nlohmann::json();
+  for (const char* key : {"psnr_rgb", "psnr_ycbcr_611"}) row.push_back(field(ibsm_colour, key));
+  for (const char* key : {"depth_psnr", "unmatched_percent"}) row.push_back(field(ibsm, key));
   row.push_back(ok ? number(report["seconds"]["total"]) : "");
   std::string warnings;
   if (ok) {
@@ -284,9 +294,12 @@ std::size_t sweep_abandoned(const std::string& folder) {
 // index.html: the summary's main columns, a row per pair linking to its page where there is one.
 void write_index(const std::string& folder, const std::vector<std::string>& header,
                  const std::vector<nlohmann::json>& reports, const std::vector<fs::path>& paths) {
-  const std::vector<std::string> shown = {"index", "reference", "test", "status", "method", "semantics", "samples",
-                                          "no_hits", "usiad", "siad", "rms", "max_abs", "p95", "hausdorff",
-                                          "seconds", "warnings"};
+  std::vector<std::string> shown = {"index", "reference", "test", "status", "method", "semantics", "samples",
+                                    "no_hits", "usiad", "siad", "rms", "max_abs", "p95", "hausdorff"};
+  if (std::any_of(reports.begin(), reports.end(), [](const nlohmann::json& r) { return r.contains("image_based"); })) {
+    shown.insert(shown.end(), {"ibsm_psnr_rgb", "ibsm_psnr_ycbcr_611", "ibsm_depth_psnr", "ibsm_unmatched_percent"});
+  }
+  shown.insert(shown.end(), {"seconds", "warnings"});
   HtmlIndex page;
   page.title = fmt::format("surface roving batch: {} pairs", reports.size());
   page.intro = fmt::format("<p>From the reports in {}; lengths in model units. Click a column's name to sort.</p>",
@@ -351,7 +364,8 @@ std::pair<std::size_t, std::size_t> merge(const std::string& folder, bool html) 
                                      "samples", "no_hits", "diagonal", "max_error"};
   const nlohmann::json statistics = statistics_json(Statistics());
   for (const auto& item : statistics.items()) header.push_back(item.key());
-  header.insert(header.end(), {"hausdorff", "mean_both", "rms_both", "seconds", "warnings"});
+  header.insert(header.end(), {"hausdorff", "mean_both", "rms_both", "ibsm_psnr_rgb", "ibsm_psnr_ycbcr_611",
+                               "ibsm_depth_psnr", "ibsm_unmatched_percent", "seconds", "warnings"});
   AtomicFile summary((fs::path(folder) / "summary.csv").string());
   fmt::print(summary.stream(), "{}\n", fmt::join(header, ","));
   std::size_t ok = 0;

@@ -375,15 +375,17 @@ std::string colour_lines(const DirectionReport& d) {
 // The image-based comparison (IBSM), as mmetric names its figures.
 std::string image_based_lines(const ImageBasedResult& ib) {
   std::string out = fmt::format(
-      "\n  image-based (MPEG IBSM): {} views on a Fibonacci sphere, {} x {} px, back faces culled\n"
-      "    {} pixels both models cover; unmatched (one only) {:.4g}% of them; box ratio {:.5g}%\n"
-      "    depth PSNR {:.4g} dB (depth as a fraction of the view's depth)\n",
+      "\n  image-based (MPEG IBSM, as mmetric 1.1.7): {} views on a Fibonacci sphere, {} x {} px, back faces "
+      "culled\n"
+      "    {} pixels both models cover; unmatched (one only) {:.6g}% of them; box ratio {:.6g}%\n"
+      "    depth PSNR {:.6g} dB (mmetric's GEO: depth as a fraction of 3 x the view sphere's radius)\n",
       ib.views, ib.resolution, ib.resolution, ib.matched_pixels, ib.unmatched_percent, ib.box_ratio, ib.depth_psnr);
   if (ib.colour) {
     out += fmt::format(
-        "    colour PSNR (8-bit pixels, peak 255): R'G'B' {:.4g} dB, Y'CbCr 6:1:1 {:.4g} dB\n"
-        "      (Y' {:.4g}, Cb {:.4g}, Cr {:.4g})\n",
-        ib.psnr_rgb, ib.psnr_ycbcr_611, ib.psnr_ycbcr[0], ib.psnr_ycbcr[1], ib.psnr_ycbcr[2]);
+        "    colour PSNR (8-bit pixels, peak 255, 99.99 where they agree): R'G'B' {:.6g} dB (R {:.6g}, G {:.6g}, "
+        "B {:.6g}),\n      Y'CbCr 6:1:1 {:.6g} dB (Y' {:.6g}, Cb {:.6g}, Cr {:.6g})\n",
+        ib.psnr_rgb, ib.psnr_rgb_channels[0], ib.psnr_rgb_channels[1], ib.psnr_rgb_channels[2], ib.psnr_ycbcr_611,
+        ib.psnr_ycbcr[0], ib.psnr_ycbcr[1], ib.psnr_ycbcr[2]);
   }
   return out + fmt::format("    {:.3f} s\n", ib.seconds);
 }
@@ -600,7 +602,7 @@ nlohmann::json to_json(const MeasureReport& r) {
   }
   if (r.image_based) {
     const ImageBasedResult& ib = *r.image_based;
-    json["image_based"] = {{"definition", "MPEG IBSM (mmetric compare --mode ibsm)"},
+    json["image_based"] = {{"definition", "MPEG IBSM (mmetric 1.1.7 compare --mode ibsm)"},
                            {"views", ib.views},
                            {"resolution", ib.resolution},
                            {"back_faces_culled", true},
@@ -611,7 +613,11 @@ nlohmann::json to_json(const MeasureReport& r) {
                            {"depth_psnr", ib.depth_psnr},
                            {"seconds", ib.seconds}};
     if (ib.colour) {
-      json["image_based"]["colour"] = {{"psnr_rgb", ib.psnr_rgb},     {"psnr_ycbcr_611", ib.psnr_ycbcr_611},
+      json["image_based"]["colour"] = {{"psnr_rgb", ib.psnr_rgb},
+                                       {"psnr_r", ib.psnr_rgb_channels[0]},
+                                       {"psnr_g", ib.psnr_rgb_channels[1]},
+                                       {"psnr_b", ib.psnr_rgb_channels[2]},
+                                       {"psnr_ycbcr_611", ib.psnr_ycbcr_611},
                                        {"psnr_y", ib.psnr_ycbcr[0]},  {"psnr_cb", ib.psnr_ycbcr[1]},
                                        {"psnr_cr", ib.psnr_ycbcr[2]}, {"mse_rgb", ib.rgb_mse},
                                        {"mse_ycbcr", ib.ycbcr_mse}};

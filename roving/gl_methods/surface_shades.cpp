@@ -9,10 +9,16 @@
 
 namespace roving {
 
-SurfaceShades surface_shades(const TriangleMesh& mesh) {
+SurfaceShades surface_shades(const TriangleMesh& mesh, ShadeRule rule) {
   SurfaceShades shades;
   const TextureMapping* mapping = mesh.texture_mapping();
   shades.materials = mapping ? mapping->materials : std::vector<Material>(1);
+  if (rule == ShadeRule::AsMmetric) {
+    for (Material& material : shades.materials) {
+      material.sampler = Sampler{Wrap::ClampToEdge, Wrap::ClampToEdge, Filter::Linear};
+      material.factor = Material{}.factor;
+    }
+  }
   if (shades.materials.size() > 1) {
     shades.face_materials.assign(mapping->face_material.begin(), mapping->face_material.end());
   }
@@ -21,6 +27,7 @@ SurfaceShades surface_shades(const TriangleMesh& mesh) {
   tbb::parallel_for(std::size_t(0), mesh.triangle_count(), [&](std::size_t face) {
     const Material& material = shades.materials[mapping ? mapping->face_material[face] : 0];
     const bool textured = mapping && material.texture;
+    const bool vertex_coloured = !vertex_colours.empty() && !(textured && rule == ShadeRule::AsMmetric);
     // A whole number of repeats (two of mirrored ones) off the coordinates changes no colour,
     // and keeps them small enough for float.
     TexCoord shift = TexCoord::Zero();
@@ -36,8 +43,7 @@ SurfaceShades surface_shades(const TriangleMesh& mesh) {
     for (int c = 0; c < 3; ++c) {
       const int v = mesh.triangles()[face][c];
       const Eigen::Vector3d factor =
-          (vertex_colours.empty() ? Eigen::Vector3d::Ones()
-                                  : Eigen::Vector3d(vertex_colours[v].cast<double>() / 255))
+          (vertex_coloured ? Eigen::Vector3d(vertex_colours[v].cast<double>() / 255) : Eigen::Vector3d::Ones())
               .cwiseProduct(material.factor.cast<double>() / 255);
       const TexCoord uv = textured ? TexCoord(mapping->corner_uv[3 * face + c] - shift) : TexCoord::Zero();
       shades.corners[3 * face + c] = {float(factor.x()), float(factor.y()), float(factor.z()), float(uv.x()),

@@ -24,7 +24,12 @@ struct SurfaceShades {
   TileShade at(const TriangleMesh& mesh, std::uint32_t face, const Vec3& p) const;
 };
 
+// How a model's colour is drawn: as its files declare it (each material's factor times its vertex
+// colours and texture, sampled by its own sampler), or as MPEG's mmetric draws it (a textured face
+// shows its texture alone, bilinear and clamped to the edge; any other face its vertex colours).
+enum class ShadeRule { AsDeclared, AsMmetric };
+
 // Requires mesh.has_colour().
-SurfaceShades surface_shades(const TriangleMesh& mesh);
+SurfaceShades surface_shades(const TriangleMesh& mesh, ShadeRule rule = ShadeRule::AsDeclared);
 
 }  // namespace roving
