@@ -163,10 +163,11 @@ Raises roving.Error (a ValueError) with a one-line message naming the file or ar
 
   m.def(
       "measure_arrays",
-      [](const py::handle& reference_vertices, const py::handle& reference_faces, const py::handle& test_vertices,
-         const py::handle& test_faces, const py::object& sample_points, const py::object& sample_normals,
-         const std::string& method, const std::string& semantics, const std::string& samples,
-         const std::string& max_error, const std::string& views, int resolution, const std::string& backend) {
+      [](const py::handle& reference_vertices, const py::handle& reference_faces,
+         const py::handle& test_vertices, const py::handle& test_faces, const py::object& sample_points,
+         const py::object& sample_normals, const std::string& method, const std::string& semantics,
+         const std::string& samples, const std::string& max_error, const std::string& views, int resolution,
+         const std::string& backend) {
         const TriangleMesh reference = mesh_from_arrays(reference_vertices, reference_faces, "reference");
         const TriangleMesh test = mesh_from_arrays(test_vertices, test_faces, "test");
         SampleSet sample_set;
@@ -196,10 +197,11 @@ Raises roving.Error (a ValueError) with a one-line message naming the file or ar
         return measure_samples(test, std::move(sample_set), reference.bounding_box().diagonal(),
                                {method, semantics, views, backend, resolution, max_error});
       },
-      py::arg("reference_vertices"), py::arg("reference_faces"), py::arg("test_vertices"), py::arg("test_faces"),
-      py::arg("sample_points") = py::none(), py::arg("sample_normals") = py::none(), py::arg("method") = "embree",
-      py::arg("semantics") = "", py::arg("samples") = "faces", py::arg("max_error") = "5%",
-      py::arg("views") = "24x12", py::arg("resolution") = 1024, py::arg("backend") = "",
+      py::arg("reference_vertices"), py::arg("reference_faces"), py::arg("test_vertices"),
+      py::arg("test_faces"), py::arg("sample_points") = py::none(), py::arg("sample_normals") = py::none(),
+      py::arg("method") = "embree", py::arg("semantics") = "", py::arg("samples") = "faces",
+      py::arg("max_error") = "5%", py::arg("views") = "24x12", py::arg("resolution") = 1024,
+      py::arg("backend") = "",
       R"doc(Measures a reference mesh against a test mesh given as NumPy arrays.
 
 Arguments:

@@ -282,7 +282,8 @@ std::map<std::string, double> mmetric_figures(const std::string& path) {
   const std::string output = text.str();
   const std::regex line(R"(^(\w+)\s+PSNR = ([0-9.]+)$|^(UnmatchedPixelPercentage|BoxRatio) = ([0-9.e+-]+)$)",
                         std::regex::multiline);
-  for (auto it = std::sregex_iterator(output.begin(), output.end(), line); it != std::sregex_iterator(); ++it) {
+  for (auto it = std::sregex_iterator(output.begin(), output.end(), line); it != std::sregex_iterator();
+       ++it) {
     const std::smatch& m = *it;
     figures[m[1].matched ? m[1].str() : m[3].str()] = std::stod(m[1].matched ? m[2].str() : m[4].str());
   }
@@ -303,10 +304,12 @@ TEST(ImageBased, MmetricsOwnFiguresOnOurPairs) {
         image_based_comparison(load_mesh(folder + a).mesh, load_mesh(folder + b).mesh, ImageBasedOptions{});
     ASSERT_TRUE(ours.colour);
     const std::map<std::string, double> figures = {
-        {"R", ours.psnr_rgb_channels[0]}, {"G", ours.psnr_rgb_channels[1]}, {"B", ours.psnr_rgb_channels[2]},
-        {"RGB", ours.psnr_rgb},           {"Y", ours.psnr_ycbcr[0]},        {"U", ours.psnr_ycbcr[1]},
-        {"V", ours.psnr_ycbcr[2]},        {"YUV", ours.psnr_ycbcr_611},     {"GEO", ours.depth_psnr},
-        {"UnmatchedPixelPercentage", ours.unmatched_percent},             {"BoxRatio", ours.box_ratio}};
+        {"R", ours.psnr_rgb_channels[0]}, {"G", ours.psnr_rgb_channels[1]},
+        {"B", ours.psnr_rgb_channels[2]}, {"RGB", ours.psnr_rgb},
+        {"Y", ours.psnr_ycbcr[0]},        {"U", ours.psnr_ycbcr[1]},
+        {"V", ours.psnr_ycbcr[2]},        {"YUV", ours.psnr_ycbcr_611},
+        {"GEO", ours.depth_psnr},         {"UnmatchedPixelPercentage", ours.unmatched_percent},
+        {"BoxRatio", ours.box_ratio}};
     for (const auto& [figure, value] : figures) {
       EXPECT_NEAR(value, mmetric.at(figure), 0.01) << figure;
     }

@@ -15,14 +15,14 @@
 #include <map>
 #include <memory>
 
+#include "html_output.h"
+#include "provenance.h"
 #include "roving/core/error.h"
 #include "roving/core/stopwatch.h"
 #include "roving/formats/atomic_file.h"
 #include "roving/formats/file_bytes.h"
 #include "roving/formats/file_hash.h"
 #include "roving/gl/depth_renderer.h"
-#include "html_output.h"
-#include "provenance.h"
 #include "roving/html/html_index.h"
 
 namespace roving {
@@ -223,8 +223,8 @@ std::string pair_key(const MeasureArguments& a, const std::string& reference_sha
       "{}|{}|method={}|semantics={}|samples={}|seed={}|max_error={}|views={}|resolution={}|backend={}|"
       "camera_geometry={}|symmetric={}|ref_type={}|test_type={}|bins={}|hausdorff_bound={}",
       reference_sha, test_sha, a.method, a.semantics, a.samples, a.seed ? std::to_string(*a.seed) : "",
-      a.max_error, a.views, a.resolution, to_string(parse_gl_backend(a.backend)), a.camera_geometry, a.symmetric, a.reference_type,
-      a.test_type, a.histogram_bins, a.hausdorff_bound);
+      a.max_error, a.views, a.resolution, to_string(parse_gl_backend(a.backend)), a.camera_geometry,
+      a.symmetric, a.reference_type, a.test_type, a.histogram_bins, a.hausdorff_bound);
   // Added only when asked for, so that the keys of reports without it stay what they were.
   if (a.ibsm) identity += fmt::format("|ibsm={}x{}", a.ibsm_views, a.ibsm_resolution);
   unsigned char digest[EVP_MAX_MD_SIZE];
@@ -269,7 +269,8 @@ std::vector<std::string> summary_row(const nlohmann::json& report) {
     return object.is_object() && object.contains(key) ? number(object[key]) : std::string();
   };
   const nlohmann::json ibsm = ok && report.contains("image_based") ? report["image_based"] : nlohmann::json();
-  const nlohmann::json ibsm_colour = ibsm.is_object() && ibsm.contains("colour") ? ibsm["colour"] : nlohmann::json();
+  const nlohmann::json ibsm_colour =
+      ibsm.is_object() && ibsm.contains("colour") ? ibsm["colour"] : nlohmann::json();
   for (const char* key : {"psnr_rgb", "psnr_ycbcr_611"}) row.push_back(field(ibsm_colour, key));
   for (const char* key : {"depth_psnr", "unmatched_percent"}) row.push_back(field(ibsm, key));
   row.push_back(ok ? number(report["seconds"]["total"]) : "");
@@ -294,10 +295,13 @@ std::size_t sweep_abandoned(const std::string& folder) {
 // index.html: the summary's main columns, a row per pair linking to its page where there is one.
 void write_index(const std::string& folder, const std::vector<std::string>& header,
                  const std::vector<nlohmann::json>& reports, const std::vector<fs::path>& paths) {
-  std::vector<std::string> shown = {"index", "reference", "test", "status", "method", "semantics", "samples",
-                                    "no_hits", "usiad", "siad", "rms", "max_abs", "p95", "hausdorff"};
-  if (std::any_of(reports.begin(), reports.end(), [](const nlohmann::json& r) { return r.contains("image_based"); })) {
-    shown.insert(shown.end(), {"ibsm_psnr_rgb", "ibsm_psnr_ycbcr_611", "ibsm_depth_psnr", "ibsm_unmatched_percent"});
+  std::vector<std::string> shown = {"index",     "reference", "test",    "status",   "method",
+                                    "semantics", "samples",   "no_hits", "usiad",    "siad",
+                                    "rms",       "max_abs",   "p95",     "hausdorff"};
+  if (std::any_of(reports.begin(), reports.end(),
+                  [](const nlohmann::json& r) { return r.contains("image_based"); })) {
+    shown.insert(shown.end(),
+                 {"ibsm_psnr_rgb", "ibsm_psnr_ycbcr_611", "ibsm_depth_psnr", "ibsm_unmatched_percent"});
   }
   shown.insert(shown.end(), {"seconds", "warnings"});
   HtmlIndex page;

@@ -105,7 +105,8 @@ void add_measurement_options(CLI::App& app, roving::MeasureArguments& args, bool
   app.add_option("--resolution", args.resolution, "viewpoint sampling: view side in pixels")
       ->check(CLI::Range(1, 16384))
       ->capture_default_str();
-  app.add_option("--backend", args.backend, "GL backend: osmesa or egl (default: $ROVING_GL_BACKEND, else osmesa)");
+  app.add_option("--backend", args.backend,
+                 "GL backend: osmesa or egl (default: $ROVING_GL_BACKEND, else osmesa)");
   app.add_option(
          "--camera-geometry", args.camera_geometry,
          "roving and cooperative: where each per-sample camera's triangles are put in its frame and their "

@@ -855,7 +855,7 @@ class GlDepthRenderer final : public DepthRenderer {
 
   // The colour attachment, in code values, NaN where `depth` (read already) says nothing was drawn.
   // Read through a buffer kept between calls: a new one for each of IBSM's 2048 x 2048 views was
-  // 64 MB zeroed and faulted in each time, two thirds of the comparison's time.
+  // 64 MB zeroed and faulted in each time.
   void read_colour(int width, int height, const std::vector<float>& depth,
                    std::vector<Colour>& colour) const {
     const std::size_t pixels = static_cast<std::size_t>(width) * height;

@@ -56,7 +56,8 @@ double psnr(double mse) {
 // Its offsets of 128 cancel in a difference.
 Vec3 ycbcr_as_mmetric(const Vec3& rgb) {
   return {0.2126 * rgb.x() + 0.7152 * rgb.y() + 0.0722 * rgb.z(),
-          -0.1146 * rgb.x() - 0.3854 * rgb.y() + 0.5 * rgb.z(), 0.5 * rgb.x() - 0.4542 * rgb.y() - 0.0458 * rgb.z()};
+          -0.1146 * rgb.x() - 0.3854 * rgb.y() + 0.5 * rgb.z(),
+          0.5 * rgb.x() - 0.4542 * rgb.y() - 0.0458 * rgb.z()};
 }
 
 }  // namespace
@@ -129,7 +130,8 @@ ImageBasedResult image_based_comparison(const TriangleMesh& reference, const Tri
   const double n = static_cast<double>(result.matched_pixels);
   result.unmatched_percent = n > 0 ? 100.0 * double(result.unmatched_pixels) / n : 100.0;
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  result.depth_psnr = n > 0 ? (depth_sse > 0 ? std::min(kPsnrCap, 10 * std::log10(n / depth_sse)) : kPsnrCap) : nan;
+  result.depth_psnr =
+      n > 0 ? (depth_sse > 0 ? std::min(kPsnrCap, 10 * std::log10(n / depth_sse)) : kPsnrCap) : nan;
   if (result.colour && n > 0) {
     for (int c = 0; c < 3; ++c) {
       result.rgb_mse[c] = rgb_sse[c] / n;

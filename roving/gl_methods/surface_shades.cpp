@@ -43,7 +43,8 @@ SurfaceShades surface_shades(const TriangleMesh& mesh, ShadeRule rule) {
     for (int c = 0; c < 3; ++c) {
       const int v = mesh.triangles()[face][c];
       const Eigen::Vector3d factor =
-          (vertex_coloured ? Eigen::Vector3d(vertex_colours[v].cast<double>() / 255) : Eigen::Vector3d::Ones())
+          (vertex_coloured ? Eigen::Vector3d(vertex_colours[v].cast<double>() / 255)
+                           : Eigen::Vector3d::Ones())
               .cwiseProduct(material.factor.cast<double>() / 255);
       const TexCoord uv = textured ? TexCoord(mapping->corner_uv[3 * face + c] - shift) : TexCoord::Zero();
       shades.corners[3 * face + c] = {float(factor.x()), float(factor.y()), float(factor.z()), float(uv.x()),
