@@ -39,7 +39,8 @@ Texture through_jpeg(const Texture& texture, int quality) {
 }
 
 // The pairs: REF coloured by the field, TEST degraded.
-std::vector<ColourPair> colour_pairs_of(const TriangleMesh& bunny, const TriangleMesh* rocker_arm, bool quick) {
+std::vector<ColourPair> colour_pairs_of(const TriangleMesh& bunny, const TriangleMesh* rocker_arm,
+                                        bool quick) {
   const BoundingBox box = bunny.bounding_box();
   const auto unit = [box](const Vec3& p) { return Vec3((p - box.min).cwiseQuotient(box.size())); };
   const auto whole = [](std::vector<Colour> colours) {
@@ -86,8 +87,8 @@ std::vector<ColourPair> colour_pairs_of(const TriangleMesh& bunny, const Triangl
     // A continuous parametrization (the texture projected along z), which a decimation keeps: the
     // quadric decimater collapses edges onto existing vertices, each keeping its coordinates.
     const auto projected = std::make_shared<Texture>(procedural_texture(1024, 0, 40));
-    pairs.push_back({"projected texture, decimated to 17,362 (UVs kept)", "quadric decimation, the same texture",
-                     with_planar_texture(bunny, projected, {}, box),
+    pairs.push_back({"projected texture, decimated to 17,362 (UVs kept)",
+                     "quadric decimation, the same texture", with_planar_texture(bunny, projected, {}, box),
                      with_planar_texture(decimate_quadric(bunny, 17362), projected, {}, box)});
     // Beyond the bunny: the Rocker Arm's own atlas through JPEG.
     const BoundingBox rocker_box = rocker_arm->bounding_box();
@@ -98,8 +99,8 @@ std::vector<ColourPair> colour_pairs_of(const TriangleMesh& bunny, const Triangl
     jpeg.materials[0].texture = std::make_shared<Texture>(through_jpeg(*jpeg.materials[0].texture, 50));
     TriangleMesh rocker_jpeg = *rocker_arm;
     rocker_jpeg.set_texture_mapping(std::move(jpeg));
-    pairs.push_back({"Rocker Arm atlas, JPEG quality 50", "the Rocker Arm (20,088 triangles) with its own atlas",
-                     rocker_atlas, rocker_jpeg});
+    pairs.push_back({"Rocker Arm atlas, JPEG quality 50",
+                     "the Rocker Arm (20,088 triangles) with its own atlas", rocker_atlas, rocker_jpeg});
   }
   return pairs;
 }
@@ -111,109 +112,135 @@ ColourStatistics over(const ColourPairs& pairs, const std::vector<std::uint8_t>&
 
 }  // namespace
 
-ColourStudy colour_study(const TriangleMesh& bunny, const TriangleMesh* rocker_arm, bool quick, GlBackend backend,
-                         const std::function<void(const std::string&)>& step) {
+ColourStudy colour_study(const TriangleMesh& bunny, const TriangleMesh* rocker_arm, bool quick,
+                         GlBackend backend, const std::function<void(const std::string&)>& step) {
   ColourStudy study;
   const double h = 0.05 * bunny.bounding_box().diagonal();
   const std::vector<std::string> methods =
       quick ? std::vector<std::string>{"embree", "roving", "cooperative"}
             : std::vector<std::string>{"embree", "cgal", "roving", "cooperative", "viewpoint"};
-  ReportTable t{"Colour: sample-based figures by every method, and MPEG's image-based IBSM",
-                {"pair", "method", "compared", "PSNR Y'CbCr 6:1:1 (dB)", "PSNR R'G'B' (dB)", "delta E mean",
-                 "delta E p95", "within 1 step of Embree", "PSNR 6:1:1 - Embree's (dB)", "seconds"},
-                {},
-                {}};
+  ReportTable t{
+      "Colour: sample-based figures by every method, and MPEG's image-based IBSM",
+      {"pair", "samples", "method", "compared", "PSNR Y'CbCr 6:1:1 (dB)", "PSNR R'G'B' (dB)", "delta E mean",
+       "delta E p95", "within 1 step of Embree", "PSNR 6:1:1 - Embree's (dB)", "seconds"},
+      {},
+      {}};
   ReportTable ib{"Colour: the two correspondences side by side",
-                 {"pair", "samples: PSNR 6:1:1 (dB)", "IBSM: PSNR 6:1:1 (dB)", "samples: PSNR R'G'B'",
+                 {"pair", "face samples: PSNR 6:1:1 (dB)", "area samples: PSNR 6:1:1 (dB)",
+                  "IBSM: PSNR 6:1:1 (dB)", "face samples: PSNR R'G'B'", "area samples: PSNR R'G'B'",
                   "IBSM: PSNR R'G'B'", "IBSM: depth PSNR (dB)", "IBSM: unmatched pixels (%)", "IBSM (s)"},
                  {},
                  {}};
+  // Face samples (the paper's) and vertex samples (where faces meet: seams) in full; area-uniform
+  // ones beside IBSM, weighting every point of the surface alike as IBSM's pixels roughly do.
   const std::size_t sample_count = quick ? 8000 : 0;
+  const std::size_t area_count = quick ? 8000 : 200000;
+  std::vector<SampleSpec> kinds;
+  if (quick) {
+    kinds.push_back({SampleSpec::Kind::Area, sample_count});
+  } else {
+    kinds.push_back({});
+    kinds.push_back({SampleSpec::Kind::Vertices});
+  }
   ImageBasedOptions image_options;
   image_options.backend = backend;
   if (quick) image_options.resolution = 512;
   for (const ColourPair& pair : colour_pairs_of(bunny, rocker_arm, quick)) {
     step("colour: " + pair.name);
-    const SampleSet samples = sample_count
-                                  ? make_samples(pair.reference, {SampleSpec::Kind::Area, sample_count})
-                                  : make_samples(pair.reference, {});
-    const std::vector<Colour> reference_colours = sample_colours(pair.reference, samples);
-    DistanceResult embree;
-    ColourPairs exact;
-    double embree_611 = 0;
-    for (const std::string& name : methods) {
-      GlMethodOptions gl;
-      gl.backend = backend;
-      auto method = make_method(name, gl);
-      const Stopwatch watch;
-      const DistanceResult r = measure_distances(*method, pair.test, samples, {Semantics::FirstHit, h, true});
-      const ColourPairs colours = colour_pairs(reference_colours, samples, pair.test, r, Semantics::FirstHit);
-      const double seconds = watch.seconds();
-      const ColourStatistics all = compute_colour_statistics(colours, r.hit);
-      std::string within = "(itself)", difference = "";
-      if (name == "embree") {
-        embree = r, exact = colours, embree_611 = all.psnr_ycbcr_611;
-      } else {
-        // Checked before shown: on the samples both hit, within one step of Embree on >= 99.9%,
-        // PSNRs within 0.1 dB (CGAL: the same to rounding).
-        std::vector<std::uint8_t> both(samples.size(), 0);
-        std::size_t common = 0, close = 0;
-        for (std::size_t k = 0; k < samples.size(); ++k) {
-          if (!r.hit[k] || !embree.hit[k]) continue;
-          both[k] = 1, ++common;
-          close += (colours.test[k] - exact.test[k]).cwiseAbs().maxCoeff() <= 1;
+    double faces_611 = NAN, faces_rgb = NAN;  // N/A in quick mode: area samples only
+    for (const SampleSpec& kind : kinds) {
+      const SampleSet samples = make_samples(pair.reference, kind);
+      const std::vector<Colour> reference_colours = sample_colours(pair.reference, samples);
+      DistanceResult embree;
+      ColourPairs exact;
+      for (const std::string& name : methods) {
+        GlMethodOptions gl;
+        gl.backend = backend;
+        auto method = make_method(name, gl);
+        const Stopwatch watch;
+        const DistanceResult r =
+            measure_distances(*method, pair.test, samples, {Semantics::FirstHit, h, true});
+        const ColourPairs colours =
+            colour_pairs(reference_colours, samples, pair.test, r, Semantics::FirstHit);
+        const double seconds = watch.seconds();
+        const ColourStatistics all = compute_colour_statistics(colours, r.hit);
+        std::string within = "(itself)", difference = "";
+        if (name == "embree") {
+          embree = r, exact = colours;
+          if (kind.kind == SampleSpec::Kind::Faces) faces_611 = all.psnr_ycbcr_611, faces_rgb = all.psnr_rgb;
+        } else {
+          // Checked before shown: on the samples both hit, within one step of Embree on >= 99.9%,
+          // PSNRs within 0.1 dB (CGAL: the same to rounding).
+          std::vector<std::uint8_t> both(samples.size(), 0);
+          std::size_t common = 0, close = 0;
+          for (std::size_t k = 0; k < samples.size(); ++k) {
+            if (!r.hit[k] || !embree.hit[k]) continue;
+            both[k] = 1, ++common;
+            close += (colours.test[k] - exact.test[k]).cwiseAbs().maxCoeff() <= 1;
+          }
+          const ColourStatistics mine = over(colours, both), theirs = over(exact, both);
+          const double fraction = double(close) / double(std::max<std::size_t>(common, 1));
+          const double d611 = mine.psnr_ycbcr_611 - theirs.psnr_ycbcr_611,
+                       drgb = mine.psnr_rgb - theirs.psnr_rgb;
+          const double limit = name == "cgal" ? 1e-6 : 0.1;
+          if (fraction < 0.999 || !(std::abs(d611) <= limit) || !(std::abs(drgb) <= limit)) {
+            study.failures.push_back(fmt::format(
+                "colour, {}, {} samples, {}: {:.4f}% within a step of Embree, PSNR {:+.3g} / {:+.3g} dB",
+                pair.name, samples.kind, name, 100 * fraction, d611, drgb));
+          }
+          within = fmt::format("{:.3f}%", 100 * fraction);
+          difference = fmt::format("{:+.4f}", d611);
         }
-        const ColourStatistics mine = over(colours, both), theirs = over(exact, both);
-        const double fraction = double(close) / double(std::max<std::size_t>(common, 1));
-        const double d611 = mine.psnr_ycbcr_611 - theirs.psnr_ycbcr_611,
-                     drgb = mine.psnr_rgb - theirs.psnr_rgb;
-        const double limit = name == "cgal" ? 1e-6 : 0.1;
-        if (fraction < 0.999 || !(std::abs(d611) <= limit) || !(std::abs(drgb) <= limit)) {
-          study.failures.push_back(
-              fmt::format("colour, {}, {}: {:.4f}% within a step of Embree, PSNR {:+.3g} / {:+.3g} dB",
-                          pair.name, name, 100 * fraction, d611, drgb));
+        study.figures[fmt::format("colour/{}/{}/{}/psnr_611", pair.name, samples.kind, name)] =
+            all.psnr_ycbcr_611;
+        t.rows.push_back({pair.name, samples.kind, name, fmt::format("{}", all.compared),
+                          figure(all.psnr_ycbcr_611, 2), figure(all.psnr_rgb, 2), figure(all.delta_e_mean, 3),
+                          figure(all.delta_e_p95, 3), within, difference, figure(seconds, 3)});
+        if (name == "cooperative" && pair.name == "atlas, JPEG quality 20" &&
+            kind.kind != SampleSpec::Kind::Vertices) {
+          ColourStudy::PictureJob job;
+          job.file = quick ? "colour-jpeg20-quick.png" : "colour-jpeg20.png";
+          job.caption =
+              "the bunny's atlas against its JPEG at quality 20: delta E at each face, by the cooperative "
+              "method";
+          const HeatmapLayout faces = sample_count ? HeatmapLayout{HeatmapElement::Points, 1}
+                                                   : HeatmapLayout{HeatmapElement::Faces, 1};
+          const std::vector<float> delta_e = sample_delta_e(colours, r.hit);
+          const HeatmapScale scale{HeatmapQuantity::DeltaE, percentile_99(delta_e, 1)};
+          job.picture.title = "bunny (atlas) against its JPEG at quality 20";
+          job.picture.subtitle = fmt::format(
+              "colour difference by cooperative (24x12), {} samples; CIEDE2000 mean {:.3g}, p95 {:.3g}",
+              samples.size(), all.delta_e_mean, all.delta_e_p95);
+          job.picture.legend.quantity = HeatmapQuantity::DeltaE;
+          job.picture.legend.range = scale.range;
+          job.picture.legend.no_value_label = "no hit: no colour";
+          job.surface = coloured_surface(
+              &pair.reference, faces, samples,
+              heatmap_colours(heatmap_values(&pair.reference, faces, samples, delta_e), scale));
+          study.pictures.push_back(std::move(job));
         }
-        within = fmt::format("{:.3f}%", 100 * fraction);
-        difference = fmt::format("{:+.4f}", d611);
-      }
-      study.figures[fmt::format("colour/{}/{}/psnr_611", pair.name, name)] = all.psnr_ycbcr_611;
-      t.rows.push_back({pair.name, name, fmt::format("{}", all.compared), figure(all.psnr_ycbcr_611, 2),
-                        figure(all.psnr_rgb, 2), figure(all.delta_e_mean, 3), figure(all.delta_e_p95, 3),
-                        within, difference, figure(seconds, 3)});
-      if (name == "cooperative" && pair.name == "atlas, JPEG quality 20") {
-        ColourStudy::PictureJob job;
-        job.file = quick ? "colour-jpeg20-quick.png" : "colour-jpeg20.png";
-        job.caption =
-            "the bunny's atlas against its JPEG at quality 20: delta E at each face, by the cooperative "
-            "method";
-        const HeatmapLayout faces =
-            sample_count ? HeatmapLayout{HeatmapElement::Points, 1} : HeatmapLayout{HeatmapElement::Faces, 1};
-        const std::vector<float> delta_e = sample_delta_e(colours, r.hit);
-        const HeatmapScale scale{HeatmapQuantity::DeltaE, percentile_99(delta_e, 1)};
-        job.picture.title = "bunny (atlas) against its JPEG at quality 20";
-        job.picture.subtitle = fmt::format(
-            "colour difference by cooperative (24x12), {} samples; CIEDE2000 mean {:.3g}, p95 {:.3g}",
-            samples.size(), all.delta_e_mean, all.delta_e_p95);
-        job.picture.legend.quantity = HeatmapQuantity::DeltaE;
-        job.picture.legend.range = scale.range;
-        job.picture.legend.no_value_label = "no hit: no colour";
-        job.surface = coloured_surface(
-            &pair.reference, faces, samples,
-            heatmap_colours(heatmap_values(&pair.reference, faces, samples, delta_e), scale));
-        study.pictures.push_back(std::move(job));
       }
     }
+    // Embree's figures on area-uniform samples: each point of the surface weighted alike.
+    const SampleSet area = make_samples(pair.reference, {SampleSpec::Kind::Area, area_count});
+    auto embree = make_method("embree");
+    const DistanceResult on_area =
+        measure_distances(*embree, pair.test, area, {Semantics::FirstHit, h, true});
+    const ColourStatistics area_all = compute_colour_statistics(
+        colour_pairs(sample_colours(pair.reference, area), area, pair.test, on_area, Semantics::FirstHit),
+        on_area.hit);
     const ImageBasedResult image = image_based_comparison(pair.reference, pair.test, image_options);
     study.figures[fmt::format("colour/{}/ibsm/psnr_611", pair.name)] = image.psnr_ycbcr_611;
-    const ColourStatistics embree_all = compute_colour_statistics(exact, embree.hit);
-    ib.rows.push_back({pair.name, figure(embree_611, 2), figure(image.psnr_ycbcr_611, 2),
-                       figure(embree_all.psnr_rgb, 2), figure(image.psnr_rgb, 2), figure(image.depth_psnr, 2),
+    ib.rows.push_back({pair.name, figure(faces_611, 2), figure(area_all.psnr_ycbcr_611, 2),
+                       figure(image.psnr_ycbcr_611, 2), figure(faces_rgb, 2), figure(area_all.psnr_rgb, 2),
+                       figure(image.psnr_rgb, 2), figure(image.depth_psnr, 2),
                        figure(image.unmatched_percent, 3), figure(image.seconds, 2)});
   }
   t.settings = fmt::format(
       "REF the normalised bunny (or Rocker Arm) coloured by one procedural field, as vertex colours, as a "
-      "baked per-triangle texture atlas ({} texels a side) or as a texture projected along z; TEST degraded as "
-      "the pair says. {} samples, h = 5%, first hit. "
+      "baked per-triangle texture atlas ({} texels a side) or as a texture projected along z; TEST degraded "
+      "as "
+      "the pair says. {}, h = 5%, first hit. "
       "Colour "
       "figures are over each method's compared hits (TEST's colour where d was measured: on the hit's face "
       "for "
@@ -223,15 +250,22 @@ ColourStudy colour_study(const TriangleMesh& bunny, const TriangleMesh* rocker_a
       "of "
       "them, PSNRs within 0.1 dB (CGAL: 1e-6). Viewpoint sampling alone accepts only distances a view can "
       "certify to 1%, so where TEST's geometry is REF's (d = 0: the colour-only pairs) it compares almost no "
-      "samples, and its figures there say nothing; the cooperative method hands those samples to its cameras. "
+      "samples, and its figures there say nothing; the cooperative method hands those samples to its "
+      "cameras. "
       "Seconds: build, query and colour, one run, this machine.",
-      2048, sample_count ? fmt::format("{} area-uniform", sample_count) : "Face (69,451)");
+      2048,
+      sample_count
+          ? fmt::format("{} area-uniform samples", sample_count)
+          : "Face samples (69,451; on the Rocker Arm 20,088) and vertex samples (34,834; 10,044), where "
+            "faces meet: every vertex of the atlas is a seam, and there the GL methods take the "
+            "colour of the face the exact rule takes"),
   ib.settings = fmt::format(
-      "The same pairs: Embree's sample-based figures against IBSM (`roving measure --ibsm`: {} orthographic "
-      "views on "
+      "The same pairs: Embree's sample-based figures, on face samples (one per triangle, at its centroid) "
+      "and on {} area-uniform samples (every point of the surface alike), against IBSM (`roving measure "
+      "--ibsm`: {} orthographic views on "
       "a Fibonacci sphere, {} pixels a side, back faces culled, 8-bit colours over the pixels both models "
       "cover).",
-      image_options.views, image_options.resolution);
+      area_count, image_options.views, image_options.resolution);
   study.tables = {t, ib};
   study.notes =
       "## How the models were made\n\n"
@@ -254,7 +288,8 @@ ColourStudy colour_study(const TriangleMesh& bunny, const TriangleMesh* rocker_a
       "atlas without gutters does); quantisation to 16 levels a channel; quadric decimation (OpenMesh) with "
       "the field "
       "sampled again at the new vertices, or the atlas baked again for the decimated mesh, or, for a texture "
-      "projected along z (a continuous parametrization, 1,024 texels a side with 40 bands in G), its coordinates "
+      "projected along z (a continuous parametrization, 1,024 texels a side with 40 bands in G), its "
+      "coordinates "
       "kept: the decimater collapses edges onto existing vertices.\n\n"
       "## What the two correspondences measure\n\n"
       "Our figures pair each sample of REF with the point where its normal line meets TEST: a colour error "

@@ -2,6 +2,8 @@
 // and textures made texel by texel.
 #pragma once
 
+#include <cmath>
+#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -77,6 +79,57 @@ inline TriangleMesh textured_square(double z, std::shared_ptr<const Texture> tex
   }
   mesh.set_texture_mapping(std::move(mapping));
   return mesh;
+}
+
+// A colour for face f, scattered by a hash so that neighbouring faces differ by many steps.
+inline Eigen::Vector3i face_colour(std::size_t f) {
+  std::uint64_t x = (f + 1) * 0x9E3779B97F4A7C15ull;
+  x ^= x >> 29;
+  x *= 0xBF58476D1CE4E5B9ull;
+  x ^= x >> 32;
+  return {int(x & 255), int((x >> 8) & 255), int((x >> 16) & 255)};
+}
+
+// `mesh` with a colour of its own on every face, by an atlas with one texel per face (its three
+// corners at the texel's centre, nearest filtering): every vertex and edge a seam, as in a
+// per-triangle atlas.
+inline TriangleMesh with_a_texel_per_face(const TriangleMesh& mesh) {
+  const auto faces = mesh.triangle_count();
+  const int side = static_cast<int>(std::ceil(std::sqrt(double(faces))));
+  TextureMapping mapping;
+  Material material;
+  material.texture = std::make_shared<Texture>(make_texture(
+      side, side, [&](int column, int row) { return face_colour(std::size_t(row) * side + column); }));
+  material.sampler.filter = Filter::Nearest;
+  mapping.materials.push_back(material);
+  mapping.face_material.assign(faces, 0);
+  for (std::size_t f = 0; f < faces; ++f) {
+    const TexCoord centre((double(f % side) + 0.5) / side, (double(f / side) + 0.5) / side);
+    for (int c = 0; c < 3; ++c) mapping.corner_uv.push_back(centre);
+  }
+  TriangleMesh out = mesh;
+  out.set_texture_mapping(std::move(mapping));
+  return out;
+}
+
+// `mesh` as a triangle soup, each face with three vertices of its own (a glTF whose seam vertices
+// are split) coloured with the face's colour: colours that differ per face at every vertex.
+inline TriangleMesh soup_coloured_per_face(const TriangleMesh& mesh) {
+  std::vector<Vec3> positions;
+  std::vector<Triangle> triangles;
+  std::vector<Colour> colours;
+  for (std::size_t f = 0; f < mesh.triangle_count(); ++f) {
+    const Triangle& t = mesh.triangles()[f];
+    const auto first = static_cast<int>(positions.size());
+    for (int c = 0; c < 3; ++c) {
+      positions.push_back(mesh.positions()[t[c]]);
+      colours.push_back(face_colour(f).cast<float>());
+    }
+    triangles.push_back({first, first + 1, first + 2});
+  }
+  TriangleMesh out(std::move(positions), std::move(triangles));
+  out.set_vertex_colours(std::move(colours));
+  return out;
 }
 
 }  // namespace roving::testing

@@ -56,7 +56,8 @@ std::string file_name(const std::string& path) {
 void require_writable_paths(const MeasureArguments& args) {
   std::vector<std::pair<std::string, std::string>> outputs = {
       {"--json", args.json_path}, {"--samples-out", args.samples_csv_path}, {"--html", args.html_path}};
-  for (const auto& [option, given] : {std::pair{"--heatmap", args.heatmap_path}, {"--heatmap-png", args.heatmap_png_path}}) {
+  for (const auto& [option, given] :
+       {std::pair{"--heatmap", args.heatmap_path}, {"--heatmap-png", args.heatmap_png_path}}) {
     if (given.empty()) continue;
     for (const std::string& path : heatmap_paths(given, args.symmetric)) outputs.emplace_back(option, path);
   }
@@ -178,8 +179,9 @@ MeasurePlan plan_measurement(const MeasureArguments& args) {
     try {
       plan.precision = parse_max_error(args.precision);  // P% here is of USiAD itself
     } catch (const Error&) {
-      throw Error(fmt::format("--precision: expected a length > 0 or a percentage of USiAD in (0%, 100%], found '{}'",
-                              args.precision));
+      throw Error(
+          fmt::format("--precision: expected a length > 0 or a percentage of USiAD in (0%, 100%], found '{}'",
+                      args.precision));
     }
   }
   if (args.gate_on != "estimate" && args.gate_on != "upper") {
@@ -319,14 +321,16 @@ void measure_models(const Model& a, const Model& b, MeasurePlan& plan, MeasureRe
       if (!spec.automatic) break;
       auto& aim = *d.auto_sampling;
       aim.rounds = round;
-      aim.target = plan.precision->percent_of_diagonal ? plan.precision->value / 100 * d.intervals->usiad.estimate
-                                            : plan.precision->value;
+      aim.target = plan.precision->percent_of_diagonal
+                       ? plan.precision->value / 100 * d.intervals->usiad.estimate
+                       : plan.precision->value;
       aim.reached = (d.intervals->usiad.upper - d.intervals->usiad.lower) / 2;
       aim.met = aim.reached <= aim.target;
       if (aim.met || spec.count >= kAutoMaxSamples || round == 5) break;
       // The half-width shrinks as 1 / sqrt(N): the N that reaches the target, with 10% to spare.
       const double ratio = aim.target > 0 ? aim.reached / aim.target : 10.0;
-      spec.count = static_cast<std::size_t>(std::min<double>(kAutoMaxSamples, std::ceil(spec.count * ratio * ratio * 1.1)));
+      spec.count = static_cast<std::size_t>(
+          std::min<double>(kAutoMaxSamples, std::ceil(spec.count * ratio * ratio * 1.1)));
     }
     if (plan.hausdorff_bound && reference->type != ModelType::Points) {
       stage = fmt::format("bounding the Hausdorff distance from {} to {}", reference->path(), test->path());
@@ -340,8 +344,6 @@ void measure_models(const Model& a, const Model& b, MeasurePlan& plan, MeasureRe
             "come from embree, cgal and the GL methods",
             plan.method->name())});
     } else if (plan.options.colour) {
-      if (plan.gl.gpu_cameras && d.result.gl && !d.result.gl->gpu_cameras && &d == &report.directions.front())
-        warn({"colour: the cameras were built on the CPU: --camera-geometry gpu builds no colour yet"});
       stage = "comparing colours";
       d.colour_pairs = colour_pairs(reference_colours(*reference, d.samples), d.samples, test_mesh, d.result,
                                     plan.options.semantics);
@@ -448,7 +450,8 @@ int run_measure(const MeasureArguments& args, std::string& stage) {
         plan.heatmap_of,
         delta_e ? plan.heatmap_delta_e_range.value_or(percentile_99(per_sample, 1)) : d.heatmap_range};
     if (!args.heatmap_path.empty()) {
-      outputs.push_back(std::make_unique<AtomicFile>(heatmap_paths(args.heatmap_path, report.symmetric())[i]));
+      outputs.push_back(
+          std::make_unique<AtomicFile>(heatmap_paths(args.heatmap_path, report.symmetric())[i]));
       write_heatmap_ply(outputs.back()->stream(), surface, layout, d.samples, per_sample, scale);
       outputs.back()->close_stream();
     }
@@ -474,7 +477,8 @@ int run_measure(const MeasureArguments& args, std::string& stage) {
       picture.legend.range = scale.range;
       picture.legend.diagonal = report.diagonal;
       const std::vector<float> values = heatmap_values(surface, layout, d.samples, per_sample);
-      outputs.push_back(std::make_unique<AtomicFile>(heatmap_paths(args.heatmap_png_path, report.symmetric())[i]));
+      outputs.push_back(
+          std::make_unique<AtomicFile>(heatmap_paths(args.heatmap_png_path, report.symmetric())[i]));
       write_picture_png(outputs.back()->stream(), plan.gl.backend,
                         coloured_surface(surface, layout, d.samples, heatmap_colours(values, scale)),
                         picture);
@@ -491,8 +495,9 @@ int run_measure(const MeasureArguments& args, std::string& stage) {
   if (!args.html_path.empty()) {
     stage = "writing the web page";
     outputs.push_back(std::make_unique<AtomicFile>(args.html_path));
-    write_html_page(outputs.back()->stream(),
-                    measurement_page(report, format_header(a, b, report) + format_body(report), to_json(report)));
+    write_html_page(
+        outputs.back()->stream(),
+        measurement_page(report, format_header(a, b, report) + format_body(report), to_json(report)));
     outputs.back()->close_stream();
   }
   for (const auto& output : outputs) output->commit();
@@ -500,7 +505,8 @@ int run_measure(const MeasureArguments& args, std::string& stage) {
 
   const std::vector<MetricValue> values = gate_values(report);
   if (plan.gate_on == GateOn::Estimate) {
-    for (const std::string& line : undecided_gates(plan.gates, values)) std::fprintf(stderr, "roving: note: %s\n", line.c_str());
+    for (const std::string& line : undecided_gates(plan.gates, values))
+      std::fprintf(stderr, "roving: note: %s\n", line.c_str());
   }
   const std::vector<std::string> breached = breached_gates(plan.gates, values, plan.gate_on);
   for (const std::string& line : breached) std::fprintf(stderr, "roving: %s\n", line.c_str());

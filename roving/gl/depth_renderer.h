@@ -103,19 +103,15 @@ class DepthRenderer {
                                   std::vector<float>& depth, std::vector<Colour>& colour) = 0;
   // Draws the uploaded model through `camera` into a resolution x resolution 32-bit float depth
   // buffer and returns it row by row from the bottom (x along `right`); 1 where nothing was drawn.
-  // With `triangles`, also which triangle each pixel shows: 1 + its index in the model, 0 for none.
-  virtual void render_view(const OrthoCamera& camera, int resolution, std::vector<float>& depth,
-                           std::vector<std::uint32_t>* triangles = nullptr) = 0;
+  virtual void render_view(const OrthoCamera& camera, int resolution, std::vector<float>& depth) = 0;
   // The same view, drawing only the triangles whose corners (indices into the uploaded model's
   // vertices, three a triangle) `corners` lists, and only the pixels in `rect`: depth has
   // resolution^2 entries; at the pixels of the `wanted` rectangles (within `rect`) they are what
   // render_view() gives wherever no omitted triangle covers the pixel; elsewhere in `rect` they
-  // are undefined, and outside it left as they were. `triangles` as render_view's, the index
-  // being into the triangles `corners` lists.
+  // are undefined, and outside it left as they were.
   virtual void render_view_part(const OrthoCamera& camera, int resolution, const PixelRect& rect,
                                 const std::vector<PixelRect>& wanted,
-                                const std::vector<std::uint32_t>& corners, std::vector<float>& depth,
-                                std::vector<std::uint32_t>* triangles = nullptr) = 0;
+                                const std::vector<std::uint32_t>& corners, std::vector<float>& depth) = 0;
 
   // Draws `vertices` (triangles, three consecutive vertices each) into a grid of one-pixel tiles,
   // tile k at column k % columns, row k / columns, each clipped to its own view volume, and

@@ -96,14 +96,6 @@ void main() {
 }
 )";
 
-// Which triangle a view's pixel shows: 1 + its index in the draw (0 is the clear: none).
-constexpr const char* kTriangleFragmentShader = R"(#version 450 core
-layout(location = 1) out uint triangle;
-void main() {
-  triangle = uint(gl_PrimitiveID) + 1u;
-}
-)";
-
 // Roving tiles built on the GPU: one invocation per (tile, face) candidate appends what
 // surface_roving.cpp's emit_triangles() and widen_edge() append on the CPU for it (the triangle
 // in the tile camera's normalised frame; per edge, an octagon of radius 1 around its first
@@ -250,17 +242,13 @@ constexpr const char* kDepthOnlyFragmentShader = R"(#version 450 core
 void main() {}
 )";
 
-// The far rectangles also clear a view's triangles, where a view draws them.
+// The far rectangles set depth alone.
 constexpr const char* kFarFragmentShader = R"(#version 450 core
-layout(location = 1) out uint triangle;
-void main() {
-  triangle = 0u;
-}
+void main() {}
 )";
 
-// Where a draw's fragments go: depth always; with colour, attachment 0 (RGBA32F); with
-// triangles, attachment 1 (R32UI).
-enum class Outputs { Depth, Colour, Triangles };
+// Where a draw's fragments go: depth always; with colour, attachment 0 (RGBA32F).
+enum class Outputs { Depth, Colour };
 
 class GlDepthRenderer final : public DepthRenderer {
  public:
@@ -275,8 +263,6 @@ class GlDepthRenderer final : public DepthRenderer {
     gl_.GetIntegerv(GL_MAX_VIEWPORT_DIMS, viewport);
     max_size_ = std::min({renderbuffer, viewport[0], viewport[1]});
     view_program_ = link(kViewVertexShader, "view");
-    view_triangle_program_ =
-        gl::link_program(gl_, info_.backend, "view triangles", kViewVertexShader, kTriangleFragmentShader);
     const std::string tile_source = std::string("#version 450 core\n") + kTileVertexShader;
     const std::string shaded_tile_source =
         std::string("#version 450 core\n#define SHADED\n") + kTileVertexShader;
@@ -354,7 +340,6 @@ class GlDepthRenderer final : public DepthRenderer {
     gl_.DeleteBuffers(kStorageBuffers, tile_face_buffers_);
     if (!textures_.empty()) gl_.DeleteTextures(GLsizei(textures_.size()), textures_.data());
     gl_.DeleteProgram(view_program_);
-    gl_.DeleteProgram(view_triangle_program_);
     gl_.DeleteProgram(tile_shade_program_);
     gl_.DeleteProgram(tile_program_);
     gl_.DeleteProgram(far_program_);
@@ -362,7 +347,6 @@ class GlDepthRenderer final : public DepthRenderer {
     if (framebuffer_) gl_.DeleteFramebuffers(1, &framebuffer_);
     if (depth_buffer_) gl_.DeleteRenderbuffers(1, &depth_buffer_);
     if (colour_buffer_) gl_.DeleteRenderbuffers(1, &colour_buffer_);
-    if (triangle_buffer_) gl_.DeleteRenderbuffers(1, &triangle_buffer_);
   }
 
   RendererInfo info() const override { return info_; }
@@ -517,24 +501,21 @@ class GlDepthRenderer final : public DepthRenderer {
     check("rendering a shaded view");
   }
 
-  void render_view(const OrthoCamera& camera, int resolution, std::vector<float>& depth,
-                   std::vector<std::uint32_t>* triangles) override {
+  void render_view(const OrthoCamera& camera, int resolution, std::vector<float>& depth) override {
     context_->make_current();
     require_view(resolution);
-    const Outputs outputs = triangles ? Outputs::Triangles : Outputs::Depth;
-    bind_framebuffer(resolution, resolution, outputs);
-    use_view_program(camera, outputs);
+    bind_framebuffer(resolution, resolution);
+    use_view_program(camera, view_program_, model_origin_);
     gl_.BindVertexArray(model_vao_);
     gl_.BindBuffer(GL_ELEMENT_ARRAY_BUFFER, model_indices_);
     gl_.DrawElements(GL_TRIANGLES, model_index_count_, GL_UNSIGNED_INT, nullptr);
     read_depth(resolution, resolution, depth);
-    if (triangles) read_triangles({0, 0, resolution, resolution}, resolution, *triangles);
     check("rendering a view");
   }
 
   void render_view_part(const OrthoCamera& camera, int resolution, const PixelRect& rect,
                         const std::vector<PixelRect>& wanted, const std::vector<std::uint32_t>& corners,
-                        std::vector<float>& depth, std::vector<std::uint32_t>* triangles) override {
+                        std::vector<float>& depth) override {
     context_->make_current();
     require_view(resolution);
     const auto inside = [&](const PixelRect& r, const PixelRect& outer) {
@@ -554,17 +535,15 @@ class GlDepthRenderer final : public DepthRenderer {
                               model_vertex_count_));
     }
     depth.resize(static_cast<std::size_t>(resolution) * resolution);
-    if (triangles) triangles->resize(depth.size());
     if (rect.empty()) return;
     // Only the rectangle is drawn and read (the scissor box bounds both), and only the wanted
     // pixels in it are cleared: a scissored clear costs as much as drawing the whole rectangle.
     gl_.Enable(GL_SCISSOR_TEST);
     gl_.Scissor(rect.x0, rect.y0, rect.x1 - rect.x0, rect.y1 - rect.y0);
-    const Outputs outputs = triangles ? Outputs::Triangles : Outputs::Depth;
-    bind_framebuffer(resolution, resolution, outputs, /*clear=*/false);
+    bind_framebuffer(resolution, resolution, Outputs::Depth, /*clear=*/false);
     draw_far(resolution, wanted);
     if (!corners.empty()) {
-      use_view_program(camera, outputs);
+      use_view_program(camera, view_program_, model_origin_);
       gl_.BindVertexArray(model_vao_);
       gl_.BindBuffer(GL_ELEMENT_ARRAY_BUFFER, part_buffer_);
       gl_.BufferData(GL_ELEMENT_ARRAY_BUFFER, corners.size() * sizeof(std::uint32_t), corners.data(),
@@ -577,7 +556,6 @@ class GlDepthRenderer final : public DepthRenderer {
     gl_.ReadPixels(rect.x0, rect.y0, rect.x1 - rect.x0, rect.y1 - rect.y0, GL_DEPTH_COMPONENT, GL_FLOAT,
                    depth.data() + static_cast<std::size_t>(rect.y0) * resolution + rect.x0);
     gl_.PixelStorei(GL_PACK_ROW_LENGTH, 0);
-    if (triangles) read_triangles(rect, resolution, *triangles);
     gl_.Disable(GL_SCISSOR_TEST);
     check("rendering part of a view");
   }
@@ -752,10 +730,6 @@ class GlDepthRenderer final : public DepthRenderer {
     }
   }
 
-  void use_view_program(const OrthoCamera& camera, Outputs outputs) {
-    use_view_program(camera, outputs == Outputs::Triangles ? view_triangle_program_ : view_program_,
-                     model_origin_);
-  }
   // `origin`: what the program's positions are relative to.
   void use_view_program(const OrthoCamera& camera, GLuint program, const Vec3& origin) {
     gl_.UseProgram(program);
@@ -803,7 +777,7 @@ class GlDepthRenderer final : public DepthRenderer {
   }
 
   // A framebuffer of at least width x height (grown, never shrunk): float depth, and once a
-  // draw asks for them a colour and a triangle attachment, the draw buffers set to `outputs`,
+  // draw asks for it a colour attachment, the draw buffer set to `outputs`,
   // the viewport on its used corner, cleared there unless `clear` is false.
   void bind_framebuffer(int width, int height, Outputs outputs = Outputs::Depth, bool clear = true) {
     const bool more_attachments = outputs != Outputs::Depth && !colour_buffer_;
@@ -814,10 +788,7 @@ class GlDepthRenderer final : public DepthRenderer {
       gl_.BindFramebuffer(GL_FRAMEBUFFER, framebuffer_);
       // 32-bit float depth: OSMesa's default framebuffer stays at 24 bits whatever is asked.
       attach(depth_buffer_, GL_DEPTH_COMPONENT32F, GL_DEPTH_ATTACHMENT);
-      if (colour_buffer_ || more_attachments) {
-        attach(colour_buffer_, GL_RGBA32F, GL_COLOR_ATTACHMENT0);
-        attach(triangle_buffer_, GL_R32UI, GL_COLOR_ATTACHMENT1);
-      }
+      if (colour_buffer_ || more_attachments) attach(colour_buffer_, GL_RGBA32F, GL_COLOR_ATTACHMENT0);
       gl_.ReadBuffer(GL_NONE);
       drawn_outputs_.reset();  // set below
       const GLenum status = gl_.CheckFramebufferStatus(GL_FRAMEBUFFER);
@@ -829,10 +800,8 @@ class GlDepthRenderer final : public DepthRenderer {
     }
     gl_.BindFramebuffer(GL_FRAMEBUFFER, framebuffer_);
     if (outputs != drawn_outputs_) {  // only on a change: a depth-only draw pays nothing for colour
-      const GLenum buffers[2] = {
-          outputs == Outputs::Colour ? GLenum(GL_COLOR_ATTACHMENT0) : GLenum(GL_NONE),
-          outputs == Outputs::Triangles ? GLenum(GL_COLOR_ATTACHMENT1) : GLenum(GL_NONE)};
-      gl_.DrawBuffers(colour_buffer_ ? 2 : 1, buffers);
+      const GLenum buffer = outputs == Outputs::Colour ? GLenum(GL_COLOR_ATTACHMENT0) : GLenum(GL_NONE);
+      gl_.DrawBuffers(1, &buffer);
       drawn_outputs_ = outputs;
     }
     gl_.Viewport(0, 0, width, height);
@@ -840,9 +809,7 @@ class GlDepthRenderer final : public DepthRenderer {
     gl_.ClearDepth(1.0);
     gl_.Clear(GL_DEPTH_BUFFER_BIT);
     const float no_colour[4] = {0, 0, 0, 0};
-    const GLuint no_triangle[4] = {0, 0, 0, 0};
     if (outputs == Outputs::Colour) gl_.ClearBufferfv(GL_COLOR, 0, no_colour);
-    if (outputs == Outputs::Triangles) gl_.ClearBufferuiv(GL_COLOR, 1, no_triangle);
   }
 
   // (Re)allocates `buffer` at the framebuffer's size and attaches it.
@@ -871,17 +838,6 @@ class GlDepthRenderer final : public DepthRenderer {
     }
   }
 
-  // The triangle attachment over `rect`, into its place in a resolution^2 image.
-  void read_triangles(const PixelRect& rect, int resolution, std::vector<std::uint32_t>& triangles) const {
-    triangles.resize(static_cast<std::size_t>(resolution) * resolution);
-    gl_.ReadBuffer(GL_COLOR_ATTACHMENT1);
-    gl_.PixelStorei(GL_PACK_ROW_LENGTH, resolution);
-    gl_.ReadPixels(rect.x0, rect.y0, rect.x1 - rect.x0, rect.y1 - rect.y0, GL_RED_INTEGER, GL_UNSIGNED_INT,
-                   triangles.data() + static_cast<std::size_t>(rect.y0) * resolution + rect.x0);
-    gl_.PixelStorei(GL_PACK_ROW_LENGTH, 0);
-    gl_.ReadBuffer(GL_NONE);
-  }
-
   void read_depth(int width, int height, std::vector<float>& depth) const {
     depth.resize(static_cast<std::size_t>(width) * height);
     gl_.ReadPixels(0, 0, width, height, GL_DEPTH_COMPONENT, GL_FLOAT, depth.data());
@@ -891,13 +847,12 @@ class GlDepthRenderer final : public DepthRenderer {
   gl::Api gl_;
   RendererInfo info_;
   int max_size_ = 0;
-  GLuint view_program_ = 0, view_triangle_program_ = 0, tile_program_ = 0, tile_shade_program_ = 0,
-         far_program_ = 0;
+  GLuint view_program_ = 0, tile_program_ = 0, tile_shade_program_ = 0, far_program_ = 0;
   GLuint tile_shade_vao_ = 0, tile_shades_ = 0;
   GLuint shaded_view_program_ = 0, shaded_model_vao_ = 0, shaded_model_ = 0;
   std::vector<MaterialRun> shaded_runs_;  // the shaded model's corners, material by material
   Vec3 shaded_origin_ = Vec3::Zero();
-  std::vector<GLuint> textures_;  // one per material (upload_materials())
+  std::vector<GLuint> textures_;     // one per material (upload_materials())
   mutable std::vector<float> rgba_;  // read_colour()'s read-back
   GLuint model_vao_ = 0, tile_vao_ = 0, model_vertices_ = 0, model_indices_ = 0, tile_vertices_ = 0;
   GLuint far_vao_ = 0, far_vertices_ = 0;
@@ -908,7 +863,7 @@ class GlDepthRenderer final : public DepthRenderer {
   std::size_t model_vertex_count_ = 0;
   GLuint part_buffer_ = 0;
   Vec3 model_origin_ = Vec3::Zero();
-  GLuint framebuffer_ = 0, depth_buffer_ = 0, colour_buffer_ = 0, triangle_buffer_ = 0;
+  GLuint framebuffer_ = 0, depth_buffer_ = 0, colour_buffer_ = 0;
   std::optional<Outputs> drawn_outputs_;  // what the framebuffer's draw buffers are set to
   int fb_width_ = 0, fb_height_ = 0;
 };

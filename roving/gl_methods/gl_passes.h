@@ -72,10 +72,9 @@ struct CameraCost {
 using LastBatch = std::function<bool(std::size_t done, const CameraCost& cost)>;
 
 // Surface roving for samples[indices[i]]: found(k, d) for each k of `indices` whose camera sees
-// M_C, and with `coloured` its colour there, from the camera's pixel of the frame buffer (the
-// cameras are then built on the CPU). Fills the report's camera fields; tells `progress` of each
-// batch of cameras. Returns how many of `indices` it did: all, unless `last_batch` stopped it
-// early (at a batch boundary).
+// M_C, and with `coloured` its colour there (hit_colour.h), batch by batch. Fills the report's camera fields;
+// tells `progress` of each batch of cameras. Returns how many of `indices` it did: all, unless `last_batch`
+// stopped it early (at a batch boundary).
 std::size_t rove(GlScene& scene, const SampleSet& samples, const std::vector<std::uint32_t>& indices,
                  double max_error, GlReport& report, const ProgressFn& progress, const Found& found,
                  const Coloured& coloured = {}, const LastBatch& last_batch = {});
@@ -106,7 +105,7 @@ class ViewBudget {
 // Viewpoint sampling of samples[candidates]: found(k, d) where a view accepted sample k, from
 // several threads at once (for different k). Views go in decreasing number of samples; with a
 // `budget`, the first view not worth drawing ends them (the rest have fewer samples still).
-// With `coloured`, each accepted sample's colour, once the views are done (view_colour.h).
+// With `coloured`, each accepted sample's colour, once the views are done (hit_colour.h).
 // Fills the report's view fields; tells `progress` of each view.
 void view_sample(GlScene& scene, const SampleSet& samples, const std::vector<std::uint32_t>& candidates,
                  double max_error, const GlMethodOptions& options, GlReport& report,

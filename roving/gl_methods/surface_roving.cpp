@@ -6,8 +6,10 @@
 #include <cmath>
 
 #include "gl_passes.h"
+#include "hit_colour.h"
 #include "roving/core/normal_line.h"
 #include "roving/core/stopwatch.h"
+#include "roving/gl_methods/agreement.h"
 #include "roving/gl_methods/gl_methods.h"
 
 namespace roving {
@@ -29,9 +31,9 @@ void widen_edge(const Vec3& p, const Vec3& q, const Emit& emit) {
       ring[i] = Vec3(p.x() + std::cos(angle), p.y() + std::sin(angle), p.z());
     }
     for (int i = 1; i + 1 < kSides; ++i) {
-      emit(ring[0], 0.0);
-      emit(ring[i], 0.0);
-      emit(ring[i + 1], 0.0);
+      emit(ring[0]);
+      emit(ring[i]);
+      emit(ring[i + 1]);
     }
   }
   // Liang-Barsky: the part of p-q inside the window.
@@ -56,11 +58,10 @@ void widen_edge(const Vec3& p, const Vec3& q, const Emit& emit) {
   const Vec3 start = p + enter * delta, end = p + leave * delta;
   const double dx = end.x() - start.x(), dy = end.y() - start.y();
   const double length = std::sqrt(dx * dx + dy * dy);  // not hypot: GLSL has only sqrt
-  if (!(length > 1e-9)) return;  // seen end-on: the octagons at its ends cover it
+  if (!(length > 1e-9)) return;                        // seen end-on: the octagons at its ends cover it
   const Vec3 across((start.y() - end.y()) / length, (end.x() - start.x()) / length, 0);
   const Vec3 corners[4] = {start + across, end + across, end - across, start - across};
-  const double along[4] = {enter, leave, leave, enter};
-  for (const int i : {0, 1, 2, 0, 2, 3}) emit(corners[i], along[i]);
+  for (const int i : {0, 1, 2, 0, 2, 3}) emit(corners[i]);
 }
 
 // Tiles per draw: 64 x 64, small enough that the next batch is built while one is drawn, large
@@ -92,13 +93,10 @@ void for_each_candidate(const TriangleMesh& test, const TriangleGrid& grid, cons
   });
 }
 
-// One batch of cameras, as the renderer takes it: built on the CPU, the tiles' vertices, with
-// their shades when colour is drawn, all of one material (`runs` joins the materials' batches);
-// built on the GPU, each tile's camera and its candidate triangles.
+// One batch of cameras, as the renderer takes it: built on the CPU, the tiles' vertices; built
+// on the GPU, each tile's camera and its candidate triangles.
 struct TileBatch {
   std::vector<TileVertex> vertices;
-  std::vector<TileShade> shades;
-  std::vector<MaterialRun> runs;
   std::vector<OrthoCamera> cameras;
   std::vector<TileFace> faces;
 };
@@ -109,12 +107,9 @@ struct TileBatch {
 // pass within the pixel are widened into thin strips and small octagons one half-width across
 // (built in double, here), so that the rasteriser covers the pixel centre wherever the central
 // ray passes through the closed triangle or within the tolerance of it, whatever its fill rule
-// decides on an edge. batch_of(material) is where a triangle of that material goes; with
-// `shaded`, each vertex gets its shade, interpolated along the edge it widens.
-template <class BatchOf>
+// decides on an edge.
 void emit_triangles(const GlScene& scene, const OrthoCamera& camera, std::uint32_t tile,
-                    std::vector<std::uint32_t>& stamp, std::uint32_t mark, bool shaded,
-                    const BatchOf& batch_of) {
+                    std::vector<std::uint32_t>& stamp, std::uint32_t mark, TileBatch& out) {
   const TriangleMesh& test = *scene.test;
   for_each_candidate(test, *scene.grid, camera, stamp, mark, [&](std::uint32_t face) {
     const Triangle& t = test.triangles()[face];
@@ -127,20 +122,11 @@ void emit_triangles(const GlScene& scene, const OrthoCamera& camera, std::uint32
         return;
       }
     }
-    TileBatch& out = batch_of(shaded ? scene.shades.material_of(face) : 0);
-    const TileShade* corner = shaded ? &scene.shades.corners[3 * face] : nullptr;
-    const auto emit = [&](const Vec3& p, int edge, double along) {
+    const auto emit = [&](const Vec3& p) {
       out.vertices.push_back({float(p.x()), float(p.y()), float(p.z()), tile});
-      if (!corner) return;
-      const TileShade& a = corner[edge];
-      const TileShade& b = corner[(edge + 1) % 3];
-      const auto mix = [&](float x, float y) { return float(x + along * (double(y) - x)); };
-      out.shades.push_back({mix(a.r, b.r), mix(a.g, b.g), mix(a.b, b.b), mix(a.u, b.u), mix(a.v, b.v)});
     };
-    for (int c = 0; c < 3; ++c) emit(q[c], c, 0.0);
-    for (int e = 0; e < 3; ++e) {
-      widen_edge(q[e], q[(e + 1) % 3], [&](const Vec3& p, double along) { emit(p, e, along); });
-    }
+    for (int c = 0; c < 3; ++c) emit(q[c]);
+    for (int e = 0; e < 3; ++e) widen_edge(q[e], q[(e + 1) % 3], emit);
   });
 }
 
@@ -177,17 +163,14 @@ std::size_t rove(GlScene& scene, const SampleSet& samples, const std::vector<std
   report.camera_depth_step = 2 * half_depth * std::ldexp(1.0, -24);
 
   // The batch `first` .. first + kTilesPerBatch of `indices`, tile by tile: chunks of tiles in
-  // parallel, each with a batch per material, then joined in order, material by material.
-  // Colour is drawn by tiles built on the CPU (the compute stage builds no shades).
-  const bool shaded = static_cast<bool>(coloured);
-  const bool on_gpu = scene.gpu_cameras && !shaded;
+  // parallel, then joined in order.
+  const bool on_gpu = scene.gpu_cameras;
   report.gpu_cameras = on_gpu;
-  const std::uint32_t materials = shaded ? static_cast<std::uint32_t>(scene.shades.materials.size()) : 1;
   const auto emit_batch = [&](std::size_t first, TileBatch& batch) {
     const Stopwatch building;
     const std::size_t count = std::min(kTilesPerBatch, indices.size() - first);
     const std::size_t chunks = (count + kSamplesPerChunk - 1) / kSamplesPerChunk;
-    std::vector<TileBatch> chunk_batches(chunks * materials);  // [material * chunks + chunk]
+    std::vector<TileBatch> chunk_batches(chunks);
     batch.cameras.resize(on_gpu ? count : 0);
     tbb::parallel_for(
         tbb::blocked_range<std::size_t>(0, chunks), [&](const tbb::blocked_range<std::size_t>& range) {
@@ -210,9 +193,7 @@ std::size_t rove(GlScene& scene, const SampleSet& samples, const std::vector<std
                   chunk_batches[chunk].faces.push_back({t, face});
                 });
               } else {
-                emit_triangles(scene, camera, t, stamp, mark, shaded, [&](std::uint32_t m) -> TileBatch& {
-                  return chunk_batches[m * chunks + chunk];
-                });
+                emit_triangles(scene, camera, t, stamp, mark, chunk_batches[chunk]);
               }
             }
           }
@@ -226,15 +207,7 @@ std::size_t rove(GlScene& scene, const SampleSet& samples, const std::vector<std
       for (const TileBatch& c : chunk_batches) all.insert(all.end(), (c.*member).begin(), (c.*member).end());
     };
     join(&TileBatch::vertices);
-    join(&TileBatch::shades);
     join(&TileBatch::faces);
-    batch.runs.clear();
-    for (std::uint32_t m = 0; m < materials; ++m) {
-      std::size_t vertices = 0;
-      for (std::size_t chunk = 0; chunk < chunks; ++chunk)
-        vertices += chunk_batches[m * chunks + chunk].vertices.size();
-      if (vertices > 0) batch.runs.push_back({m, vertices});
-    }
     report.camera_build_seconds += building.seconds();
   };
 
@@ -242,7 +215,9 @@ std::size_t rove(GlScene& scene, const SampleSet& samples, const std::vector<std
   // build the next one.
   TileBatch batch[2];
   std::vector<float> depth;
-  std::vector<Colour> colour;
+  std::vector<std::pair<std::uint32_t, double>> resolved;  // a batch's hits (k, d), for colour
+  std::vector<SampleHit> hits;
+  const double window = roving_tolerance(report);  // the cameras' bound on their d
   CameraCost cost;
   std::size_t end = indices.size();  // where last_batch stops it
   if (!indices.empty()) emit_batch(0, batch[0]);
@@ -260,22 +235,37 @@ std::size_t rove(GlScene& scene, const SampleSet& samples, const std::vector<std
           const TileBatch& drawn = batch[b % 2];
           if (on_gpu) {
             scene.renderer->render_tile_faces(drawn.cameras, drawn.faces, depth);
-          } else if (shaded) {
-            scene.renderer->render_coloured_tiles(drawn.vertices, drawn.shades, drawn.runs, count, depth,
-                                                  colour);
           } else {
             scene.renderer->render_tiles(drawn.vertices, count, depth);
           }
           draw_seconds = draw.seconds();
           report.camera_render_seconds += draw_seconds;
         });
+    resolved.clear();
     for (std::size_t tile = 0; tile < count; ++tile) {
       // Depth z is t / 2h along the ray from x + h n; d = h - t. 1 is the cleared, empty tile.
       if (depth[tile] < 1.0f) {
-        found(indices[first + tile],
-              std::clamp(half_depth - double(depth[tile]) * 2 * half_depth, -max_error, max_error));
-        if (shaded) coloured(indices[first + tile], colour[tile]);
+        const double d = std::clamp(half_depth - double(depth[tile]) * 2 * half_depth, -max_error, max_error);
+        found(indices[first + tile], d);
+        if (coloured) resolved.emplace_back(indices[first + tile], d);
       }
+    }
+    if (coloured) {
+      // Which face each hit's colour comes from, by the exact rule near the cameras' d, then
+      // shaded there (hit_colour.h): a tile's own fragment may be any face meeting at the point.
+      const Stopwatch choosing;
+      hits.resize(resolved.size());
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, resolved.size(), 256),
+                        [&](const tbb::blocked_range<std::size_t>& range) {
+                          for (std::size_t i = range.begin(); i != range.end(); ++i) {
+                            hits[i] = hit_face(scene, samples, resolved[i].first, resolved[i].second,
+                                               max_error, window);
+                          }
+                        });
+      report.camera_build_seconds += choosing.seconds();
+      const Stopwatch shading;
+      shade_hits(scene, hits, coloured);
+      report.camera_render_seconds += shading.seconds();
     }
     report.sample_cameras += count;
     if (b == 0) {

@@ -44,13 +44,11 @@ TriangleClusters::TriangleClusters(const TriangleMesh& mesh)
                     });
   tbb::parallel_sort(keyed.begin(), keyed.end());
   corners_.resize(3 * keyed.size());
-  faces_.resize(keyed.size());
   boxes_.resize(keyed.size());
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, keyed.size(), 4096),
                     [&](const tbb::blocked_range<std::size_t>& range) {
                       for (std::size_t i = range.begin(); i != range.end(); ++i) {
                         const Triangle& corners = triangles[keyed[i].second];
-                        faces_[i] = keyed[i].second;
                         BoundingBox bounds;
                         for (int k = 0; k < 3; ++k) {
                           corners_[3 * i + k] = static_cast<std::uint32_t>(corners[k]);

@@ -34,8 +34,6 @@ class TriangleClusters {
   std::size_t size(std::size_t c) const { return std::min(kSize, boxes_.size() - c * kSize); }
   // The corners (vertex indices, three a triangle) of cluster c's triangles.
   const std::uint32_t* corners(std::size_t c) const { return corners_.data() + 3 * c * kSize; }
-  // The mesh's indices of cluster c's triangles, in the same order.
-  const std::uint32_t* faces(std::size_t c) const { return faces_.data() + c * kSize; }
   // The boxes of cluster c's triangles, in the same order.
   const Box* boxes(std::size_t c) const { return boxes_.data() + c * kSize; }
   // A box holding every vertex of cluster c's triangles.
@@ -45,7 +43,6 @@ class TriangleClusters {
   Vec3 origin_;
   const std::vector<Vec3>* positions_;
   std::vector<std::uint32_t> corners_;  // cluster by cluster
-  std::vector<std::uint32_t> faces_;    // one per triangle of corners_
   std::vector<Box> boxes_;              // one per triangle of corners_
   std::vector<Box> cluster_boxes_;
 };

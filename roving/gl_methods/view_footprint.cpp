@@ -141,9 +141,7 @@ bool ViewFootprint::any_marked(int i0, int j0, int i1, int j1) const {
   return i0 <= i1 && j0 <= j1 && coarse_.any(i0, j0, i1, j1) && fine_.any(i0, j0, i1, j1);
 }
 
-std::vector<std::uint32_t> ViewFootprint::corners_reaching(const TriangleClusters& clusters,
-                                                           std::vector<std::uint32_t>* faces) const {
-  if (faces) faces->clear();
+std::vector<std::uint32_t> ViewFootprint::corners_reaching(const TriangleClusters& clusters) const {
   if (rect_.empty()) return {};
   // Box centre (relative to the clusters' origin) -> pixel coordinates, the camera's map folded
   // into one affine map, and how far a box's projection reaches per unit of its half-size. Float
@@ -202,7 +200,6 @@ std::vector<std::uint32_t> ViewFootprint::corners_reaching(const TriangleCluster
   // triangle by triangle. Blocks of clusters keep their triangles in cluster order.
   constexpr std::size_t kBlock = 64;
   std::vector<std::vector<std::uint32_t>> kept((clusters.count() + kBlock - 1) / kBlock);
-  std::vector<std::vector<std::uint32_t>> kept_faces(faces ? kept.size() : 0);
   tbb::parallel_for(
       tbb::blocked_range<std::size_t>(0, kept.size()), [&](const tbb::blocked_range<std::size_t>& range) {
         for (std::size_t block = range.begin(); block != range.end(); ++block) {
@@ -212,7 +209,6 @@ std::vector<std::uint32_t> ViewFootprint::corners_reaching(const TriangleCluster
               const std::uint32_t* corners = clusters.corners(c) + 3 * t;
               if (!reaches(clusters.boxes(c)[t]) || !covers_read_pixel(corners)) continue;
               kept[block].insert(kept[block].end(), corners, corners + 3);
-              if (faces) kept_faces[block].push_back(clusters.faces(c)[t]);
             }
           }
         }
@@ -222,10 +218,6 @@ std::vector<std::uint32_t> ViewFootprint::corners_reaching(const TriangleCluster
   for (const auto& block : kept) total += block.size();
   all.reserve(total);
   for (const auto& block : kept) all.insert(all.end(), block.begin(), block.end());
-  if (faces) {
-    faces->reserve(total / 3);
-    for (const auto& block : kept_faces) faces->insert(faces->end(), block.begin(), block.end());
-  }
   return all;
 }
 

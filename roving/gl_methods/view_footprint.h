@@ -32,9 +32,8 @@ class ViewFootprint {
 
   // The corners (three a triangle) of the triangles of the mesh `clusters` were made from that
   // can cover a pixel some sample reads (its centre within a quarter pixel of the projected
-  // triangle): the only ones that can set its depth. With `faces`, also their indices in the mesh.
-  std::vector<std::uint32_t> corners_reaching(const TriangleClusters& clusters,
-                                              std::vector<std::uint32_t>* faces = nullptr) const;
+  // triangle): the only ones that can set its depth.
+  std::vector<std::uint32_t> corners_reaching(const TriangleClusters& clusters) const;
 
  private:
   // One bit per square of 2^shift x 2^shift pixels, row by row. Pixel ranges are inclusive,

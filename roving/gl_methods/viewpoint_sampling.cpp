@@ -11,11 +11,12 @@
 #include <numeric>
 
 #include "gl_passes.h"
+#include "hit_colour.h"
 #include "roving/core/error.h"
 #include "roving/core/stopwatch.h"
+#include "roving/gl_methods/agreement.h"
 #include "roving/gl_methods/gl_methods.h"
 #include "roving/gl_methods/view_footprint.h"
-#include "view_colour.h"
 
 namespace roving {
 namespace {
@@ -266,18 +267,16 @@ void view_sample(GlScene& scene, const SampleSet& samples, const std::vector<std
       std::count_if(groups.begin(), groups.end(), [](const auto& g) { return !g.empty(); });
   // A view to draw: its camera (looking against the direction, at the surfaces facing it) and,
   // when culled, the pixels read and the triangles that can cover them.
-  // With colour, also which triangle each pixel shows, and which of M_C's each drawn one is.
   struct View {
     std::uint32_t direction = 0;
     OrthoCamera camera;
     PixelRect rect;
     std::vector<PixelRect> wanted;
-    std::vector<std::uint32_t> corners, faces;
+    std::vector<std::uint32_t> corners;
     std::vector<float> depth;
-    std::vector<std::uint32_t> triangles;
   };
   const bool colour = static_cast<bool>(coloured);
-  std::vector<ViewHit> hits;  // the accepted samples, to be shaded once the views are done
+  std::vector<SampleHit> hits;  // the accepted samples, to be shaded once the views are done
   std::mutex hits_mutex;
   if (options.cull_views && !scene.clusters) scene.clusters = std::make_unique<TriangleClusters>(*scene.test);
   const auto prepare = [&](View& view, std::uint32_t d) {
@@ -288,14 +287,14 @@ void view_sample(GlScene& scene, const SampleSet& samples, const std::vector<std
                                   options.normal_line ? max_error : 0.0);
     view.rect = footprint.rect();
     view.wanted = footprint.read_squares();
-    view.corners = footprint.corners_reaching(*scene.clusters, colour ? &view.faces : nullptr);
+    view.corners = footprint.corners_reaching(*scene.clusters);
   };
   const auto draw = [&](View& view) {
     if (options.cull_views) {
       scene.renderer->render_view_part(view.camera, resolution, view.rect, view.wanted, view.corners,
-                                       view.depth, colour ? &view.triangles : nullptr);
+                                       view.depth);
     } else {
-      scene.renderer->render_view(view.camera, resolution, view.depth, colour ? &view.triangles : nullptr);
+      scene.renderer->render_view(view.camera, resolution, view.depth);
     }
   };
   // The samples of a drawn view: found(k, d) for each it accepts; returns how many.
@@ -307,11 +306,11 @@ void view_sample(GlScene& scene, const SampleSet& samples, const std::vector<std
       found(k, d);
       ++resolved;
       if (!colour) return;
-      const Vec3 point = samples.positions[k] + d * samples.normals[k];
-      const std::uint32_t face =
-          face_under(*scene.test, camera, resolution, view.triangles, view.faces, point);
+      // The view's d is good to its tolerance at the sample's angle to the view.
+      const double alpha = std::acos(std::clamp(-camera.forward.dot(samples.normals[k]), -1.0, 1.0));
+      const SampleHit hit = hit_face(scene, samples, k, d, max_error, view_tolerance(report, alpha, d));
       const std::lock_guard<std::mutex> lock(hits_mutex);
-      hits.push_back({k, face, point});
+      hits.push_back(hit);
     };
     if (options.normal_line) {
       const ViewLine line(camera, view.depth, resolution, smooth_span, 2 * radius, report.view_pixel_size,
@@ -385,7 +384,7 @@ void view_sample(GlScene& scene, const SampleSet& samples, const std::vector<std
     report.view_cpu_seconds += cpu.seconds();
     if (budget) budget->record_read(groups[order[drawn - 1]].size(), resolved);
   }
-  if (colour) shade_view_hits(scene, hits, coloured);
+  if (colour) shade_hits(scene, hits, coloured);
 }
 
 namespace {

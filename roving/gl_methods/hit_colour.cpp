@@ -1,44 +1,46 @@
-// TEST's colour at viewpoint-sampling samples: the triangle under the crossing from the view's
-// triangle image, then deferred shading as one-pixel tiles.
-#include "view_colour.h"
+// TEST's colour at the samples a GL pass resolved: the face by the exact rule near the pass's d,
+// then deferred shading as one-pixel tiles.
+#include "hit_colour.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
 #include "roving/core/geometry.h"
+#include "roving/core/normal_line.h"
 
 namespace roving {
 
-std::uint32_t face_under(const TriangleMesh& test, const OrthoCamera& camera, int resolution,
-                         const std::vector<std::uint32_t>& triangles, const std::vector<std::uint32_t>& faces,
-                         const Vec3& point) {
-  const Vec3 q = camera.to_normalised(point);
-  const Vec3 at(q.x(), q.y(), 0);
-  const double u = (0.5 * q.x() + 0.5) * resolution - 0.5, v = (0.5 * q.y() + 0.5) * resolution - 0.5;
-  const int i0 = static_cast<int>(std::floor(u)), j0 = static_cast<int>(std::floor(v));
-  std::uint32_t best = std::numeric_limits<std::uint32_t>::max();
-  double best_distance = std::numeric_limits<double>::infinity();
-  for (int j = std::max(j0, 0); j <= std::min(j0 + 1, resolution - 1); ++j) {
-    for (int i = std::max(i0, 0); i <= std::min(i0 + 1, resolution - 1); ++i) {
-      const std::uint32_t shown = triangles[static_cast<std::size_t>(j) * resolution + i];
-      if (shown == 0) continue;
-      const std::uint32_t face = faces.empty() ? shown - 1 : faces[shown - 1];
-      Vec3 corner[3];
-      for (int c = 0; c < 3; ++c) {
-        const Vec3 p = camera.to_normalised(test.positions()[test.triangles()[face][c]]);
-        corner[c] = Vec3(p.x(), p.y(), 0);
-      }
-      const double distance = (closest_on_triangle(at, corner[0], corner[1], corner[2]).point - at).norm();
-      if (distance < best_distance || (distance == best_distance && face < best)) {
-        best = face, best_distance = distance;
-      }
+SampleHit hit_face(const GlScene& scene, const SampleSet& samples, std::uint32_t k, double d,
+                   double max_error, double window) {
+  const TriangleMesh& test = *scene.test;
+  const double tolerance = kNormalLineTolerance * test.bounding_box().diagonal();
+  const Vec3& x = samples.positions[k];
+  const Vec3& n = samples.normals[k];
+  const NormalLine line(x, n, max_error, tolerance);
+  CrossingChoice choice(Semantics::FirstHit, max_error);
+  const Vec3 at = x + d * n;
+  std::uint32_t nearest = 0;
+  double nearest_distance = std::numeric_limits<double>::infinity();
+  const double reach = window + tolerance;
+  scene.grid->for_each_along(x + (d - reach) * n, x + (d + reach) * n, [&](std::uint32_t face) {
+    const Triangle& t = test.triangles()[face];
+    const Vec3& a = test.positions()[t[0]];
+    const Vec3& b = test.positions()[t[1]];
+    const Vec3& c = test.positions()[t[2]];
+    const auto crossing = line.crossing(a, b, c);
+    if (crossing && crossing->high >= d - window && crossing->low <= d + window)
+      choice.consider(*crossing, face);
+    const double distance = (closest_on_triangle(at, a, b, c).point - at).norm();
+    if (distance < nearest_distance || (distance == nearest_distance && face < nearest)) {
+      nearest = face, nearest_distance = distance;
     }
-  }
-  return best;
+  });
+  if (const auto chosen = choice.chosen_hit()) return {k, chosen->face, x + chosen->distance * n};
+  return {k, nearest, at};
 }
 
-void shade_view_hits(GlScene& scene, const std::vector<ViewHit>& hits, const Coloured& coloured) {
+void shade_hits(GlScene& scene, const std::vector<SampleHit>& hits, const Coloured& coloured) {
   // Each hit a tile covered by one quad of its shade, at the tile's middle depth; batches of
   // tiles in runs of one material, as the cameras draw them.
   constexpr std::size_t kTilesPerBatch = 64 * 64;
@@ -56,7 +58,7 @@ void shade_view_hits(GlScene& scene, const std::vector<ViewHit>& hits, const Col
     const std::size_t count = std::min(kTilesPerBatch, order.size() - first);
     vertices.clear(), shades.clear(), runs.clear();
     for (std::size_t tile = 0; tile < count; ++tile) {
-      const ViewHit& hit = hits[order[first + tile]];
+      const SampleHit& hit = hits[order[first + tile]];
       const std::uint32_t material = scene.shades.material_of(hit.face);
       if (runs.empty() || runs.back().material != material) runs.push_back({material, 0});
       runs.back().vertex_count += 6;
