@@ -1,7 +1,11 @@
-// The `roving` Python module: the library's measurement from file paths or NumPy arrays. It calls
-// the same code as `roving measure` (no second implementation): the statistics come back as a
-// dict, the per-sample distances and hit flags as NumPy arrays that own the library's buffers
-// (no copy), and the library's errors as roving.Error with the same messages.
+// The `roving` Python module: `roving measure` and `roving batch` as functions. Keyword arguments
+// are the command's options (--max-error is max_error) and are parsed by the command line's own
+// declarations (roving/cli/command_line.h), so names, defaults, checks and messages are the
+// tool's; the measurement runs the tool's code and the result is its JSON report as a dict, the
+// same numbers bit for bit, with the per-sample columns of --samples-out as NumPy arrays that own
+// the library's buffers (no copy). Models come as paths or as what Python code already holds:
+// NumPy vertex and face arrays, objects with `vertices` and `faces` (or `triangles`), Open3D's
+// TriangleMesh and PointCloud.
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -9,8 +13,12 @@
 #include <cmath>
 #include <string>
 
+#include "roving/cli/batch.h"
+#include "roving/cli/command_line.h"
+#include "roving/cli/measure.h"
+#include "roving/core/colour_statistics.h"
 #include "roving/core/error.h"
-#include "roving/core/statistics.h"
+#include "roving/formats/file_bytes.h"
 #include "roving/registry/method_registry.h"
 #include "roving/representations/model.h"
 
@@ -19,200 +27,318 @@ using namespace roving;
 
 namespace {
 
-// A NumPy array that takes over `values` (moved to the heap, freed with the array).
-template <class T>
-py::array_t<T> adopt(std::vector<T>&& values) {
+// A NumPy array of `shape` over the data of `values`, which it takes over (moved to the heap,
+// freed with the array).
+template <class Scalar, class T>
+py::array adopt(std::vector<T>&& values, std::vector<py::ssize_t> shape) {
   auto* owned = new std::vector<T>(std::move(values));
   py::capsule free_when_done(owned, [](void* p) { delete static_cast<std::vector<T>*>(p); });
-  return py::array_t<T>({owned->size()}, {sizeof(T)}, owned->data(), free_when_done);
+  std::vector<py::ssize_t> strides(shape.size(), sizeof(Scalar));
+  for (std::size_t i = shape.size() - 1; i > 0; --i) strides[i - 1] = strides[i] * shape[i];
+  return py::array_t<Scalar>(shape, strides, reinterpret_cast<const Scalar*>(owned->data()), free_when_done);
 }
 
-py::dict statistics_dict(const Statistics& s) {
-  py::dict d;
-  d["siad"] = s.siad, d["usiad"] = s.usiad, d["std_signed"] = s.std_signed, d["std_unsigned"] = s.std_unsigned;
-  d["rms"] = s.rms, d["min_signed"] = s.min_signed, d["max_signed"] = s.max_signed, d["max_abs"] = s.max_abs;
-  d["p50"] = s.p50, d["p90"] = s.p90, d["p95"] = s.p95, d["p99"] = s.p99;
-  d["siad_area"] = s.siad_area, d["usiad_area"] = s.usiad_area, d["rms_area"] = s.rms_area;
-  d["siad_hits"] = s.siad_hits, d["usiad_hits"] = s.usiad_hits;
-  return d;
+// --option-name for the keyword option_name.
+std::string option_of(const std::string& keyword) {
+  std::string option = "--" + keyword;
+  for (char& c : option) c = c == '_' ? '-' : c;
+  return option;
 }
 
-struct Options {
-  std::string method, semantics, views, backend;
-  int resolution;
-  std::string max_error;
-  std::size_t histogram_bins = 64;
-};
-
-// Measures `samples` of a reference of diagonal `diagonal` against `test`, the GIL released.
-py::dict measure_samples(const TriangleMesh& test, SampleSet samples, double diagonal, const Options& o) {
-  GlMethodOptions gl;
-  parse_views(o.views, gl);
-  gl.backend = parse_gl_backend(o.backend);
-  gl.resolution = o.resolution;
-  const auto method = make_method(o.method, gl);
-  DistanceOptions options;
-  options.semantics = o.semantics.empty() ? method->supported_semantics().front() : parse_semantics(o.semantics);
-  options.max_error = parse_max_error(o.max_error).resolve(diagonal);
-  DistanceResult result;
-  Statistics statistics;
-  {
-    py::gil_scoped_release release;
-    result = measure_distances(*method, test, samples, options);
-    statistics = compute_statistics(result.signed_distance, result.hit, samples.weights, options.max_error,
-                                    o.histogram_bins);
+// The keyword arguments as command-line arguments of `subcommand`: True a flag (False leaves it
+// off), None left out, a list or tuple the option repeated, anything else its str(). A keyword
+// that names no option of the command is an error naming the nearest one.
+std::vector<std::string> arguments_of(const CLI::App& subcommand, const py::kwargs& options,
+                                      const std::string& function) {
+  std::vector<std::string> keywords;
+  for (const CLI::Option* option : subcommand.get_options()) {
+    for (const std::string& name : option->get_lnames()) {
+      std::string keyword = name;
+      for (char& c : keyword) c = c == '-' ? '_' : c;
+      if (keyword != "help") keywords.push_back(keyword);
+    }
   }
-  py::dict out;
-  out["method"] = method->name();
-  out["semantics"] = to_string(options.semantics);
-  out["max_error"] = options.max_error;
-  out["diagonal"] = diagonal;
-  out["samples"] = samples.size();
-  out["hits"] = statistics.hit_count;
-  out["no_hits"] = statistics.no_hit_count;
-  out["statistics"] = statistics_dict(statistics);
-  out["seconds"] = py::dict(py::arg("build") = result.build_seconds, py::arg("query") = result.query_seconds);
-  if (result.gl) {
-    out["observations"] = result.gl->observations();
-    out["views_rendered"] = result.gl->views_rendered;
-    out["sample_cameras"] = result.gl->sample_cameras;
+  std::vector<std::string> arguments;
+  for (const auto& [key, value] : options) {
+    const std::string keyword = py::str(key);
+    if (std::find(keywords.begin(), keywords.end(), keyword) == keywords.end()) {
+      const std::string nearest = nearest_name(keyword, keywords);
+      throw Error(function + ": unknown argument '" + keyword + "'" +
+                  (nearest.empty() ? "" : " (did you mean '" + nearest + "'?)"));
+    }
+    if (value.is_none()) continue;
+    if (py::isinstance<py::bool_>(value)) {
+      if (value.cast<bool>()) arguments.push_back(option_of(keyword));
+      continue;
+    }
+    if (py::isinstance<py::list>(value) || py::isinstance<py::tuple>(value)) {
+      for (const py::handle item : value)
+        arguments.insert(arguments.end(), {option_of(keyword), py::str(item)});
+      continue;
+    }
+    arguments.insert(arguments.end(), {option_of(keyword), py::str(value)});
   }
-  // d of a no-hit is meaningless: 0 in the buffer, told apart by `hit`.
-  out["distance"] = adopt(std::move(result.signed_distance));
-  out["hit"] = adopt(std::move(result.hit)).attr("view")("bool");  // 0/1 bytes read as bool: no copy
-  out["positions"] = py::array_t<double>({samples.size(), std::size_t{3}},
-                                         reinterpret_cast<const double*>(samples.positions.data()));
-  return out;
+  return arguments;
 }
 
-// An N x 3 array of `what` (float64 or int64 after NumPy's conversion), checked.
+// An N x columns array of `what` (float64 or int64 after NumPy's conversion), checked.
 template <class T>
-py::array_t<T, py::array::c_style | py::array::forcecast> rows_of_three(const py::handle& array, const char* what) {
+py::array_t<T, py::array::c_style | py::array::forcecast> rows_of(const py::handle& array,
+                                                                  const std::string& what,
+                                                                  py::ssize_t columns = 3) {
   auto a = py::array_t<T, py::array::c_style | py::array::forcecast>::ensure(array);
-  if (!a || a.ndim() != 2 || a.shape(1) != 3) {
-    throw Error(std::string(what) + ": expected an N x 3 array, found " +
-                (a ? std::to_string(a.ndim()) + " dimensions" : std::string("something that is not an array")));
+  if (!a || a.ndim() != 2 || a.shape(1) != columns) {
+    throw Error(what + ": expected an N x " + std::to_string(columns) + " array, found " +
+                (a ? std::to_string(a.ndim()) + " dimensions" +
+                         (a.ndim() == 2 ? " of " + std::to_string(a.shape(1)) + " columns" : std::string())
+                   : std::string("something that is not an array")));
   }
   return a;
 }
 
-TriangleMesh mesh_from_arrays(const py::handle& vertices, const py::handle& faces, const char* name) {
-  const auto v = rows_of_three<double>(vertices, (std::string(name) + " vertices").c_str());
-  const auto f = rows_of_three<long long>(faces, (std::string(name) + " faces").c_str());
-  std::vector<Vec3> positions(v.shape(0));
-  for (py::ssize_t i = 0; i < v.shape(0); ++i) positions[i] = Vec3(v.at(i, 0), v.at(i, 1), v.at(i, 2));
+std::vector<Vec3> vectors_of(const py::handle& array, const std::string& what) {
+  const auto a = rows_of<double>(array, what);
+  std::vector<Vec3> out(a.shape(0));
+  for (py::ssize_t i = 0; i < a.shape(0); ++i) out[i] = Vec3(a.at(i, 0), a.at(i, 1), a.at(i, 2));
+  return out;
+}
+
+// Colours as code values: arrays of floats on [0, 1] (Open3D's) scaled by 255, integers taken as
+// they are.
+std::vector<Colour> colours_of(const py::handle& array, const std::string& what) {
+  const py::array given = py::array::ensure(array);
+  const bool unit = given && given.dtype().kind() == 'f';
+  const auto a = rows_of<double>(array, what);
+  std::vector<Colour> out(a.shape(0));
+  for (py::ssize_t i = 0; i < a.shape(0); ++i) {
+    for (int c = 0; c < 3; ++c) out[i][c] = static_cast<float>(unit ? 255 * a.at(i, c) : a.at(i, c));
+  }
+  return out;
+}
+
+TriangleMesh mesh_from_arrays(const py::handle& vertices, const py::handle& faces, const std::string& name) {
+  std::vector<Vec3> positions = vectors_of(vertices, name + " vertices");
+  const auto f = rows_of<long long>(faces, name + " faces");
   std::vector<Triangle> triangles(f.shape(0));
   for (py::ssize_t i = 0; i < f.shape(0); ++i) {
     for (int c = 0; c < 3; ++c) {
       const long long index = f.at(i, c);
-      if (index < 0 || index >= v.shape(0)) {
-        throw Error(std::string(name) + " faces: face " + std::to_string(i) + " refers to vertex " +
-                    std::to_string(index) + "; expected an index in [0, " + std::to_string(v.shape(0)) + ")");
+      if (index < 0 || index >= static_cast<long long>(positions.size())) {
+        throw Error(name + " faces: face " + std::to_string(i) + " refers to vertex " +
+                    std::to_string(index) + "; expected an index in [0, " + std::to_string(positions.size()) +
+                    ")");
       }
       triangles[i][c] = static_cast<int>(index);
     }
   }
-  return TriangleMesh(std::move(positions), std::move(triangles), std::string(name) + " arrays");
+  return TriangleMesh(std::move(positions), std::move(triangles), name + " arrays");
+}
+
+// The attribute `name` of `object` where it has one that is not empty.
+py::object attribute(const py::handle& object, const char* name) {
+  if (!py::hasattr(object, name)) return py::none();
+  py::object value = object.attr(name);
+  if (value.is_none() || py::len(py::module_::import("numpy").attr("asarray")(value)) == 0) return py::none();
+  return value;
+}
+
+// A model from what Python holds: an N x 3 array of points, a (vertices, faces) pair, an object with vertices
+// and faces or triangles (trimesh, Open3D's TriangleMesh, ...) with vertex_colors / vertex_colours where
+// given, or one with points (Open3D's PointCloud) with normals and colors where given.
+std::unique_ptr<Model> model_of(const py::handle& given, const std::string& name) {
+  if (py::isinstance<py::array>(given)) {  // N x 3 points
+    PointCloud cloud;
+    cloud.positions = vectors_of(given, name + " points");
+    return std::make_unique<Model>(model_from_points(std::move(cloud), name + " points"));
+  }
+  if (py::isinstance<py::tuple>(given) || py::isinstance<py::list>(given)) {
+    const py::sequence pair = py::reinterpret_borrow<py::sequence>(given);
+    if (py::len(pair) != 2) {
+      throw Error(name +
+                  ": expected a path, a (vertices, faces) pair or a mesh object, found a sequence of " +
+                  std::to_string(py::len(pair)));
+    }
+    return std::make_unique<Model>(
+        model_from_mesh(mesh_from_arrays(pair[0], pair[1], name), name + " arrays"));
+  }
+  if (py::hasattr(given, "points") && !py::hasattr(given, "faces") && !py::hasattr(given, "triangles")) {
+    PointCloud cloud;
+    cloud.positions =
+        vectors_of(py::module_::import("numpy").attr("asarray")(given.attr("points")), name + " points");
+    if (const py::object normals = attribute(given, "normals"); !normals.is_none())
+      cloud.normals = vectors_of(py::module_::import("numpy").attr("asarray")(normals), name + " normals");
+    if (const py::object colours = attribute(given, "colors"); !colours.is_none())
+      cloud.colours = colours_of(py::module_::import("numpy").attr("asarray")(colours), name + " colors");
+    return std::make_unique<Model>(model_from_points(std::move(cloud), name + " points"));
+  }
+  const char* faces_name = py::hasattr(given, "faces") ? "faces" : "triangles";
+  if (!py::hasattr(given, "vertices") || !py::hasattr(given, faces_name)) {
+    throw Error(name +
+                ": expected a path, a (vertices, faces) pair, an object with vertices and faces (or "
+                "triangles), or one with points; found " +
+                std::string(py::str(py::type::of(given).attr("__name__"))));
+  }
+  const py::object numpy = py::module_::import("numpy");
+  TriangleMesh mesh = mesh_from_arrays(numpy.attr("asarray")(given.attr("vertices")),
+                                       numpy.attr("asarray")(given.attr(faces_name)), name);
+  for (const char* colours_name : {"vertex_colors", "vertex_colours"}) {
+    if (const py::object colours = attribute(given, colours_name); !colours.is_none()) {
+      mesh.set_vertex_colours(colours_of(numpy.attr("asarray")(colours), name + " " + colours_name), name);
+      break;
+    }
+  }
+  return std::make_unique<Model>(model_from_mesh(std::move(mesh), name + " mesh"));
+}
+
+bool is_path(const py::handle& given) {
+  return py::isinstance<py::str>(given) || py::hasattr(given, "__fspath__");
+}
+
+// The columns of --samples-out for one direction, as arrays taking over the report's buffers.
+py::dict per_sample(DirectionReport& d) {
+  const auto rows = static_cast<py::ssize_t>(d.samples.size());
+  py::dict out;
+  if (d.colour_pairs) {
+    std::vector<float> delta_e = sample_delta_e(*d.colour_pairs, d.result.hit);
+    out["reference_colour"] = adopt<float>(std::move(d.colour_pairs->reference), {rows, 3});
+    out["test_colour"] = adopt<float>(std::move(d.colour_pairs->test), {rows, 3});
+    out["delta_e"] = adopt<float>(std::move(delta_e), {rows});
+  }
+  if (d.result.gl) {
+    out["resolved_by"] = adopt<std::uint8_t>(std::move(d.result.gl->resolved_by), {rows});
+  }
+  if (!d.result.hit_face.empty())
+    out["hit_face"] = adopt<std::uint32_t>(std::move(d.result.hit_face), {rows});
+  out["positions"] = adopt<double>(std::move(d.samples.positions), {rows, 3});
+  out["normals"] = adopt<double>(std::move(d.samples.normals), {rows, 3});
+  out["d"] = adopt<double>(std::move(d.result.signed_distance), {rows});
+  out["hit"] = adopt<std::uint8_t>(std::move(d.result.hit), {rows}).attr("view")("bool");
+  if (!d.samples.elements.empty())
+    out["element"] = adopt<std::uint32_t>(std::move(d.samples.elements), {rows});
+  out["weight"] = adopt<double>(std::move(d.samples.weights), {rows});
+  return out;
+}
+
+py::object parse_json(const std::string& text) {
+  return py::module_::import("json").attr("loads")(text);
+}
+
+py::dict measure(const py::object& reference, const py::object& test, const py::kwargs& options) {
+  const std::unique_ptr<CommandLine> line = make_command_line();
+  const bool reference_is_path = is_path(reference), test_is_path = is_path(test);
+  const std::string reference_path =
+      reference_is_path ? std::string(py::str(py::module_::import("os").attr("fspath")(reference)))
+                        : "reference";
+  const std::string test_path =
+      test_is_path ? std::string(py::str(py::module_::import("os").attr("fspath")(test))) : "test";
+  std::vector<std::string> arguments = {"measure", reference_path, test_path};
+  const std::vector<std::string> given = arguments_of(*line->measure, options, "roving.measure");
+  arguments.insert(arguments.end(), given.begin(), given.end());
+  std::string error;
+  try {
+    error = parse_command_line(*line, arguments);
+  } catch (const CLI::Success&) {
+    error = "help: see help(roving.measure)";
+  }
+  if (!error.empty()) throw Error(error);
+  MeasureArguments& args = line->args;
+  args.command_line = "roving.measure(" + reference_path + ", " + test_path;
+  for (std::size_t i = 3; i < arguments.size(); ++i) args.command_line += " " + arguments[i];
+  args.command_line += ")";
+  std::unique_ptr<Model> a = reference_is_path ? nullptr : model_of(reference, "reference");
+  std::unique_ptr<Model> b = test_is_path ? nullptr : model_of(test, "test");
+  references_may_leave_folder(line->trust_references);
+  MeasureRun run;
+  std::string stage = "starting", json, printed;
+  std::vector<std::string> breached;
+  {
+    py::gil_scoped_release release;
+    Progress progress(args.quiet);
+    run = measure_run(args, stage, progress, {}, std::move(a), std::move(b));
+    write_measure_outputs(args, run, stage);
+    json = to_json(run.report).dump();
+    if (args.json_path == "-") printed = to_json(run.report).dump(2);
+    breached = breached_gates(run.plan.gates, gate_values(run.report), run.plan.gate_on);
+  }
+  if (!printed.empty()) py::print(printed);
+  py::dict result = parse_json(json);
+  result["breached_gates"] = breached;
+  if (run.report.symmetric()) {
+    py::list directions = result["directions"];
+    for (std::size_t i = 0; i < run.report.directions.size(); ++i)
+      directions[i]["per_sample"] = per_sample(run.report.directions[i]);
+  } else {
+    result["per_sample"] = per_sample(run.report.directions.front());
+  }
+  return result;
+}
+
+int batch(const py::args& pairs, const py::kwargs& options) {
+  const std::unique_ptr<CommandLine> line = make_command_line();
+  std::vector<std::string> arguments = {"batch"};
+  for (const py::handle pair : pairs)
+    arguments.push_back(py::str(py::module_::import("os").attr("fspath")(pair)));
+  const std::vector<std::string> given = arguments_of(*line->batch, options, "roving.batch");
+  arguments.insert(arguments.end(), given.begin(), given.end());
+  const std::string error = parse_command_line(*line, arguments);
+  if (!error.empty()) throw Error(error);
+  line->batch_args.defaults.command_line = "roving.batch";
+  references_may_leave_folder(line->trust_references);
+  std::string stage = "starting";
+  py::gil_scoped_release release;
+  return run_batch(line->batch_args, stage);
 }
 
 }  // namespace
 
 PYBIND11_MODULE(roving, m) {
-  m.doc() = "Shape dissimilarity between 3D models: Z-buffer surface roving, Embree and CGAL references, baselines";
+  m.doc() =
+      "Shape dissimilarity between 3D models: Z-buffer surface roving, Embree and CGAL references, baselines";
   py::register_exception<Error>(m, "Error", PyExc_ValueError);
   m.attr("methods") = method_names();
+  m.attr("resolved_by") = py::dict(py::arg("no-hit") = static_cast<int>(Resolution::Unresolved),
+                                   py::arg("view") = static_cast<int>(Resolution::View),
+                                   py::arg("camera") = static_cast<int>(Resolution::Camera));
 
-  m.def(
-      "measure",
-      [](const std::string& reference, const std::string& test, const std::string& method,
-         const std::string& semantics, const std::string& samples, const std::string& max_error,
-         const std::string& views, int resolution, const std::string& backend) {
-        const Model ref = load_model(reference), tst = load_model(test);
-        SampleSet sample_set = reference_samples(ref, parse_sample_spec(samples));
-        return measure_samples(test_surface(tst), std::move(sample_set), ref.bounding_box().diagonal(),
-                               {method, semantics, views, backend, resolution, max_error});
-      },
-      py::arg("reference"), py::arg("test"), py::arg("method") = "embree", py::arg("semantics") = "",
-      py::arg("samples") = "faces", py::arg("max_error") = "5%", py::arg("views") = "24x12",
-      py::arg("resolution") = 1024, py::arg("backend") = "",
-      R"doc(Measures the reference model's samples against the test model, as `roving measure REF TEST` does.
+  m.def("measure", &measure, py::arg("reference"), py::arg("test"),
+        R"doc(measure(reference, test, **options) -> dict
 
-Arguments:
-  reference   path of the reference model (REF): .obj .ply .off .stl .gltf .glb .3mf, voxels
-              (.binvox), Bezier patches (.bpt) or a point cloud (.xyz, .ply without faces)
-  test        path of the test model (TEST), the same formats; a point cloud is drawn as surfels
-  method      one of roving.methods: 'embree' and 'cgal' (exact references), 'roving',
-              'viewpoint', 'cooperative' (the paper's GL methods), 'v2v-naive', 'v2v-kdtree',
-              'v2p-naive', 'v2p-aabb' (baselines, closest semantics only)
-  semantics   'first-hit' (the paper's), 'nearest' or 'closest' (Metro style); '' takes the
-              method's default (first-hit, closest for the baselines)
-  samples     'faces' (triangle centroids), 'vertices' or 'area:N' (N points uniform by area)
-  max_error   h, the acceptance threshold along the normal: a length in model units ('0.5') or a
-              percentage of REF's bounding-box diagonal ('5%'); a no-hit counts as d = +h
-  views       the GL methods' view directions 'HxV' (e.g. '24x12'), or 'auto' / 'auto:HxV'
-  resolution  the GL views' size in pixels (viewpoint and cooperative)
-  backend     'osmesa' (Mesa's llvmpipe, always there) or 'egl' (a GPU where a driver exists); by
-              default $ROVING_GL_BACKEND, else 'osmesa'
+`roving measure REF TEST` from Python: every option of the command is a keyword argument, named as the
+option with _ for - (max_error='2%', samples='area:100000', symmetric=True, ibsm=True,
+fail_above=['usiad=1%'], json='report.json', samples_out='samples.csv', ...), with the command's
+defaults, checks and messages (`roving measure --help` lists them). A flag is True to set it; None
+leaves an option at its default.
 
-Returns a dict: 'statistics' (siad, usiad, rms, max_abs, the percentiles, the area-weighted forms, ...:
-the JSON report's statistics), 'distance' (signed d per sample; 0 where 'hit' is False), 'hit' (bool per
-sample), 'positions' (the samples, K x 3), 'method', 'semantics', 'max_error' (h in model units),
-'diagonal', 'samples', 'hits', 'no_hits', 'seconds' (build, query), and for the GL methods
-'observations', 'views_rendered' and 'sample_cameras'.
-Raises roving.Error (a ValueError) with a one-line message naming the file or argument.)doc");
+reference, test: a path (any format the tool reads); an N x 3 array of points; a (vertices, faces)
+  pair of arrays (N x 3 floats,
+  M x 3 vertex indices); an object with `vertices` and `faces` or `triangles` (trimesh, Open3D's
+  TriangleMesh; vertex_colors taken where present, floats on [0, 1] or 8-bit integers); or an object
+  with `points` (Open3D's PointCloud; its normals and colors where present, otherwise PCA normals).
+  Arrays are converted to float64 / int64 where they are not (a copy is made only then) and copied
+  into the library's mesh.
 
-  m.def(
-      "measure_arrays",
-      [](const py::handle& reference_vertices, const py::handle& reference_faces,
-         const py::handle& test_vertices, const py::handle& test_faces, const py::object& sample_points,
-         const py::object& sample_normals, const std::string& method, const std::string& semantics,
-         const std::string& samples, const std::string& max_error, const std::string& views, int resolution,
-         const std::string& backend) {
-        const TriangleMesh reference = mesh_from_arrays(reference_vertices, reference_faces, "reference");
-        const TriangleMesh test = mesh_from_arrays(test_vertices, test_faces, "test");
-        SampleSet sample_set;
-        if (sample_points.is_none() != sample_normals.is_none()) {
-          throw Error("sample_points and sample_normals: expected both or neither");
-        }
-        if (sample_points.is_none()) {
-          sample_set = make_samples(reference, parse_sample_spec(samples));
-        } else {
-          const auto p = rows_of_three<double>(sample_points, "sample_points");
-          const auto n = rows_of_three<double>(sample_normals, "sample_normals");
-          if (p.shape(0) != n.shape(0) || p.shape(0) == 0) {
-            throw Error("sample_points and sample_normals: expected the same number (> 0) of rows, found " +
-                        std::to_string(p.shape(0)) + " and " + std::to_string(n.shape(0)));
-          }
-          sample_set.kind = "given";
-          for (py::ssize_t i = 0; i < p.shape(0); ++i) {
-            const Vec3 normal(n.at(i, 0), n.at(i, 1), n.at(i, 2));
-            if (!(normal.norm() > 0) || !std::isfinite(normal.norm())) {
-              throw Error("sample_normals: row " + std::to_string(i) + " is not a finite non-zero vector");
-            }
-            sample_set.positions.emplace_back(p.at(i, 0), p.at(i, 1), p.at(i, 2));
-            sample_set.normals.push_back(normal.normalized());
-            sample_set.weights.push_back(1.0);
-          }
-        }
-        return measure_samples(test, std::move(sample_set), reference.bounding_box().diagonal(),
-                               {method, semantics, views, backend, resolution, max_error});
-      },
-      py::arg("reference_vertices"), py::arg("reference_faces"), py::arg("test_vertices"),
-      py::arg("test_faces"), py::arg("sample_points") = py::none(), py::arg("sample_normals") = py::none(),
-      py::arg("method") = "embree", py::arg("semantics") = "", py::arg("samples") = "faces",
-      py::arg("max_error") = "5%", py::arg("views") = "24x12", py::arg("resolution") = 1024,
-      py::arg("backend") = "",
-      R"doc(Measures a reference mesh against a test mesh given as NumPy arrays.
+Returns the JSON report (`roving measure --json`) as a dict, every number equal to the command's,
+plus 'breached_gates' (the --fail-above gates breached: the command's exit status 3) and the
+per-sample columns of --samples-out as NumPy arrays owning the library's buffers (no copy): under
+'per_sample', or each direction's under --symmetric: positions and normals (K x 3), d (signed; 0 where
+hit is False), hit (bool), element (REF's face or vertex), weight (area), and where they apply
+hit_face, resolved_by (codes in roving.resolved_by), reference_colour, test_colour (K x 3, 8-bit code
+values) and delta_e (CIEDE2000).
 
-Arguments:
-  reference_vertices, test_vertices  float arrays N x 3 (finite coordinates)
-  reference_faces, test_faces        integer arrays M x 3 of vertex indices (0-based, in range)
-  sample_points, sample_normals      optional float arrays K x 3: the samples to measure from and
-                                     their normals (non-zero; normalised here); both or neither.
-                                     Without them the samples are made on the reference by 'samples'
-  method, semantics, samples, max_error, views, resolution, backend
-                                     as in roving.measure; max_error's percentage is of the
-                                     reference's bounding-box diagonal
+Raises roving.Error (a ValueError) with the command's one-line message.
 
-Returns the same dict as roving.measure. Raises roving.Error naming the array and what was wrong.)doc");
+Example:
+    >>> r = roving.measure("ref.ply", "test.ply", method="cooperative", max_error="2%")
+    >>> r["statistics"]["usiad"], r["per_sample"]["d"][r["per_sample"]["hit"]].max())doc");
+
+  m.def("batch", &batch, R"doc(batch(*pairs, **options) -> int
+
+`roving batch PAIRS...` from Python: a manifest (.csv or .jsonl) or two folders, with every option of
+the command as a keyword argument (out='results', shard='0/4', html=True, merge=True, and the options of
+roving.measure). Writes the per-pair reports and out/summary.csv as the command does and returns its
+exit status: 0, or 4 when some pair failed (recorded in the summary with its error).
+
+Example:
+    >>> roving.batch("pairs.csv", out="batch-results", method="embree")
+    >>> import csv; rows = list(csv.DictReader(open("batch-results/summary.csv"))))doc");
 }

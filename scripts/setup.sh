@@ -11,7 +11,7 @@ packages=(
   libosmesa6-dev libegl-dev libegl-mesa0 libgles-dev libgl-dev
   libbenchmark-dev libgtest-dev libgmock-dev
   libcli11-dev nlohmann-json3-dev libfmt-dev libssl-dev libassimp-dev libcairo2-dev libpng-dev libjpeg-dev libjs-three
-  python3 python3-dev python3-matplotlib python3-numpy python3-pytest pybind11-dev
+  python3 python3-dev python3-matplotlib python3-numpy python3-pytest pybind11-dev python3-open3d
 )
 if [ "${1:-}" = browser ]; then packages+=(chromium); fi
 if [ "${1:-}" = fuzz ]; then packages+=(clang libclang-rt-14-dev); fi

@@ -1,250 +1,49 @@
 // `roving`: measure the shape dissimilarity of a test model M_C from a reference model M_R.
-#include <fmt/format.h>
-#include <fmt/ranges.h>
-
-#include <CLI/CLI.hpp>
-#include <algorithm>
 #include <cstdio>
 #include <new>
 
-#include "batch.h"
-#include "gates.h"
-#include "measure.h"
+#include "command_line.h"
 #include "provenance.h"
 #include "roving/core/memory_budget.h"
 #include "roving/formats/atomic_file.h"
 #include "roving/formats/file_bytes.h"
-#include "roving/registry/method_registry.h"
-
-namespace {
-
-// Edit distance, for "did you mean" on a mistyped subcommand or option.
-std::size_t edit_distance(const std::string& a, const std::string& b) {
-  std::vector<std::size_t> row(b.size() + 1);
-  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
-  for (std::size_t i = 1; i <= a.size(); ++i) {
-    std::size_t diagonal = row[0];
-    row[0] = i;
-    for (std::size_t j = 1; j <= b.size(); ++j) {
-      const std::size_t above = row[j];
-      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] != b[j - 1])});
-      diagonal = above;
-    }
-  }
-  return row[b.size()];
-}
-
-// " (did you mean 'X'?)" for the nearest candidate within a few edits, or nothing.
-std::string suggestion(const std::string& given, const std::vector<std::string>& candidates) {
-  std::string best;
-  std::size_t best_distance = std::max<std::size_t>(3, given.size() / 3) + 1;
-  for (const std::string& candidate : candidates) {
-    const std::size_t distance = edit_distance(given, candidate);
-    if (distance < best_distance) {
-      best = candidate;
-      best_distance = distance;
-    }
-  }
-  return best.empty() ? "" : fmt::format(" (did you mean '{}'?)", best);
-}
-
-// The first argument that names no subcommand or no option of the subcommand given, with a
-// suggestion; empty when every one is known (the parse error is then about something else).
-std::string unknown_argument(int argc, char** argv, const CLI::App& app) {
-  std::vector<std::string> subcommands, options;
-  for (const CLI::App* sub : app.get_subcommands({})) subcommands.push_back(sub->get_name());
-  if (argc > 1 && argv[1][0] != '-' &&
-      std::find(subcommands.begin(), subcommands.end(), argv[1]) == subcommands.end()) {
-    return fmt::format("unknown command '{}'{}; expected one of: {}", argv[1], suggestion(argv[1], subcommands),
-                       fmt::join(subcommands, ", "));
-  }
-  if (argc < 2) return "";
-  const CLI::App& given = argv[1][0] == '-' ? app : *app.get_subcommand(argv[1]);
-  for (const CLI::Option* option : given.get_options()) {
-    for (const std::string& name : option->get_lnames()) options.push_back("--" + name);
-  }
-  for (int i = argv[1][0] == '-' ? 1 : 2; i < argc; ++i) {
-    const std::string argument = argv[i];
-    if (argument == "--") break;
-    if (argument.rfind("--", 0) != 0) continue;
-    const std::string name = argument.substr(0, argument.find('='));
-    if (std::find(options.begin(), options.end(), name) == options.end()) {
-      return fmt::format("unknown option '{}'{}", name, suggestion(name, options));
-    }
-  }
-  return "";
-}
-
-// The options that say how to measure, shared by `measure` and `batch`.
-void add_measurement_options(CLI::App& app, roving::MeasureArguments& args, bool& trust_references) {
-  app.add_flag("--trust-references", trust_references,
-               "let files a model names (glTF buffers) lie outside the model's folder: absolute paths, '..', "
-               "symbolic links out (by default refused, for models from elsewhere)");
-  app.add_option("--method", args.method, fmt::format("distance method: {}", fmt::join(roving::method_names(), ", ")))
-      ->capture_default_str();
-  app.add_option("--semantics", args.semantics,
-                 "first-hit (paper), nearest (on the normal line) or closest (Metro); "
-                 "default: the method's own, closest with --symmetric where the method has it");
-  app.add_flag("--symmetric", args.symmetric,
-               "measure REF -> TEST and TEST -> REF, with Metro's two-sided summary (Hausdorff, mean, RMS) "
-               "relative to the diagonal of both models' box");
-  app.add_option("--samples", args.samples, "faces, vertices, area:N, or area:auto (as many random samples as --precision needs)")->capture_default_str();
-  app.add_option("--precision", args.precision,
-                 "with --samples area:auto: the half-width asked of USiAD's 95% interval, P% of USiAD or a length; "
-                 "samples are drawn (from 10,000, at most 20,000,000) until it is reached")
-      ->capture_default_str();
-  app.add_option("--seed", args.seed, "seed of area:N sampling (default 12345; reported either way)");
-  app.add_option("--max-error", args.max_error, "h, the view volume's half-height: a length or P% of the diagonal")
-      ->capture_default_str();
-  app.add_option("--ref-type", args.reference_type, "mesh, points, voxels or bezier (default: by extension)");
-  app.add_option("--test-type", args.test_type, "mesh, points, voxels or bezier (default: by extension)");
-  app.add_option("--views", args.views,
-                 "viewpoint sampling: H x V directions; for cooperative also auto or auto:HxV (a view only where "
-                 "it costs less than the cameras it saves)")
-      ->capture_default_str();
-  app.add_option("--resolution", args.resolution, "viewpoint sampling: view side in pixels")
-      ->check(CLI::Range(1, 16384))
-      ->capture_default_str();
-  app.add_option("--backend", args.backend,
-                 "GL backend: osmesa or egl (default: $ROVING_GL_BACKEND, else osmesa)");
-  app.add_option(
-         "--camera-geometry", args.camera_geometry,
-         "roving and cooperative: where each per-sample camera's triangles are put in its frame and their "
-         "edges widened: cpu, or gpu (in a compute shader; the same answers)")
-      ->capture_default_str();
-  app.add_option("--hausdorff-bound", args.hausdorff_bound,
-                 "with --symmetric or --semantics closest: the Hausdorff distance is also bounded over every point "
-                 "of the surfaces, as a certified interval [lower, upper] at most this wide (a length or P% of the "
-                 "diagonal), or none")
-      ->capture_default_str();
-  app.add_flag(
-      "--ibsm", args.ibsm,
-      "also compare the models image by image as MPEG's IBSM does (mmetric): both drawn unlit from "
-      "--ibsm-views orthographic cameras on a Fibonacci sphere, back faces culled; colour PSNR (R'G'B', "
-      "Y'CbCr 6:1:1) and depth PSNR over the pixels both cover, and the unmatched pixels' share");
-  app.add_option("--ibsm-views", args.ibsm_views, "with --ibsm: cameras on the Fibonacci sphere")
-      ->check(CLI::Range(2, 1000))
-      ->capture_default_str();
-  app.add_option("--ibsm-resolution", args.ibsm_resolution, "with --ibsm: each camera's image side in pixels")
-      ->check(CLI::Range(16, 16384))
-      ->capture_default_str();
-  app.add_option("--histogram-bins", args.histogram_bins, "bins of the signed-d histogram")
-      ->check(CLI::Range(1, 100000))
-      ->capture_default_str();
-  app.add_flag("--quiet", args.quiet,
-               "no progress and no warnings on stderr (progress is shown only on a terminal anyway; warnings stay in "
-               "the report and the JSON); errors are always printed");
-}
-
-}  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{
-      "surface roving: shape dissimilarity between 3D models (Z-buffer surface roving, "
-      "with exact CPU references and classic baselines)"};
-  app.require_subcommand(0, 1);
-  bool version = false;
-  app.add_flag("--version", version, "print the version and the commit built, and exit");
-  bool trust_references = false;
-  roving::MeasureArguments args;
-  args.command_line = roving::command_line(argc, argv);
-  CLI::App* measure = app.add_subcommand(
-      "measure",
-      "measure distances from REF's samples to TEST (exit 0; 1 on an error; 2 on a usage error; 3 when a "
-      "--fail-above gate is breached)");
-  measure
-      ->add_option("REF", args.reference_path,
-                   "reference model M_R: mesh (.obj .ply .off .stl .gltf .glb .3mf), Bezier patches (.bpt), point cloud "
-                   "(.ply without faces, .xyz) or voxels (.binvox)")
-      ->required();
-  measure->add_option("TEST", args.test_path,
-                      "test model M_C: mesh (.obj .ply .off .stl .gltf .glb .3mf), Bezier patches (.bpt), voxels "
-                      "(.binvox) or point cloud (.ply without faces, .xyz; drawn as surfels)")
-      ->required();
-  add_measurement_options(*measure, args, trust_references);
-  measure->add_option("--fail-above", args.gates,
-                      fmt::format("METRIC=LIMIT (a length, or P% of the diagonal; no_hits: a count or P% of "
-                                  "the samples): exit 3 if METRIC's magnitude exceeds LIMIT; repeatable. "
-                                  "Metrics: {}",
-                                  fmt::join(roving::gate_metrics(true), ", ")));
-  measure->add_option("--gate-on", args.gate_on,
-                      "estimate (default) or upper: what --fail-above compares where a figure has an interval "
-                      "(area:N means, the certified Hausdorff distance): the figure, or its interval's upper end")
-      ->capture_default_str();
-  measure->add_option("--json", args.json_path, "write the report as JSON to FILE, or - for stdout");
-  measure->add_option("--samples-out", args.samples_csv_path, "write one CSV row per sample");
-  measure->add_option("--heatmap", args.heatmap_path,
-                      "write REF coloured by d as PLY (per face or vertex on a mesh or voxels; points otherwise); with "
-                      "--symmetric one file per direction, FILE's name + .A-to-B / .B-to-A");
-  measure->add_option("--heatmap-png", args.heatmap_png_path,
-                      "render REF coloured by d from the front, side and top, with a colour bar, as PNG; with --symmetric "
-                      "one picture per direction, named as for --heatmap");
-  measure->add_option("--html", args.html_path,
-                      "write one self-contained web page (opens offline in a browser): REF in 3D coloured by d as for "
-                      "--heatmap-png, to turn and zoom, a sample's d on hover or click, the figures, histogram, "
-                      "warnings and provenance; both directions with --symmetric");
-  measure
-      ->add_option(
-          "--heatmap-of", args.heatmap_of,
-          "what --heatmap and --heatmap-png show: d (signed distance, diverging map) or delta-e (the "
-          "CIEDE2000 colour difference at each sample, 0 to the range; both models coloured)")
-      ->capture_default_str();
-  measure->add_option(
-      "--heatmap-range", args.heatmap_range,
-      "the colour map's half-range: a length or P% of the diagonal (default: the 99th percentile of "
-      "|d| over the hits); with --heatmap-of delta-e, a delta E (default: the 99th percentile of "
-      "delta E)");
-
-  roving::BatchArguments batch_args;
-  batch_args.defaults.command_line = args.command_line;
-  CLI::App* batch = app.add_subcommand(
-      "batch",
-      "measure many pairs: one JSON report per pair in --out, and --out/summary.csv (exit 0; 4 when some pair "
-      "failed, each recorded with its error)");
-  batch->add_option(
-      "PAIRS", batch_args.inputs,
-      "a manifest (.csv with a header naming reference, test and optional per-pair columns "
-      "method, semantics, samples, seed, max_error, views, resolution, backend, camera_geometry; or .jsonl "
-      "with those keys), or REF_FOLDER TEST_FOLDER paired by file name");
-  batch->add_option("--out", batch_args.out, "folder of the per-pair reports and summary.csv")
-      ->capture_default_str();
-  batch->add_option("--shard", batch_args.shard,
-                    "I/N: only the I-th (0-based) of N contiguous slices of the pairs, e.g. "
-                    "$SLURM_ARRAY_TASK_ID/$SLURM_ARRAY_TASK_COUNT; pairs already in --out are skipped");
-  batch->add_flag("--merge", batch_args.merge_only, "only rebuild --out/summary.csv from the reports there");
-  batch->add_flag("--html", batch_args.html,
-                  "also write a web page per pair (as measure --html) and --out/index.html, a sortable table of the "
-                  "pairs linking to them");
-  batch->add_flag("--skip-unpaired", batch_args.skip_unpaired,
-                  "with REF_FOLDER TEST_FOLDER: measure the files found in both and list the others on stderr "
-                  "(without it, a file with no partner of the same name is an error)");
-  add_measurement_options(*batch, batch_args.defaults, trust_references);
-
+  const std::unique_ptr<roving::CommandLine> made = roving::make_command_line();
+  roving::CommandLine& line = *made;
+  const CLI::App* measure = line.measure;
+  const CLI::App* batch = line.batch;
+  line.args.command_line = line.batch_args.defaults.command_line = roving::command_line(argc, argv);
+  std::string error;
   try {
-    app.parse(argc, argv);
-    if (version) {
+    error = roving::parse_command_line(line, std::vector<std::string>(argv + 1, argv + argc));
+    if (error.empty() && line.version) {
       std::printf("%s\n", roving::version_line().c_str());
       return 0;
     }
-    if (!measure->parsed() && !batch->parsed()) throw CLI::RequiredError("a subcommand (measure or batch)");
+    if (error.empty() && !measure->parsed() && !batch->parsed())
+      error = "a subcommand (measure or batch) is required";
   } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
+    return line.app.exit(e);
   } catch (const CLI::CallForAllHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::ParseError& e) {
-    const std::string unknown = unknown_argument(argc, argv, app);
-    const bool subcommand = argc > 1 && (std::string(argv[1]) == "measure" || std::string(argv[1]) == "batch");
-    std::fprintf(stderr, "roving: error: %s (see roving %s--help)\n", unknown.empty() ? e.what() : unknown.c_str(),
+    return line.app.exit(e);
+  }
+  if (!error.empty()) {
+    const bool subcommand =
+        argc > 1 && (std::string(argv[1]) == "measure" || std::string(argv[1]) == "batch");
+    std::fprintf(stderr, "roving: error: %s (see roving %s--help)\n", error.c_str(),
                  subcommand ? (std::string(argv[1]) + " ").c_str() : "");
     return 2;
   }
-  roving::references_may_leave_folder(trust_references);
+  roving::references_may_leave_folder(line.trust_references);
   roving::remove_temporaries_on_signals();  // SIGINT, SIGTERM: no temporary file left, exit 130 / 143
-  std::string stage = "starting";  // what the run is doing, for the message when memory runs out
+  std::string stage = "starting";           // what the run is doing, for the message when memory runs out
   try {
-    return batch->parsed() ? roving::run_batch(batch_args, stage) : roving::run_measure(args, stage);
+    return batch->parsed() ? roving::run_batch(line.batch_args, stage)
+                           : roving::run_measure(line.args, stage);
   } catch (const roving::UsageError& e) {
-    std::fprintf(stderr, "roving: error: %s (see roving %s --help)\n", e.what(), batch->parsed() ? "batch" : "measure");
+    std::fprintf(stderr, "roving: error: %s (see roving %s --help)\n", e.what(),
+                 batch->parsed() ? "batch" : "measure");
     return 2;
   } catch (const std::bad_alloc&) {
     std::fprintf(stderr, "roving: error: out of memory while %s (available: %.3g GiB)\n", stage.c_str(),

@@ -69,6 +69,8 @@ void require_writable_paths(const MeasureArguments& args) {
   }
 }
 
+}  // namespace
+
 // Every value a gate can check: each direction's statistics, and the two-sided summary.
 std::vector<MetricValue> gate_values(const MeasureReport& report) {
   std::vector<MetricValue> values;
@@ -110,8 +112,6 @@ std::vector<MetricValue> gate_values(const MeasureReport& report) {
   }
   return values;
 }
-
-}  // namespace
 
 MeasurePlan plan_measurement(const MeasureArguments& args) {
   MeasurePlan plan;
@@ -364,6 +364,7 @@ void measure_models(const Model& a, const Model& b, MeasurePlan& plan, MeasureRe
 }
 
 nlohmann::json input_json(const std::string& role, const std::string& path, const std::string& sha256) {
+  if (sha256.empty()) return {{"role", role}, {"path", path}, {"bytes", nullptr}, {"sha256", nullptr}};
   return {{"role", role}, {"path", path}, {"bytes", std::filesystem::file_size(path)}, {"sha256", sha256}};
 }
 
@@ -380,33 +381,48 @@ bool reference_only_sampled(const MeasureArguments& args, const MeasurePlan& pla
 
 }  // namespace
 
-int run_measure(const MeasureArguments& args, std::string& stage) {
+MeasureRun measure_run(const MeasureArguments& args, std::string& stage, Progress& progress,
+                       const std::function<void(const MeasureRun&)>& on_described,
+                       std::unique_ptr<Model> given_a, std::unique_ptr<Model> given_b) {
   const Stopwatch total;
+  MeasureRun run;
   // Parse every option before the (slow) loads, so a typo fails at once.
-  MeasurePlan plan = plan_command_line(args);
-
-  Progress progress(args.quiet);
-  MeasureReport report;
+  run.plan = plan_command_line(args);
+  MeasurePlan& plan = run.plan;
+  MeasureReport& report = run.report;
+  const auto hash = [](bool given, const std::string& path) {
+    return given ? std::async(std::launch::deferred, [] { return std::string(); })
+                 : std::async(std::launch::async, file_sha256, path);
+  };
   // The inputs' hashes on another core while they load.
-  auto reference_hash = std::async(std::launch::async, file_sha256, args.reference_path);
-  auto test_hash = std::async(std::launch::async, file_sha256, args.test_path);
+  auto reference_hash = hash(given_a != nullptr, args.reference_path);
+  auto test_hash = hash(given_b != nullptr, args.test_path);
   Stopwatch watch;
-  stage = fmt::format("loading the reference {}", args.reference_path);
-  progress.stage("loading " + file_name(args.reference_path));
-  Model a = load_model(args.reference_path, plan.reference_type);
+  if (given_a) {
+    run.a = std::move(given_a);
+  } else {
+    stage = fmt::format("loading the reference {}", args.reference_path);
+    progress.stage("loading " + file_name(args.reference_path));
+    run.a = std::make_unique<Model>(load_model(args.reference_path, plan.reference_type));
+  }
   report.load_seconds[0] = watch.seconds();
   watch = Stopwatch();
-  stage = fmt::format("loading the test {}", args.test_path);
-  progress.stage("loading " + file_name(args.test_path));
-  const Model b = load_model(args.test_path, plan.test_type);
+  if (given_b) {
+    run.b = std::move(given_b);
+  } else {
+    stage = fmt::format("loading the test {}", args.test_path);
+    progress.stage("loading " + file_name(args.test_path));
+    run.b = std::make_unique<Model>(load_model(args.test_path, plan.test_type));
+  }
   report.load_seconds[1] = watch.seconds();
+  Model& a = *run.a;
+  const Model& b = *run.b;
   report.provenance = {{"tool", tool_json()},
                        {"command_line", args.command_line},
                        {"inputs",
                         {input_json(args.symmetric ? "A" : "reference", a.path(), reference_hash.get()),
                          input_json(args.symmetric ? "B" : "test", b.path(), test_hash.get())}}};
 
-  const bool text_to_stdout = args.json_path != "-";
   const auto warn = [&](const std::vector<std::string>& lines) {
     if (lines.empty()) return;
     progress.clear();
@@ -416,14 +432,17 @@ int run_measure(const MeasureArguments& args, std::string& stage) {
     }
   };
   describe_pair(a, b, plan, report);
-  if (text_to_stdout) {  // the header as soon as the models are known
-    progress.clear();
-    write_stdout(format_header(a, b, report));
-  }
+  if (on_described) on_described(run);
   measure_models(a, b, plan, report, progress, stage, warn, nullptr,
                  reference_only_sampled(args, plan) ? &a : nullptr);
   require_gate_values(plan.gates, gate_values(report));
+  report.total_seconds = total.seconds();
+  return run;
+}
 
+void write_measure_outputs(const MeasureArguments& args, const MeasureRun& run, std::string& stage) {
+  const MeasurePlan& plan = run.plan;
+  const MeasureReport& report = run.report;
   // Every output file is written whole to a temporary file first; only when all succeeded are
   // they moved into place, so a failed run changes none of them.
   stage = "writing the outputs";
@@ -485,9 +504,8 @@ int run_measure(const MeasureArguments& args, std::string& stage) {
       outputs.back()->close_stream();
     }
   }
-  report.total_seconds = total.seconds();
-  const std::string json = args.json_path.empty() ? "" : to_json(report).dump(2) + "\n";
   if (!args.json_path.empty() && args.json_path != "-") {
+    const std::string json = to_json(report).dump(2) + "\n";
     outputs.push_back(std::make_unique<AtomicFile>(args.json_path));
     std::fputs(json.c_str(), outputs.back()->stream());
     outputs.back()->close_stream();
@@ -495,20 +513,32 @@ int run_measure(const MeasureArguments& args, std::string& stage) {
   if (!args.html_path.empty()) {
     stage = "writing the web page";
     outputs.push_back(std::make_unique<AtomicFile>(args.html_path));
-    write_html_page(
-        outputs.back()->stream(),
-        measurement_page(report, format_header(a, b, report) + format_body(report), to_json(report)));
+    write_html_page(outputs.back()->stream(),
+                    measurement_page(report, format_header(*run.a, *run.b, report) + format_body(report),
+                                     to_json(report)));
     outputs.back()->close_stream();
   }
   for (const auto& output : outputs) output->commit();
-  write_stdout(text_to_stdout ? format_body(report) : json);
+}
+
+int run_measure(const MeasureArguments& args, std::string& stage) {
+  Progress progress(args.quiet);
+  const bool text_to_stdout = args.json_path != "-";
+  const MeasureRun run = measure_run(args, stage, progress, [&](const MeasureRun& described) {
+    if (!text_to_stdout) return;  // the header as soon as the models are known
+    progress.clear();
+    write_stdout(format_header(*described.a, *described.b, described.report));
+  });
+  write_measure_outputs(args, run, stage);
+  const MeasureReport& report = run.report;
+  write_stdout(text_to_stdout ? format_body(report) : to_json(report).dump(2) + "\n");
 
   const std::vector<MetricValue> values = gate_values(report);
-  if (plan.gate_on == GateOn::Estimate) {
-    for (const std::string& line : undecided_gates(plan.gates, values))
+  if (run.plan.gate_on == GateOn::Estimate) {
+    for (const std::string& line : undecided_gates(run.plan.gates, values))
       std::fprintf(stderr, "roving: note: %s\n", line.c_str());
   }
-  const std::vector<std::string> breached = breached_gates(plan.gates, values, plan.gate_on);
+  const std::vector<std::string> breached = breached_gates(run.plan.gates, values, run.plan.gate_on);
   for (const std::string& line : breached) std::fprintf(stderr, "roving: %s\n", line.c_str());
   return breached.empty() ? 0 : kGateExitCode;
 }

@@ -58,10 +58,10 @@ struct MeasurePlan {
   std::size_t histogram_bins = 64;
   std::optional<MaxErrorSpec> hausdorff_bound;  // set where the certified Hausdorff interval is computed
   GateOn gate_on = GateOn::Estimate;
-  std::optional<MaxErrorSpec> precision;  // area:auto only; P% is of USiAD itself
+  std::optional<MaxErrorSpec> precision;      // area:auto only; P% is of USiAD itself
   std::optional<MaxErrorSpec> heatmap_range;  // --heatmap-range; unset: the 99th percentile of |d|
   HeatmapQuantity heatmap_of = HeatmapQuantity::Distance;
-  std::optional<double> heatmap_delta_e_range;  // --heatmap-range with --heatmap-of delta-e
+  std::optional<double> heatmap_delta_e_range;   // --heatmap-range with --heatmap-of delta-e
   std::optional<ImageBasedOptions> image_based;  // --ibsm
 };
 
@@ -104,12 +104,36 @@ void measure_models(const Model& a, const Model& b, MeasurePlan& plan, MeasureRe
                     Progress& progress, std::string& stage, const WarnFn& warn, const SampleSet* samples_of_a,
                     Model* releasable_a = nullptr);
 
-// An entry of the report's `inputs`.
+// Every value a --fail-above gate can check: each direction's statistics, and the two-sided
+// summary.
+std::vector<MetricValue> gate_values(const MeasureReport& report);
+
+// An entry of the report's `inputs`; with no `sha256`, a model given in memory (no file: bytes
+// and hash null).
 nlohmann::json input_json(const std::string& role, const std::string& path, const std::string& sha256);
 
-// Runs the measurement and writes its outputs; returns the exit code (0, or kGateExitCode when a
-// gate is breached). Throws roving::Error (bad input) and std::bad_alloc, after `stage` was set
-// to what the run was doing.
+// A measurement as `roving measure` makes it: the models (where the report's directions point),
+// the plan and the report, before any output is written.
+struct MeasureRun {
+  MeasurePlan plan;
+  std::unique_ptr<Model> a, b;
+  MeasureReport report;
+};
+
+// Plans, loads (or takes `given_a`, `given_b`: models already in memory, whose paths name them),
+// and measures; `on_described` is called once the pair is described (report header known).
+// Throws roving::Error (bad input, UsageError for a bad option) and std::bad_alloc, after `stage`
+// was set to what the run was doing.
+MeasureRun measure_run(const MeasureArguments& args, std::string& stage, Progress& progress,
+                       const std::function<void(const MeasureRun&)>& on_described = {},
+                       std::unique_ptr<Model> given_a = nullptr, std::unique_ptr<Model> given_b = nullptr);
+
+// Writes the files the arguments ask for (--samples-out, --heatmap, --heatmap-png, --json FILE,
+// --html), each whole or none of them.
+void write_measure_outputs(const MeasureArguments& args, const MeasureRun& run, std::string& stage);
+
+// Runs the measurement, writes its outputs and the report on stdout; returns the exit code (0, or
+// kGateExitCode when a gate is breached). Throws as measure_run does.
 int run_measure(const MeasureArguments& args, std::string& stage);
 
 }  // namespace roving

@@ -104,24 +104,56 @@ Model load_model(const std::string& path, std::optional<ModelType> type) {
       model.chordal_error_bound = t.chordal_error_bound;
       break;
     }
-    case ModelType::Points:
-      model.mesh.path = path;
-      model.points = read_point_cloud(path);
-      if (model.points.normals.empty()) {
-        require_extent(model, path);
-        try {
-          model.points.normals = estimate_normals(model.points.positions);
-        } catch (const Error& e) {
-          throw Error(fmt::format("{}: {}", path, e.what()));
-        }
-        model.normals_estimated = true;
-      }
-      break;
+    case ModelType::Points: return model_from_points(read_point_cloud(path), path);
   }
-  const double extent = model.bounding_box().diagonal();
-  if (!(extent > 0) || !std::isfinite(extent)) {
-    throw Error(fmt::format("{}: the model has no extent (bounding-box diagonal {}); expected a shape", path,
-                            extent));
+  require_extent(model, path);
+  return model;
+}
+
+Model model_from_mesh(TriangleMesh mesh, const std::string& name) {
+  Model model;
+  model.mesh.path = name;
+  model.mesh.mesh = std::move(mesh);
+  require_extent(model, name);
+  return model;
+}
+
+Model model_from_points(PointCloud points, const std::string& name) {
+  Model model;
+  model.type = ModelType::Points;
+  model.mesh.path = name;
+  if (points.positions.empty()) throw Error(fmt::format("{}: no points; expected a point cloud", name));
+  const auto check = [&](const std::vector<Vec3>& rows, const char* what) {
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+      if (!rows[i].allFinite()) {
+        throw Error(fmt::format("{}: {} {} is not finite ({}, {}, {})", name, what, i, rows[i].x(),
+                                rows[i].y(), rows[i].z()));
+      }
+    }
+  };
+  check(points.positions, "point");
+  check(points.normals, "normal");
+  if (!points.normals.empty() && points.normals.size() != points.positions.size()) {
+    throw Error(fmt::format("{}: {} normals for {} points; expected one per point or none", name,
+                            points.normals.size(), points.positions.size()));
+  }
+  if (!points.colours.empty() && points.colours.size() != points.positions.size()) {
+    throw Error(fmt::format("{}: {} colours for {} points; expected one per point or none", name,
+                            points.colours.size(), points.positions.size()));
+  }
+  for (Vec3& n : points.normals) {
+    if (!(n.norm() > 0)) throw Error(fmt::format("{}: a normal is zero; expected non-zero normals", name));
+    n.normalize();
+  }
+  model.points = std::move(points);
+  require_extent(model, name);
+  if (model.points.normals.empty()) {
+    try {
+      model.points.normals = estimate_normals(model.points.positions);
+    } catch (const Error& e) {
+      throw Error(fmt::format("{}: {}", name, e.what()));
+    }
+    model.normals_estimated = true;
   }
   return model;
 }

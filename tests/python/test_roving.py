@@ -1,6 +1,9 @@
-"""The Python module: agreement with the CLI on the same pair, NumPy arrays in and out, bad
-input raising roving.Error with the library's messages."""
+"""The Python module: the CLI's JSON report field by field, per-sample arrays without a copy, the
+meshes Python code holds (arrays, mesh-like objects, Open3D), the CLI's errors, batch, and no memory
+growth over many calls."""
+import csv
 import json
+import math
 import os
 import subprocess
 
@@ -9,9 +12,12 @@ import pytest
 
 import roving
 
-DATA = os.environ.get("ROVING_DATA") or os.path.join(os.environ["ROVING_SOURCE_DIR"], "data")
+CLI = os.environ["ROVING_CLI"]
+SOURCE = os.environ["ROVING_SOURCE_DIR"]
+DATA = os.environ.get("ROVING_DATA") or os.path.join(SOURCE, "data")
 BUNNY = os.path.join(DATA, "stanford-bunny.obj")
 FANDISK = os.path.join(DATA, "fandisk.obj")
+IBSM = os.path.join(SOURCE, "tests", "ibsm")
 
 
 def cube(half_side):
@@ -23,43 +29,122 @@ def cube(half_side):
     return vertices, faces
 
 
-@pytest.mark.parametrize("method,semantics", [("embree", "first-hit"), ("cgal", "nearest"),
-                                              ("embree", "closest"), ("v2p-aabb", "closest")])
-def test_agrees_with_the_cli(method, semantics):
-    result = roving.measure(BUNNY, FANDISK, method=method, semantics=semantics, samples="area:2000")
-    cli = json.loads(subprocess.run(
-        [os.environ["ROVING_CLI"], "measure", BUNNY, FANDISK, "--method", method, "--semantics", semantics,
-         "--samples", "area:2000", "--json", "-"], check=True, capture_output=True, text=True).stdout)
-    for key in ("siad", "usiad", "rms", "max_abs", "p99", "usiad_area"):
-        assert result["statistics"][key] == cli["statistics"][key], key
-    assert result["no_hits"] == cli["no_hits"]
-    assert result["samples"] == cli["samples"]["count"] == 2000
+def cli_json(reference, test, options):
+    """`roving measure REF TEST --json -` with the same options, as Python names them."""
+    arguments = [CLI, "measure", reference, test, "--json", "-"]
+    for key, value in options.items():
+        option = "--" + key.replace("_", "-")
+        if value is True:
+            arguments.append(option)
+        else:
+            arguments += [option, str(value)]
+    run = subprocess.run(arguments, capture_output=True, text=True)
+    assert run.returncode in (0, 3), run.stderr  # 3: a --fail-above gate breached
+    return json.loads(run.stdout)
 
 
-def test_arrays_in_and_out():
+def assert_same(cli, py, where="report"):
+    """Every field of the CLI's report is in Python's, equal (numbers bit for bit); times and the
+    command line differ by nature and are skipped."""
+    if isinstance(cli, dict):
+        assert isinstance(py, dict), where
+        for key, value in cli.items():
+            if "seconds" in key or key == "command_line":
+                continue
+            assert key in py, f"{where}.{key} missing"
+            assert_same(value, py[key], f"{where}.{key}")
+    elif isinstance(cli, list):
+        assert isinstance(py, list) and len(py) == len(cli), where
+        for i, (a, b) in enumerate(zip(cli, py)):
+            assert_same(a, b, f"{where}[{i}]")
+    elif isinstance(cli, float) and math.isnan(cli):
+        assert isinstance(py, float) and math.isnan(py), where
+    else:
+        assert type(cli) is type(py) and cli == py, f"{where}: CLI {cli!r}, Python {py!r}"
+
+
+@pytest.mark.parametrize("pair,options", [
+    ((BUNNY, FANDISK), {}),
+    ((BUNNY, FANDISK), {"method": "cgal", "semantics": "nearest", "samples": "area:2000"}),
+    ((BUNNY, FANDISK), {"semantics": "closest", "samples": "area:3000", "seed": 7, "histogram_bins": 16}),
+    ((BUNNY, FANDISK), {"symmetric": True, "samples": "vertices", "max_error": "2%"}),
+    ((BUNNY, FANDISK), {"method": "roving", "samples": "area:2000", "fail_above": "usiad=1e-9"}),
+    ((BUNNY, FANDISK), {"method": "v2p-aabb", "samples": "area:1000", "hausdorff_bound": "none"}),
+    ((os.path.join(IBSM, "torus-a.obj"), os.path.join(IBSM, "torus-b.obj")),
+     {"method": "cooperative", "samples": "area:2000", "ibsm": True, "ibsm_resolution": 128}),
+])
+def test_report_equals_the_clis(pair, options):
+    result = roving.measure(*pair, **options)
+    assert_same(cli_json(*pair, options), result)
+    assert bool(result["breached_gates"]) == ("fail_above" in options)
+
+
+def test_per_sample_arrays_without_a_copy(tmp_path):
+    samples_csv = tmp_path / "samples.csv"
+    result = roving.measure(BUNNY, FANDISK, samples="area:500", samples_out=str(samples_csv))
+    columns = result["per_sample"]
+    assert columns["positions"].shape == (500, 3) and columns["normals"].shape == (500, 3)
+    assert columns["d"].dtype == np.float64 and columns["hit"].dtype == np.bool_
+    for name in ("positions", "d", "weight", "element"):
+        assert columns[name].flags["OWNDATA"] is False, name  # a view of the library's buffer
+    rows = list(csv.DictReader(open(samples_csv)))
+    assert len(rows) == 500
+    for k, row in enumerate(rows):
+        assert bool(int(row["hit"])) == columns["hit"][k]
+        if columns["hit"][k]:
+            assert float(row["d"]) == columns["d"][k]
+        assert float(row["x"]) == columns["positions"][k, 0] and float(row["nz"]) == columns["normals"][k, 2]
+        assert int(row["element"]) == columns["element"][k]
+    d = columns["d"]
+    del result, columns
+    assert d.sum() == d.sum()  # still valid once the result is gone
+
+
+def test_colour_and_gl_columns():
+    result = roving.measure(os.path.join(IBSM, "torus-a.obj"), os.path.join(IBSM, "torus-b.obj"),
+                            method="roving", samples="area:300")
+    columns = result["per_sample"]
+    assert columns["test_colour"].shape == (300, 3) and columns["reference_colour"].dtype == np.float32
+    hit = columns["hit"]
+    assert not np.isnan(columns["test_colour"][hit]).any() and np.isnan(columns["test_colour"][~hit]).all()
+    assert set(np.unique(columns["resolved_by"])) <= {roving.resolved_by["camera"], roving.resolved_by["no-hit"]}
+    assert (columns["delta_e"][hit] >= 0).all()
+
+
+class MeshLike:
+    """What trimesh and many libraries offer: vertices and faces attributes."""
+    def __init__(self, vertices, faces):
+        self.vertices, self.faces = vertices, faces
+
+
+def test_meshes_python_holds():
     small, large = cube(0.5), cube(0.55)
-    result = roving.measure_arrays(*small, *large, semantics="closest")
-    assert result["samples"] == 12
-    assert isinstance(result["distance"], np.ndarray) and result["distance"].dtype == np.float64
-    assert result["hit"].dtype == np.bool_ and result["hit"].all()
-    np.testing.assert_allclose(result["distance"], 0.05, atol=1e-6)  # the large cube is 0.05 outside
-    assert result["positions"].shape == (12, 3)
-    # The distance array owns the library's buffer: no copy, writable, survives the result dict.
-    distance = result["distance"]
-    del result
-    assert distance.flags["OWNDATA"] is False and distance.sum() > 0
-
-    points = np.array([[0.0, 0.0, 0.5], [0.1, 0.2, 0.5]])
-    normals = np.array([[0.0, 0.0, 2.0], [0.0, 0.0, 1.0]])  # normalised by the library
-    given = roving.measure_arrays(*small, *large, sample_points=points, sample_normals=normals)
-    np.testing.assert_allclose(given["distance"], [0.05, 0.05], atol=1e-6)
-    assert given["semantics"] == "first-hit"
+    by_pair = roving.measure(small, large, semantics="closest")
+    assert by_pair["samples"]["count"] == 12
+    np.testing.assert_allclose(by_pair["per_sample"]["d"], 0.05, atol=1e-12)
+    by_object = roving.measure(MeshLike(*small), MeshLike(*large), semantics="closest")
+    assert by_object["statistics"] == by_pair["statistics"]
+    # float32 and int32 arrays are converted (a copy), with the same answer.
+    as_32 = roving.measure((small[0].astype(np.float32), small[1].astype(np.int32)), large, semantics="closest")
+    assert as_32["statistics"] == by_pair["statistics"]
+    # An N x 3 array is a point cloud (PCA normals), measured against a mesh.
+    points = np.random.default_rng(1).uniform(-0.5, 0.5, (400, 3))
+    points[:, 2] = 0.5
+    cloud = roving.measure(points, large, semantics="closest", samples="vertices")
+    np.testing.assert_allclose(np.abs(cloud["per_sample"]["d"]), 0.05, atol=1e-12)  # a flat patch: either side
 
 
-def test_gl_method_reports_observations():
-    result = roving.measure_arrays(*cube(0.5), *cube(0.55), method="roving")
-    assert result["sample_cameras"] == 12 and result["views_rendered"] == 0
-    np.testing.assert_allclose(result["distance"], 0.05, atol=1e-5)
+def test_open3d_meshes_and_point_clouds():
+    o3d = pytest.importorskip("open3d")
+    small, large = cube(0.5), cube(0.55)
+    mesh = o3d.geometry.TriangleMesh(o3d.utility.Vector3dVector(small[0]), o3d.utility.Vector3iVector(small[1]))
+    expected = roving.measure(small, large, semantics="closest")
+    assert roving.measure(mesh, large, semantics="closest")["statistics"] == expected["statistics"]
+    cloud = o3d.geometry.PointCloud(o3d.utility.Vector3dVector(small[0]))
+    cloud.normals = o3d.utility.Vector3dVector(small[0])  # outward along the diagonals
+    cloud.colors = o3d.utility.Vector3dVector(np.full((8, 3), 0.5))
+    result = roving.measure(cloud, large, semantics="closest", samples="vertices")
+    assert result["samples"]["count"] == 8 and result["per_sample"]["hit"].all()
 
 
 @pytest.mark.parametrize("call,message", [
@@ -67,14 +152,54 @@ def test_gl_method_reports_observations():
     (lambda: roving.measure(BUNNY, BUNNY, method="magic"), "--method"),
     (lambda: roving.measure(BUNNY, BUNNY, max_error="abc"), "--max-error"),
     (lambda: roving.measure(BUNNY, BUNNY, samples="area:0"), "--samples"),
-    (lambda: roving.measure_arrays(np.zeros((3, 2)), np.zeros((1, 3)), *cube(1)), "reference vertices"),
-    (lambda: roving.measure_arrays(*cube(1)[:1], np.array([[0, 1, 8]]), *cube(1)), "refers to vertex 8"),
-    (lambda: roving.measure_arrays(*cube(1), *cube(1), sample_points=np.zeros((2, 3))), "both or neither"),
-    (lambda: roving.measure_arrays(*cube(1), *cube(1), sample_points=np.zeros((1, 3)),
-                                   sample_normals=np.zeros((1, 3))), "non-zero"),
-    (lambda: roving.measure_arrays(np.array([[0, 0, np.nan], [1, 0, 0], [0, 1, 0]]), np.array([[0, 1, 2]]),
-                                   *cube(1)), "finite"),
+    (lambda: roving.measure(BUNNY, BUNNY, resolution=0), "--resolution"),
+    (lambda: roving.measure(BUNNY, BUNNY, max_eror="1%"), "unknown argument 'max_eror' (did you mean 'max_error'?)"),
+    (lambda: roving.measure(np.zeros((3, 2)), BUNNY), "reference points: expected an N x 3 array"),
+    (lambda: roving.measure((cube(1)[0], np.array([[0, 1, 8]])), BUNNY), "refers to vertex 8"),
+    (lambda: roving.measure((np.array([[0, 0, np.nan], [1, 0, 0], [0, 1, 0]]), np.array([[0, 1, 2]])), BUNNY),
+     "finite"),
+    (lambda: roving.measure(object(), BUNNY), "reference: expected a path"),
+    (lambda: roving.measure((1, 2, 3), BUNNY), "a sequence of 3"),
+    (lambda: roving.batch("/nonexistent/pairs.csv", out="/nonexistent/out"), "/nonexistent"),
 ])
-def test_bad_input_raises_the_librarys_error(call, message):
-    with pytest.raises(roving.Error, match=message.replace("-", r"\-")):
+def test_bad_input_raises_the_commands_error(call, message):
+    with pytest.raises(roving.Error, match=message.replace("-", r"\-").replace("(", r"\(").replace(")", r"\)")
+                       .replace("?", r"\?")):
         call()
+
+
+def test_an_option_error_is_the_clis_message():
+    cli = subprocess.run([CLI, "measure", BUNNY, BUNNY, "--resolution", "0"], capture_output=True, text=True)
+    with pytest.raises(roving.Error) as error:
+        roving.measure(BUNNY, BUNNY, resolution=0)
+    assert str(error.value) in cli.stderr
+
+
+def test_batch_as_the_command(tmp_path):
+    manifest = tmp_path / "pairs.csv"
+    manifest.write_text(f"reference,test\n{BUNNY},{FANDISK}\n{FANDISK},{BUNNY}\n")
+    assert roving.batch(str(manifest), out=str(tmp_path / "py"), samples="area:500") == 0
+    subprocess.run([CLI, "batch", str(manifest), "--out", str(tmp_path / "cli"), "--samples", "area:500"],
+                   check=True, capture_output=True)
+    ours = list(csv.DictReader(open(tmp_path / "py" / "summary.csv")))
+    theirs = list(csv.DictReader(open(tmp_path / "cli" / "summary.csv")))
+    assert len(ours) == len(theirs) == 2
+    for a, b in zip(ours, theirs):
+        for key in ("usiad", "rms", "max_abs", "no_hits"):
+            assert a[key] == b[key], key
+
+
+def test_no_memory_growth_over_a_thousand_calls():
+    small, large = cube(0.5), cube(0.55)
+
+    def resident_kib():
+        with open("/proc/self/status") as status:
+            return next(int(line.split()[1]) for line in status if line.startswith("VmRSS"))
+
+    for _ in range(100):  # allocator pools and caches settle
+        roving.measure(small, large, samples="area:200")
+    before = resident_kib()
+    for _ in range(1000):
+        roving.measure(small, large, samples="area:200")
+    # 1,000 leaked results of 200 samples would be at least 1000 * 200 * 80 bytes = 16 MB.
+    assert resident_kib() - before < 4 * 1024
