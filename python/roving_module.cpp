@@ -9,7 +9,9 @@
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
+#include <signal.h>
 
+#include <atomic>
 #include <cmath>
 #include <string>
 
@@ -219,11 +221,74 @@ py::dict per_sample(DirectionReport& d) {
   return out;
 }
 
+// Ctrl-C during a call: Python's own handler only sets a flag that its interpreter loop reads, and
+// that loop waits for the call to return. So for the call's duration (on the main thread, where
+// Python handles signals) a handler of our own notes it, and the progress listener, on whichever
+// thread next reports progress, stops the measurement with KeyboardInterrupt. Nothing is written.
+std::atomic<bool> interrupted{false};
+extern "C" void note_interrupt(int) {
+  interrupted = true;
+}
+
+class InterruptScope {
+ public:
+  InterruptScope() {
+    interrupted = false;
+    const py::module_ threading = py::module_::import("threading");
+    if (!threading.attr("current_thread")().is(threading.attr("main_thread")())) return;
+    struct sigaction action {};
+    action.sa_handler = note_interrupt;
+    sigemptyset(&action.sa_mask);
+    installed_ = ::sigaction(SIGINT, &action, &previous_) == 0;
+  }
+  ~InterruptScope() {
+    if (!installed_) return;
+    ::sigaction(SIGINT, &previous_, nullptr);
+    if (interrupted) PyErr_SetInterrupt();  // pressed as the call ended: Python raises it next
+  }
+  InterruptScope(const InterruptScope&) = delete;
+  InterruptScope& operator=(const InterruptScope&) = delete;
+
+ private:
+  struct sigaction previous_ {};
+  bool installed_ = false;
+};
+
+// What a call hears of its progress: Ctrl-C, and the caller's progress(stage, what, done, total).
+Progress::Listener listener(const py::object& callback) {
+  return [callback](const std::string& stage, const char* what, std::size_t done, std::size_t total) {
+    if (!interrupted && callback.is_none()) return;
+    py::gil_scoped_acquire gil;
+    if (interrupted.exchange(false)) {
+      PyErr_SetNone(PyExc_KeyboardInterrupt);
+      throw py::error_already_set();
+    }
+    callback(stage, what, done, total);  // what it raises stops the measurement, and is raised
+  };
+}
+
+// The keyword arguments but `progress`, which is the module's own.
+py::kwargs without_progress(const py::kwargs& options, py::object& progress) {
+  py::kwargs rest;
+  for (const auto& [key, value] : options) {
+    if (std::string(py::str(key)) == "progress") {
+      progress = py::reinterpret_borrow<py::object>(value);
+      if (!progress.is_none() && !PyCallable_Check(progress.ptr()))
+        throw Error("progress: expected a function (stage, what, done, total) or None");
+    } else {
+      rest[key] = value;
+    }
+  }
+  return rest;
+}
+
 py::object parse_json(const std::string& text) {
   return py::module_::import("json").attr("loads")(text);
 }
 
-py::dict measure(const py::object& reference, const py::object& test, const py::kwargs& options) {
+py::dict measure(const py::object& reference, const py::object& test, const py::kwargs& all_options) {
+  py::object callback = py::none();
+  const py::kwargs options = without_progress(all_options, callback);
   const std::unique_ptr<CommandLine> line = make_command_line();
   const bool reference_is_path = is_path(reference), test_is_path = is_path(test);
   const std::string reference_path =
@@ -252,8 +317,10 @@ py::dict measure(const py::object& reference, const py::object& test, const py::
   std::string stage = "starting", json, printed;
   std::vector<std::string> breached;
   {
+    const InterruptScope interrupt;
     py::gil_scoped_release release;
     Progress progress(args.quiet);
+    progress.listen(listener(callback));
     run = measure_run(args, stage, progress, {}, std::move(a), std::move(b));
     write_measure_outputs(args, run, stage);
     json = to_json(run.report).dump();
@@ -324,6 +391,11 @@ per-sample columns of --samples-out as NumPy arrays owning the library's buffers
 hit is False), hit (bool), element (REF's face or vertex), weight (area), and where they apply
 hit_face, resolved_by (codes in roving.resolved_by), reference_colour, test_colour (K x 3, 8-bit code
 values) and delta_e (CIEDE2000).
+
+progress: a function progress(stage, what, done, total) called as the measurement goes (each stage,
+  then at most ten times a second: e.g. 'measuring', 'cameras', 40960, 69451); what it raises stops
+  the measurement and is raised. Ctrl-C stops it too (KeyboardInterrupt) at its next report of
+  progress; no output file is written by a stopped call.
 
 Raises roving.Error (a ValueError) with the command's one-line message.
 

@@ -3,7 +3,8 @@
 # clean Debian 12 tree (debootstrap, minbase, under build-deb/debian12) with nothing else installed,
 # `apt install ./roving_*.deb` resolves its dependencies from Debian's archive; then from an empty
 # folder there: `roving` on PATH, docs/library.md's C++ program built by find_package(roving) with no
-# environment variable, and `import roving` in Debian's python3. As root (debootstrap, chroot).
+# environment variable, `import roving` in Debian's python3 and the Python tests against it. As root
+# (debootstrap, chroot).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 source scripts/step.sh
@@ -36,5 +37,14 @@ in_root sh -c 'cd /tmp && [ "$(command -v roving)" = /usr/bin/roving ] && roving
 in_root sh -c 'cd /tmp/app && roving measure fandisk.obj fandisk.obj --method roving --samples area:2000 --quiet > gl.txt && grep "^method" gl.txt'
 in_root sh -c 'cd /tmp/app && cmake -S . -B build -G Ninja >/dev/null && cmake --build build >/dev/null && ./build/app fandisk.obj fandisk.obj'
 in_root sh -c 'cd /tmp && python3 -c "import roving; print(\"import roving:\", roving.__file__, \"methods:\", \", \".join(roving.methods))"'
+# The Python tests against the installed module and CLI, with pytest and NumPy from Debian (the parts
+# needing Open3D or matplotlib are left to the main suite, where setup.sh installs them).
+rm -rf "$root/tmp/src" && mkdir -p "$root/tmp/src/tests" "$root/tmp/src/python" "$root/tmp/src/docs"
+cp -r tests/python tests/ibsm "$root/tmp/src/tests/" && cp -r data "$root/tmp/src/" && cp python/roving.pyi "$root/tmp/src/python/"
+cp docs/python.md "$root/tmp/src/docs/"
+step "the Python tests on the installed module (python3-pytest, python3-numpy)" in_root sh -c \
+  "apt-get install -y -qq --no-install-recommends python3-pytest python3-numpy >/dev/null && cd /tmp && \
+   PYTHONDONTWRITEBYTECODE=1 ROVING_CLI=/usr/bin/roving ROVING_SOURCE_DIR=/tmp/src python3 -m pytest -q -p no:cacheprovider /tmp/src/tests/python"
+test -f "$root/usr/lib/python3/dist-packages/roving.pyi" || { echo "test-package: roving.pyi is not installed beside the module" >&2; exit 1; }
 in_root apt-get remove -y -qq roving >/dev/null
 echo "test-package: in a clean Debian 12 tree, apt installs the package; roving on PATH (a GL method included), find_package(roving) and import roving work"

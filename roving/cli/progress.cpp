@@ -12,20 +12,27 @@ namespace roving {
 Progress::Progress(bool quiet) : enabled_(!quiet && ::isatty(STDERR_FILENO)) {}
 
 void Progress::stage(const std::string& text) {
-  if (!enabled_) return;
+  if (!enabled_ && !listener_) return;
   const std::lock_guard<std::mutex> lock(mutex_);
   stage_ = text;
-  draw(stage_ + " ...");
+  if (enabled_) draw(stage_ + " ...");
+  if (listener_) listener_(stage_, "", 0, 0);
 }
 
 void Progress::update(const char* what, std::size_t done, std::size_t total) {
-  if (!enabled_) return;
+  if (!enabled_ && !listener_) return;
   const std::lock_guard<std::mutex> lock(mutex_);
   const auto now = std::chrono::steady_clock::now();
-  if (done < total && now - last_draw_ < std::chrono::milliseconds(100)) return;
-  last_draw_ = now;
-  const double percent = total ? 100.0 * done / total : 100.0;
-  draw(fmt::format("{}: {} {}/{} ({:.0f}%)", stage_, what, done, total, percent));
+  const auto due = [&](std::chrono::steady_clock::time_point& last) {
+    if (done < total && now - last < std::chrono::milliseconds(100)) return false;
+    last = now;
+    return true;
+  };
+  if (enabled_ && due(last_draw_)) {
+    const double percent = total ? 100.0 * done / total : 100.0;
+    draw(fmt::format("{}: {} {}/{} ({:.0f}%)", stage_, what, done, total, percent));
+  }
+  if (listener_ && due(last_heard_)) listener_(stage_, what, done, total);
 }
 
 ProgressFn Progress::callback() {
@@ -41,7 +48,8 @@ void Progress::clear() {
 void Progress::draw(const std::string& text) {
   // One terminal line at most, or the carriage return would no longer reach its start.
   winsize size{};
-  const std::size_t width = ::ioctl(STDERR_FILENO, TIOCGWINSZ, &size) == 0 && size.ws_col > 1 ? size.ws_col : 80;
+  const std::size_t width =
+      ::ioctl(STDERR_FILENO, TIOCGWINSZ, &size) == 0 && size.ws_col > 1 ? size.ws_col : 80;
   const std::string line = text.size() < width ? text : text.substr(0, width - 4) + "...";
   // Carriage return, the line, and blanks over whatever longer line was there before.
   const std::size_t pad = drawn_width_ > line.size() ? drawn_width_ - line.size() : 0;

@@ -1,10 +1,12 @@
 // Progress on stderr for a person watching a terminal: the stage, then counts as they move
 // ("views 12/288", "samples 45%"), redrawn in place at most ten times a second. Silent when
-// stderr is not a terminal (pipes, CI logs) or when the user asked for --quiet.
+// stderr is not a terminal (pipes, CI logs) or when the user asked for --quiet; a listener hears
+// it either way.
 #pragma once
 
 #include <chrono>
 #include <cstddef>
+#include <functional>
 #include <mutex>
 #include <string>
 
@@ -26,6 +28,13 @@ class Progress {
   // Erases the line, so that what follows starts clean.
   void clear();
 
+  // Also hands each stage (what empty, 0 of 0) and the updates, at most every 0.1 s, to
+  // `listener`, terminal or not: the Python module's progress callback and its Ctrl-C check. The
+  // listener may throw to stop the measurement; nothing is written then.
+  using Listener =
+      std::function<void(const std::string& stage, const char* what, std::size_t done, std::size_t total)>;
+  void listen(Listener listener) { listener_ = std::move(listener); }
+
  private:
   void draw(const std::string& line);
 
@@ -33,7 +42,8 @@ class Progress {
   std::mutex mutex_;
   std::string stage_;
   std::size_t drawn_width_ = 0;
-  std::chrono::steady_clock::time_point last_draw_{};
+  std::chrono::steady_clock::time_point last_draw_{}, last_heard_{};
+  Listener listener_;
 };
 
 }  // namespace roving

@@ -5,7 +5,10 @@ import csv
 import json
 import math
 import os
+import signal
 import subprocess
+import sys
+import time
 
 import numpy as np
 import pytest
@@ -203,3 +206,57 @@ def test_no_memory_growth_over_a_thousand_calls():
         roving.measure(small, large, samples="area:200")
     # 1,000 leaked results of 200 samples would be at least 1000 * 200 * 80 bytes = 16 MB.
     assert resident_kib() - before < 4 * 1024
+
+
+def test_progress_callback_hears_each_stage_and_can_stop(tmp_path):
+    heard = []
+    roving.measure(BUNNY, FANDISK, samples="area:5000", method="roving",
+                   progress=lambda stage, what, done, total: heard.append((stage, what, done, total)))
+    stages = [stage for stage, what, _, _ in heard if not what]
+    assert stages[:3] == ["loading stanford-bunny.obj", "loading fandisk.obj", "sampling"] and "measuring" in stages
+    assert any(what == "cameras" and 0 < done <= total == 5000 for _, what, done, total in heard)
+
+    class Stop(Exception):
+        pass
+
+    def stop(stage, what, done, total):
+        if stage == "measuring":
+            raise Stop(stage)
+
+    output = tmp_path / "report.json"
+    with pytest.raises(Stop):
+        roving.measure(BUNNY, FANDISK, samples="area:5000", json=str(output), progress=stop)
+    assert not output.exists() and not list(tmp_path.iterdir())  # nothing written, no temporary left
+    with pytest.raises(roving.Error, match="progress: expected a function"):
+        roving.measure(BUNNY, FANDISK, progress=3)
+
+
+def test_ctrl_c_stops_a_long_measurement_and_writes_nothing(tmp_path):
+    output = tmp_path / "report.json"
+    script = (f"import roving, sys\nprint('started', flush=True)\n"
+              f"roving.measure({BUNNY!r}, {BUNNY!r}, method='roving', samples='area:3000000', json={str(output)!r})\n")
+    child = subprocess.Popen([sys.executable, "-c", script], stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                             text=True, env=dict(os.environ))
+    assert child.stdout.readline().strip() == "started"
+    time.sleep(2)  # loading and sampling done, the cameras under way (the whole run takes much longer)
+    sent = time.monotonic()
+    child.send_signal(signal.SIGINT)
+    _, stderr = child.communicate(timeout=60)
+    stopped_after = time.monotonic() - sent
+    assert child.returncode != 0 and "KeyboardInterrupt" in stderr, stderr
+    assert stopped_after < 5, stopped_after
+    assert not list(tmp_path.iterdir())
+
+
+def test_type_stubs_name_exactly_the_commands_options():
+    import ast
+    stub = ast.parse(open(os.path.join(SOURCE, "python", "roving.pyi")).read())
+    keywords = {f.name: {a.arg for a in f.args.kwonlyargs} for f in stub.body if isinstance(f, ast.FunctionDef)}
+
+    def options(command):
+        text = subprocess.run([CLI, command, "--help"], capture_output=True, text=True, check=True).stdout
+        import re
+        return {o[2:].replace("-", "_") for o in re.findall(r"^\s+(--[a-z][a-z-]*)", text, re.M)} - {"help"}
+
+    assert keywords["measure"] == options("measure") | {"progress"}
+    assert keywords["batch"] == options("batch")

@@ -1,0 +1,82 @@
+# Type stubs for the `roving` extension module (roving_module.cpp), for editors and type checkers.
+# Each keyword is an option of `roving measure` / `roving batch` (the option with _ for -); None
+# leaves it at the command's default. tests/python/test_roving.py checks that these keywords are
+# exactly the commands' options.
+from os import PathLike
+from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple, Union
+
+import numpy as np
+import numpy.typing as npt
+
+Model = Union[str, "PathLike[str]", npt.ArrayLike, Tuple[npt.ArrayLike, npt.ArrayLike], Any]
+Progress = Callable[[str, str, int, int], None]
+
+class Error(ValueError): ...
+
+methods: List[str]
+resolved_by: Dict[str, int]
+
+def measure(
+    reference: Model,
+    test: Model,
+    *,
+    method: Optional[str] = ...,
+    semantics: Optional[str] = ...,
+    symmetric: bool = ...,
+    samples: Optional[str] = ...,
+    precision: Optional[str] = ...,
+    seed: Optional[int] = ...,
+    max_error: Optional[str] = ...,
+    ref_type: Optional[str] = ...,
+    test_type: Optional[str] = ...,
+    views: Optional[str] = ...,
+    resolution: Optional[int] = ...,
+    backend: Optional[str] = ...,
+    camera_geometry: Optional[str] = ...,
+    hausdorff_bound: Optional[str] = ...,
+    ibsm: bool = ...,
+    ibsm_views: Optional[int] = ...,
+    ibsm_resolution: Optional[int] = ...,
+    histogram_bins: Optional[int] = ...,
+    quiet: bool = ...,
+    trust_references: bool = ...,
+    fail_above: Optional[Union[str, Sequence[str]]] = ...,
+    gate_on: Optional[str] = ...,
+    json: Optional[str] = ...,
+    samples_out: Optional[str] = ...,
+    heatmap: Optional[str] = ...,
+    heatmap_png: Optional[str] = ...,
+    html: Optional[str] = ...,
+    heatmap_of: Optional[str] = ...,
+    heatmap_range: Optional[str] = ...,
+    progress: Optional[Progress] = ...,
+) -> Dict[str, Any]: ...
+
+def batch(
+    *pairs: Union[str, "PathLike[str]"],
+    out: Optional[str] = ...,
+    shard: Optional[str] = ...,
+    merge: bool = ...,
+    html: bool = ...,
+    skip_unpaired: bool = ...,
+    trust_references: bool = ...,
+    method: Optional[str] = ...,
+    semantics: Optional[str] = ...,
+    symmetric: bool = ...,
+    samples: Optional[str] = ...,
+    precision: Optional[str] = ...,
+    seed: Optional[int] = ...,
+    max_error: Optional[str] = ...,
+    ref_type: Optional[str] = ...,
+    test_type: Optional[str] = ...,
+    views: Optional[str] = ...,
+    resolution: Optional[int] = ...,
+    backend: Optional[str] = ...,
+    camera_geometry: Optional[str] = ...,
+    hausdorff_bound: Optional[str] = ...,
+    ibsm: bool = ...,
+    ibsm_views: Optional[int] = ...,
+    ibsm_resolution: Optional[int] = ...,
+    histogram_bins: Optional[int] = ...,
+    quiet: bool = ...,
+) -> int: ...
