@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -32,6 +33,14 @@ struct HtmlView {
   std::size_t positive = 0, negative = 0, zero = 0, no_hit = 0;  // samples by the sign of d
   std::vector<std::pair<std::string, std::string>> figures;      // the table's rows: name, value
   Histogram histogram;
+  // Where both models have colour: per element of `surface`, the CIEDE2000 delta E (NaN: a no-hit)
+  // and REF's and TEST's colours (8-bit R'G'B', three per element; TEST's NaN where no hit, as
+  // no_colour), which the page can show instead of d.
+  struct Colours {
+    std::vector<float> delta_e, reference, test;
+    double delta_e_range = 0;  // the sequential map's top: the 99th percentile of delta E
+  };
+  std::optional<Colours> colours;
 };
 
 struct HtmlPage {

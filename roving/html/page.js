@@ -1,5 +1,6 @@
 // The heat-map page's viewer: the embedded surfaces drawn by three.js, orbit / zoom / pan,
-// the colour bar, picking, and the toggle between directions. Data come from the JSON block
+// the colour bar, picking, the toggle between directions, and where both models have colour the
+// choice of what the surface shows (d, delta E, REF's or TEST's colour). Data come from the JSON block
 // #roving-data, written by roving/html/html_page.cpp (arrays as base64 little-endian binary).
 'use strict';
 (function () {
@@ -37,28 +38,37 @@
   controls.screenSpacePanning = true;
   const views = data.views.map(function (view) { return { data: view, object: null }; });
   let current = null;
+  // What the surface shows: d, or where both models have colour, delta E or either model's colour.
+  let shown = 'd';
 
   function build(view) {
     const v = view.data;
     const source = v.geometry_of >= 0 ? data.views[v.geometry_of] : v;  // a surface shared with another view
     const positions = decode(source.positions, Float32Array);
     const triangles = decode(source.triangles, Uint32Array);
-    const colours = decode(v.colours, Uint8Array);
+    view.layers = { d: decode(v.colours, Uint8Array) };  // per element, three bytes each
+    if (v.colours_of) {
+      view.layers.delta_e = decode(v.colours_of.delta_e_colours, Uint8Array);
+      view.layers.reference = decode(v.colours_of.reference, Uint8Array);
+      view.layers.test = decode(v.colours_of.test, Uint8Array);
+      view.deltaE = decode(v.colours_of.delta_e, Float32Array);
+    }
     const geometry = new THREE.BufferGeometry();
     if (v.element === 'faces') {  // flat colour per triangle: three vertices of its own
       const count = triangles.length;
-      const p = new Float32Array(count * 3), c = new Uint8Array(count * 3);
+      const p = new Float32Array(count * 3);
       for (let i = 0; i < count; ++i) {
-        const vertex = triangles[i], face = (i / 3) | 0;
-        for (let k = 0; k < 3; ++k) { p[3 * i + k] = positions[3 * vertex + k]; c[3 * i + k] = colours[3 * face + k]; }
+        const vertex = triangles[i];
+        for (let k = 0; k < 3; ++k) p[3 * i + k] = positions[3 * vertex + k];
       }
       geometry.setAttribute('position', new THREE.BufferAttribute(p, 3));
-      geometry.setAttribute('color', new THREE.BufferAttribute(c, 3, true));
+      geometry.setAttribute('color', new THREE.BufferAttribute(new Uint8Array(count * 3), 3, true));
     } else {
       geometry.setAttribute('position', new THREE.BufferAttribute(positions, 3));
-      geometry.setAttribute('color', new THREE.BufferAttribute(colours, 3, true));
+      geometry.setAttribute('color', new THREE.BufferAttribute(new Uint8Array(positions.length), 3, true));
       if (triangles) geometry.setIndex(new THREE.BufferAttribute(triangles, 1));
     }
+    view.triangles = triangles;
     geometry.computeBoundingSphere();
     if (!triangles) {
       const size = v.point_size > 0 ? v.point_size : 1.5 * v.diagonal / Math.sqrt(positions.length / 3);
@@ -71,10 +81,55 @@
       geometry.computeVertexNormals();
       view.object = new THREE.Mesh(geometry, new THREE.MeshLambertMaterial({ vertexColors: THREE.VertexColors, side: THREE.DoubleSide }));
     }
+    paint(view);
     view.values = decode(v.values, Float32Array);
     view.samples = decode(v.samples, Int32Array);
     view.resolution = decode(v.resolution, Uint8Array);
     view.elements = view.values.length;
+  }
+
+  // The element colours of the layer shown into the geometry (a face's onto its three vertices).
+  function paint(view) {
+    const colours = view.layers[shown] || view.layers.d;
+    const attribute = view.object.geometry.attributes.color;
+    if (view.data.element === 'faces') {
+      for (let i = 0; i < view.triangles.length; ++i) {
+        const face = (i / 3) | 0;
+        for (let k = 0; k < 3; ++k) attribute.array[3 * i + k] = colours[3 * face + k];
+      }
+    } else {
+      attribute.array.set(colours);
+    }
+    attribute.needsUpdate = true;
+  }
+
+  // The colour bar, its labels and the swatches for what is shown.
+  function legend(v) {
+    const bar = document.getElementById('colourbar'), units = document.getElementById('bar-units');
+    const labels = document.getElementById('bar-labels');
+    const own = shown === 'reference' || shown === 'test';
+    bar.hidden = labels.hidden = own;
+    document.querySelectorAll('#swatches .for-d').forEach(function (e) { e.hidden = shown !== 'd'; });
+    document.querySelectorAll('#shown button').forEach(function (b) { b.classList.toggle('on', b.dataset.show === shown); });
+    if (shown === 'd') {
+      bar.style.background = bar.dataset.d;
+      document.getElementById('bar-low').textContent = '\u2212' + number(v.range);
+      document.getElementById('bar-middle').textContent = '0';
+      document.getElementById('bar-high').textContent = '+' + number(v.range);
+      units.textContent = 'd in model units; \u00b1' + number(v.range) + ' is ' + number(100 * v.range / v.diagonal) +
+          '% of the diagonal (' + number(v.diagonal) + ')';
+    } else if (shown === 'delta_e') {
+      const top = v.colours_of.delta_e_range;
+      bar.style.background = bar.dataset.deltaE;
+      document.getElementById('bar-low').textContent = '0';
+      document.getElementById('bar-middle').textContent = number(top / 2);
+      document.getElementById('bar-high').textContent = number(top);
+      units.textContent = 'CIEDE2000 delta E between REF\u2019s and TEST\u2019s colours at each sample; the top, ' +
+          number(top) + ', is its 99th percentile';
+    } else {
+      units.textContent = shown === 'reference' ? 'REF\u2019s own colour at each sample'
+                                                : 'TEST\u2019s colour where each sample\u2019s line meets it';
+    }
   }
 
   function frame(view) {  // from +z, as the PNG's front view, the whole surface in sight
@@ -99,10 +154,10 @@
     current = view;
     frame(view);
     const v = view.data;
-    document.getElementById('bar-low').textContent = '\u2212' + number(v.range);
-    document.getElementById('bar-high').textContent = '+' + number(v.range);
-    document.getElementById('bar-units').textContent = 'd in model units; \u00b1' + number(v.range) + ' is ' +
-        number(100 * v.range / v.diagonal) + '% of the diagonal (' + number(v.diagonal) + ')';
+    if (!v.colours_of) shown = 'd';
+    document.getElementById('shown').hidden = !v.colours_of;
+    paint(view);
+    legend(v);
     document.getElementById('decimated').textContent = v.decimated;
     document.querySelectorAll('.direction').forEach(function (section, i) { section.hidden = i !== index; });
     document.querySelectorAll('#directions button').forEach(function (button, i) { button.classList.toggle('on', i === index); });
@@ -152,6 +207,15 @@
       text += isNaN(value) ? 'no hit within h = ' + number(v.max_error) : 'd = ' + number(value) + ' (' + number(100 * value / v.diagonal) + '% of the diagonal)';
       text += current.resolution ? ', resolved by ' + RESOLUTION[current.resolution[sample]] : ', by ' + v.method + ' (exact)';
     }
+    if (current.deltaE && sample !== -1) {
+      const rgb = function (layer) {
+        const c = current.layers[layer];
+        return '(' + c[3 * element] + ', ' + c[3 * element + 1] + ', ' + c[3 * element + 2] + ')';
+      };
+      const e = current.deltaE[element];
+      text += isNaN(e) ? '; REF\u2019s colour ' + rgb('reference') + ', no TEST colour'
+                       : '; delta E = ' + number(e) + ', REF\u2019s colour ' + rgb('reference') + ', TEST\u2019s ' + rgb('test');
+    }
     out.textContent = text;
   }
   let pending = null;
@@ -165,6 +229,14 @@
   window.addEventListener('resize', render);
   document.querySelectorAll('#directions button').forEach(function (button, i) {
     button.addEventListener('click', function () { show(i); });
+  });
+  document.querySelectorAll('#shown button').forEach(function (button) {
+    button.addEventListener('click', function () {
+      shown = button.dataset.show;
+      paint(current);
+      legend(current.data);
+      render();
+    });
   });
   show(0);
   document.body.dataset.ready = 'true';

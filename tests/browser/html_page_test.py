@@ -38,12 +38,14 @@ def check(condition, what):
         failures.append(what)
 
 
-def grid(path, x0, x1, z, cells_x, cells_y=40):
-    """A rectangle [x0, x1] x [-1, 1] at height z, facing +z, as an OBJ of cells_x x cells_y quads."""
+def grid(path, x0, x1, z, cells_x, cells_y=40, colour=None):
+    """A rectangle [x0, x1] x [-1, 1] at height z, facing +z, as an OBJ of cells_x x cells_y quads,
+    its vertices coloured `colour` (fractions of 1, MeshLab's `v x y z r g b`) where given."""
     lines = []
+    rgb = "" if colour is None else " " + " ".join(f"{c:g}" for c in colour)
     for j in range(cells_y + 1):
         for i in range(cells_x + 1):
-            lines.append(f"v {x0 + (x1 - x0) * i / cells_x:.9g} {-1 + 2 * j / cells_y:.9g} {z}")
+            lines.append(f"v {x0 + (x1 - x0) * i / cells_x:.9g} {-1 + 2 * j / cells_y:.9g} {z}{rgb}")
     at = lambda i, j: j * (cells_x + 1) + i + 1  # noqa: E731
     for j in range(cells_y):
         for i in range(cells_x):
@@ -137,6 +139,69 @@ with chromium.Browser() as browser:
     outside = [u for u in browser.requests if not u.startswith(("file://", "data:", "about:"))]
     check(browser.requests and not outside, f"the page loads nothing but itself ({len(browser.requests)} requests): {outside}")
     (work / "screenshot.png").write_bytes(browser.screenshot())
+
+# Colour: REF grey (102, 102, 102); TEST's low half the same (delta E 0), its quarter above reddened
+# to (204, 102, 102), the rest no hit. The page shows d, delta E, REF's or TEST's colour; each
+# layer's colours cover the canvas in the shares of the elements that carry them.
+grid(work / "ref-coloured.obj", -1, 1, 0, 40, colour=(0.4, 0.4, 0.4))
+grid(work / "low-coloured.obj", -1, 0, -0.02, 20, colour=(0.4, 0.4, 0.4))
+grid(work / "high-coloured.obj", 0, 0.5, 0.02, 10, colour=(0.8, 0.4, 0.4))
+first = (work / "low-coloured.obj").read_text().splitlines()
+second = (work / "high-coloured.obj").read_text().splitlines()
+second = [l if not l.startswith("f ") else "f " + " ".join(str(int(i) + shift) for i in l.split()[1:]) for l in second]
+(work / "test-coloured.obj").write_text("\n".join(first + second) + "\n")
+page = work / "coloured.html"
+run("measure", work / "ref-coloured.obj", work / "test-coloured.obj", "--html", page, "--json", work / "coloured.json",
+    "--quiet")
+report = json.loads((work / "coloured.json").read_text())
+view = json.loads(re.search(r'<script id="roving-data" type="application/json">(.*?)</script>', page.read_text(),
+                            re.S).group(1))["views"][0]
+
+
+def layer_shares(encoded):
+    """Each colour of a layer (three bytes per face) and the share of the faces it colours."""
+    import base64
+    colours = np.frombuffer(base64.b64decode(encoded), np.uint8).reshape(-1, 3)
+    found, counts = np.unique(colours, axis=0, return_counts=True)
+    return {tuple(int(x) for x in c): n / len(colours) for c, n in zip(found, counts)}
+
+
+with chromium.Browser() as browser:
+    browser.open(page)
+    rect = browser.evaluate("(() => { const r = document.getElementById('view').getBoundingClientRect();"
+                            " return {x: r.x, y: r.y, width: r.width, height: r.height}; })()")
+    check(browser.evaluate("document.getElementById('shown').hidden") is False, "colour: the page offers what to show")
+    expected = {"delta_e": {"zero": 0.5, "top": 0.25, "grey": 0.25},
+                "test": {(102, 102, 102): 0.5, (204, 102, 102): 0.25, GREY: 0.25},
+                "reference": {(102, 102, 102): 1.0}}
+    for layer in ("delta_e", "test", "reference"):
+        browser.evaluate(f"document.querySelector('#shown button[data-show={layer}]').click()")
+        shares = layer_shares(view["colours_of"]["delta_e_colours" if layer == "delta_e" else layer])
+        want = sorted(expected[layer].values())
+        check(sorted(round(v, 9) for v in shares.values()) == want,
+              f"colour, {layer}: the layer's colours cover {sorted(shares.values())} of the faces, the pair's {want}")
+        pixels = np.round(image.imread(io.BytesIO(browser.screenshot(rect)))[:, :, :3] * 255).astype(int)
+        near = {c: int(np.all(np.abs(pixels - np.array(c)) <= 4, axis=2).sum()) for c in shares}
+        surface = sum(near.values())
+        for colour, share in shares.items():
+            seen = near[colour] / max(surface, 1)
+            check(abs(seen - share) < 0.02, f"colour, {layer}: {colour} pixels {seen:.4f} of the surface's, faces {share:.4f}")
+    browser.evaluate("document.querySelector('#shown button[data-show=delta_e]').click()")
+    labels = browser.evaluate("[document.getElementById('bar-low').textContent, document.getElementById('bar-high').textContent,"
+                              " document.getElementById('bar-units').textContent]")
+    top = view["colours_of"]["delta_e_range"]
+    check(labels[0] == "0" and abs(float(labels[1]) - top) <= 5e-4 * top and "CIEDE2000" in labels[2],
+          f"colour: delta E's bar runs from 0 to its 99th percentile {top:.4g}: {labels}")
+    check(abs(top - report["colour"]["delta_e_max"]) <= 1e-6 * top,
+          f"colour: with two delta E values, the top is the report's largest ({report['colour']['delta_e_max']:.6g})")
+    browser.evaluate("document.querySelector('#shown button[data-show=test]').click()")
+    text = pick(browser, rect, (204, 102, 102))
+    check(re.search(r"delta E = [0-9.]+, REF’s colour \(102, 102, 102\), TEST’s \(204, 102, 102\)", text)
+          is not None, f"colour: clicking the reddened quarter shows its delta E and both colours: '{text}'")
+    browser.evaluate("document.querySelector('#shown button[data-show=d]').click()")
+    labels = browser.evaluate("[document.getElementById('bar-low').textContent, document.getElementById('bar-units').textContent]")
+    check(labels[0].startswith("\u2212") and labels[1].startswith("d in model units"), f"colour: back to d, its legend: {labels}")
+    check(not browser.errors, f"colour: no console error or exception: {browser.errors}")
 
 # A batch of two pairs, one of which fails: the index lists both, sorts, and links to the page.
 manifest = work / "pairs.csv"
