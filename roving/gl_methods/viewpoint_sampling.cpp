@@ -306,9 +306,11 @@ void view_sample(GlScene& scene, const SampleSet& samples, const std::vector<std
       found(k, d);
       ++resolved;
       if (!colour) return;
-      // The view's d is good to its tolerance at the sample's angle to the view.
+      // The view's d is good to its tolerance at the sample's angle to the view; past 50 degrees
+      // (coarse view grids) that bound grows without limit, and the whole line is searched.
       const double alpha = std::acos(std::clamp(-camera.forward.dot(samples.normals[k]), -1.0, 1.0));
-      const SampleHit hit = hit_face(scene, samples, k, d, max_error, view_tolerance(report, alpha, d));
+      const double window = alpha < 50 * M_PI / 180 ? view_tolerance(report, alpha, d) : 2 * max_error;
+      const SampleHit hit = hit_face(scene, samples, k, d, max_error, window);
       const std::lock_guard<std::mutex> lock(hits_mutex);
       hits.push_back(hit);
     };
