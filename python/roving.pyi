@@ -38,6 +38,7 @@ def measure(
     ibsm_views: Optional[int] = ...,
     ibsm_resolution: Optional[int] = ...,
     histogram_bins: Optional[int] = ...,
+    threshold: Optional[Union[str, Sequence[str]]] = ...,
     quiet: bool = ...,
     trust_references: bool = ...,
     fail_above: Optional[Union[str, Sequence[str]]] = ...,
@@ -78,5 +79,6 @@ def batch(
     ibsm_views: Optional[int] = ...,
     ibsm_resolution: Optional[int] = ...,
     histogram_bins: Optional[int] = ...,
+    threshold: Optional[Union[str, Sequence[str]]] = ...,
     quiet: bool = ...,
 ) -> int: ...

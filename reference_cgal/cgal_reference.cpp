@@ -112,7 +112,7 @@ class CgalAabbMethod final : public DistanceMethod {
           return options.semantics == Semantics::Closest ? std::optional<FaceHit>(closest(x, n))
                                                          : along_normal(x, n, options);
         },
-        progress_, options.colour);
+        progress_, options.colour || options.faces);
   }
 
  private:

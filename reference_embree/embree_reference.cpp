@@ -10,11 +10,11 @@
 #include <limits>
 #include <optional>
 
+#include "embree_queries.h"
 #include "roving/core/error.h"
 #include "roving/core/geometry.h"
 #include "roving/core/normal_line.h"
 #include "roving/core/stopwatch.h"
-#include "embree_queries.h"
 
 namespace roving {
 namespace {
@@ -136,7 +136,7 @@ class EmbreeReference final : public DistanceMethod {
               return FaceHit{signed_offset(x, samples.normals[k], closest.closest), closest.face};
             };
           },
-          progress_, options.colour);
+          progress_, options.colour || options.faces);
     }
     const double h = options.max_error;
     return measure_each(
@@ -144,7 +144,7 @@ class EmbreeReference final : public DistanceMethod {
         [&](std::size_t k) {
           return along_normal(samples.positions[k], samples.normals[k], h, options.semantics);
         },
-        progress_, options.colour);
+        progress_, options.colour || options.faces);
   }
 
  private:

@@ -580,6 +580,7 @@ TEST(CliReport, JsonLayoutIsTheDocumentedOne) {
   for (const std::string& arguments :
        {coloured + " --symmetric", coloured + " --ibsm --ibsm-resolution 64", cubes.pair,
         cubes.pair + " --symmetric", cubes.pair + " --semantics closest", cubes.pair + " --samples area:auto",
+        cubes.pair + " --symmetric --threshold 1%", cubes.pair + " --symmetric --threshold 1% --samples area:200",
         cubes.pair + " --method cooperative --views 4x2 --resolution 64",
         teapot + " " + teapot + " --samples area:100", points + " " + cubes.small,
         cubes.small + " " + grid}) {

@@ -2,7 +2,8 @@
 # Embree headers stay where the README's layout table says they are.
 # Run as: cmake -DSOURCE_DIR=<repo> -P tests/layout_check.cmake (CTest does).
 #   cli -> registry -> {gl_methods, reference_cgal, reference_embree} -> representations -> formats -> core
-#   gl_methods -> gl -> core;  cli -> pictures -> {gl, formats};  cli -> html -> formats
+#   gl_methods -> gl -> core;  cli -> pictures -> {gl, formats};  cli -> html -> formats;
+#   cli -> reconstruction -> core
 cmake_minimum_required(VERSION 3.22)
 
 # The parts of roving/ each part may include (itself included).
@@ -15,7 +16,8 @@ set(allowed_html core formats html)
 set(allowed_gl_methods core formats representations gl gl_methods)
 # The references' headers are installed as roving/reference_cgal/ and roving/reference_embree/.
 set(allowed_registry core formats representations gl gl_methods registry reference_cgal reference_embree)
-set(allowed_cli core formats representations gl gl_methods registry pictures html cli reference_cgal reference_embree)
+set(allowed_reconstruction core reconstruction)
+set(allowed_cli core formats representations gl gl_methods registry pictures html reconstruction cli reference_cgal reference_embree)
 set(allowed_reference_cgal core formats representations reference_cgal)
 set(allowed_reference_embree core formats representations reference_embree)
 

@@ -120,6 +120,10 @@ void add_measurement_options(CLI::App& app, MeasureArguments& args, bool& trust_
   app.add_option("--ibsm-resolution", args.ibsm_resolution, "with --ibsm: each camera's image side in pixels")
       ->check(CLI::Range(16, 16384))
       ->capture_default_str();
+  app.add_option(
+      "--threshold", args.thresholds,
+      "with --symmetric: precision, recall and F-score at this distance tau (a length or P% of the "
+      "diagonal), as reconstruction benchmarks report them; repeatable");
   app.add_option("--histogram-bins", args.histogram_bins, "bins of the signed-d histogram")
       ->check(CLI::Range(1, 100000))
       ->capture_default_str();

@@ -194,6 +194,13 @@ MeasurePlan plan_measurement(const MeasureArguments& args) {
     const MaxErrorSpec bound = parse_length("--hausdorff-bound", args.hausdorff_bound);  // checked either way
     if (plan.symmetric || plan.options.semantics == Semantics::Closest) plan.hausdorff_bound = bound;
   }
+  // The reconstruction figures need both directions; normal consistency the faces at the hits.
+  for (const std::string& text : args.thresholds)
+    plan.thresholds.push_back(parse_length("--threshold", text));
+  if (!plan.thresholds.empty() && !plan.symmetric) {
+    throw Error("--threshold: precision, recall and F-score need both directions; add --symmetric");
+  }
+  plan.options.faces = plan.symmetric;
   return plan;
 }
 
@@ -354,6 +361,14 @@ void measure_models(const Model& a, const Model& b, MeasurePlan& plan, MeasureRe
     std::vector<std::string> found = result_warnings(d.statistics, plan.options.semantics);
     for (std::string& line : found) line = (d.label.empty() ? "" : d.label + ": ") + line;
     warn(found);
+  }
+  if (plan.symmetric) {
+    std::vector<double> thresholds;
+    for (const MaxErrorSpec& tau : plan.thresholds) thresholds.push_back(tau.resolve(report.diagonal));
+    const DirectionReport &ab = report.directions[0], &ba = report.directions[1];
+    report.reconstruction = reconstruction_figures({&ab.samples, &ab.result, &test_surface(b)},
+                                                   {&ba.samples, &ba.result, &test_surface(a)}, thresholds,
+                                                   ab.samples.kind.rfind("area:", 0) == 0);
   }
   if (plan.image_based) {
     stage = fmt::format("comparing {} and {} image by image (IBSM)", a.path(), b.path());

@@ -40,7 +40,8 @@ struct MeasureArguments {
   int ibsm_views = 16, ibsm_resolution = 2048;
   bool symmetric = false;
   bool quiet = false;
-  std::vector<std::string> gates;  // --fail-above METRIC=LIMIT
+  std::vector<std::string> gates;       // --fail-above METRIC=LIMIT
+  std::vector<std::string> thresholds;  // --threshold TAU: precision, recall, F-score at TAU
   std::string command_line;
 };
 
@@ -63,6 +64,7 @@ struct MeasurePlan {
   HeatmapQuantity heatmap_of = HeatmapQuantity::Distance;
   std::optional<double> heatmap_delta_e_range;   // --heatmap-range with --heatmap-of delta-e
   std::optional<ImageBasedOptions> image_based;  // --ibsm
+  std::vector<MaxErrorSpec> thresholds;          // --threshold, resolved per pair
 };
 
 // A bad option value or combination on the command line: the tool exits 2, as for a parse error.

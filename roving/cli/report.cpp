@@ -83,12 +83,10 @@ nlohmann::json model_json(const Model& model) {
                       {"normals_estimated", model.normals_estimated}};
     if (model.surfels) {
       const SurfelSurface& surfels = *model.surfels;
-      json["points"]["surfels"] = {{"neighbours", surfels.rule.neighbours},
-                                   {"fan_sides", surfels.rule.fan_sides},
-                                   {"triangles", surfels.mesh.triangle_count()},
-                                   {"radius_min", surfels.min_radius},
-                                   {"radius_median", surfels.median_radius},
-                                   {"radius_max", surfels.max_radius}};
+      json["points"]["surfels"] = {
+          {"neighbours", surfels.rule.neighbours},      {"fan_sides", surfels.rule.fan_sides},
+          {"triangles", surfels.mesh.triangle_count()}, {"radius_min", surfels.min_radius},
+          {"radius_median", surfels.median_radius},     {"radius_max", surfels.max_radius}};
     }
   }
   return json;
@@ -144,7 +142,8 @@ const char* semantics_note(Semantics semantics) {
   switch (semantics) {
     case Semantics::FirstHit:
       return "first-hit: d is where the ray from x + h n back along the normal first meets TEST; a no-hit "
-             "means no surface within h along the normal (counted as d = +h in the means, left out of max |d|); "
+             "means no surface within h along the normal (counted as d = +h in the means, left out of max "
+             "|d|); "
              "a false alarm (the paper's Figure 4c) is another part of TEST met first. For a Hausdorff-style "
              "figure use --semantics closest.";
     case Semantics::Nearest:
@@ -211,11 +210,12 @@ std::string gl_lines(const GlReport& g) {
                        g.sample_cameras, count(g, Resolution::Unresolved));
   } else {
     out += fmt::format(
-      "  observations: {} ({} views of {} at {} px + {} per-sample cameras); resolved by views {}, by "
-      "cameras {}, unresolved {}\n",
-      g.observations(), g.views_rendered, g.axis_views ? "the 6 axes" : fmt::format("{}x{}", g.views_h, g.views_v),
-      g.resolution, g.sample_cameras, count(g, Resolution::View), count(g, Resolution::Camera),
-      count(g, Resolution::Unresolved));
+        "  observations: {} ({} views of {} at {} px + {} per-sample cameras); resolved by views {}, by "
+        "cameras {}, unresolved {}\n",
+        g.observations(), g.views_rendered,
+        g.axis_views ? "the 6 axes" : fmt::format("{}x{}", g.views_h, g.views_v), g.resolution,
+        g.sample_cameras, count(g, Resolution::View), count(g, Resolution::Camera),
+        count(g, Resolution::Unresolved));
   }
   // Only what was rendered: views, cameras, or both.
   std::vector<std::string> precision;
@@ -291,7 +291,8 @@ nlohmann::json direction_json(const DirectionReport& d, const MeasureReport& r) 
       {"hits", s.hit_count},
       {"no_hits", s.no_hit_count},
       {"no_hit_fraction", s.no_hit_fraction},
-      {"no_hit_rule", "counted as d = +max_error in the means and percentiles; left out of min, max and max_abs"},
+      {"no_hit_rule",
+       "counted as d = +max_error in the means and percentiles; left out of min, max and max_abs"},
       {"histogram",
        {{"low", s.histogram.low},
         {"high", s.histogram.high},
@@ -315,8 +316,10 @@ nlohmann::json direction_json(const DirectionReport& d, const MeasureReport& r) 
   }
   if (d.intervals) {
     const auto interval = [](const MeanInterval& m) {
-      return nlohmann::json{{"estimate", m.estimate}, {"standard_error", m.standard_error}, {"lower", m.lower},
-                             {"upper", m.upper}};
+      return nlohmann::json{{"estimate", m.estimate},
+                            {"standard_error", m.standard_error},
+                            {"lower", m.lower},
+                            {"upper", m.upper}};
     };
     json["sampling_error"] = {
         {"level", d.intervals->level},
@@ -394,8 +397,8 @@ std::string image_based_lines(const ImageBasedResult& ib) {
 
 // "[lower, upper]" of a certified interval, with its width.
 std::string interval_text(double lower, double upper, double diagonal) {
-  return fmt::format("[{:.6g}, {:.6g}] (/ diagonal [{:.6g}, {:.6g}]; width {:.3g})", lower, upper, lower / diagonal,
-                     upper / diagonal, upper - lower);
+  return fmt::format("[{:.6g}, {:.6g}] (/ diagonal [{:.6g}, {:.6g}]; width {:.3g})", lower, upper,
+                     lower / diagonal, upper / diagonal, upper - lower);
 }
 
 }  // namespace
@@ -422,18 +425,30 @@ nlohmann::json colour_json(const ColourStatistics& c) {
 }
 
 nlohmann::json statistics_json(const Statistics& s) {
-  return {{"siad", s.siad},           {"usiad", s.usiad},         {"std_signed", s.std_signed},
-          {"std_unsigned", s.std_unsigned}, {"rms", s.rms},     {"min_signed", s.min_signed},
-          {"max_signed", s.max_signed}, {"max_abs", s.max_abs},   {"p50", s.p50},
-          {"p90", s.p90},             {"p95", s.p95},             {"p99", s.p99},
-          {"siad_area", s.siad_area}, {"usiad_area", s.usiad_area}, {"rms_area", s.rms_area},
-          {"siad_hits", s.siad_hits}, {"usiad_hits", s.usiad_hits}};
+  return {{"siad", s.siad},
+          {"usiad", s.usiad},
+          {"std_signed", s.std_signed},
+          {"std_unsigned", s.std_unsigned},
+          {"rms", s.rms},
+          {"min_signed", s.min_signed},
+          {"max_signed", s.max_signed},
+          {"max_abs", s.max_abs},
+          {"p50", s.p50},
+          {"p90", s.p90},
+          {"p95", s.p95},
+          {"p99", s.p99},
+          {"siad_area", s.siad_area},
+          {"usiad_area", s.usiad_area},
+          {"rms_area", s.rms_area},
+          {"siad_hits", s.siad_hits},
+          {"usiad_hits", s.usiad_hits}};
 }
 
 TwoSided MeasureReport::two_sided() const {
   TwoSided t;
   double weight = 0, sum_abs = 0, sum_squares = 0;
-  t.certified = std::all_of(directions.begin(), directions.end(), [](const DirectionReport& d) { return d.hausdorff; });
+  t.certified =
+      std::all_of(directions.begin(), directions.end(), [](const DirectionReport& d) { return d.hausdorff; });
   for (const DirectionReport& d : directions) {
     t.max_abs = std::max(t.max_abs, d.statistics.max_abs);
     if (t.certified) {
@@ -462,6 +477,76 @@ std::string format_header(const Model& a, const Model& b, const MeasureReport& r
   return out;
 }
 
+namespace {
+
+// An estimate with its 95% interval where it has one.
+nlohmann::json estimate_json(const Estimate& e) {
+  if (std::isnan(e.lower)) return e.value;
+  return {{"estimate", e.value}, {"lower", e.lower}, {"upper", e.upper}};
+}
+
+nlohmann::json reconstruction_json(const ReconstructionFigures& f) {
+  const auto direction = [](const DirectionFigures& d) {
+    return nlohmann::json{{"mean", estimate_json(d.mean)},
+                          {"median", d.median},
+                          {"rms", estimate_json(d.rms)},
+                          {"normal_consistency", estimate_json(d.normal_consistency)},
+                          {"hits", d.hits},
+                          {"no_hits", d.no_hits}};
+  };
+  nlohmann::json json = {
+      {"definition",
+       "REF is the ground truth, TEST the reconstruction. accuracy: |d| of TEST's samples to REF (B -> A); "
+       "completeness: REF's to TEST (A -> B); means, medians and RMS over the hits weighted by the area each "
+       "sample stands for. chamfer_mean = (accuracy.mean + completeness.mean) / 2 (DTU's overall, Tanks and "
+       "Temples); chamfer_sum = accuracy.mean + completeness.mean; chamfer_squared_mean = (accuracy.rms^2 + "
+       "completeness.rms^2) / 2; chamfer_squared_sum = their sum. precision at tau: the share of TEST's area "
+       "within tau of REF; recall: REF's within tau of TEST (a no-hit is beyond); f_score = 2 P R / (P + R). "
+       "normal_consistency: mean |n . n'| of a sample's normal and the other surface's at the "
+       "correspondence, "
+       "each direction and their mean. Intervals (estimate, lower, upper): 95%, for area-uniform samples."},
+      {"accuracy", direction(f.accuracy)},
+      {"completeness", direction(f.completeness)},
+      {"chamfer_mean", f.chamfer_mean},
+      {"chamfer_sum", f.chamfer_sum},
+      {"chamfer_squared_mean", f.chamfer_squared_mean},
+      {"chamfer_squared_sum", f.chamfer_squared_sum},
+      {"normal_consistency", f.normal_consistency},
+      {"thresholds", nlohmann::json::array()}};
+  for (std::size_t i = 0; i < f.thresholds.size(); ++i) {
+    json["thresholds"].push_back({{"tau", f.thresholds[i]},
+                                  {"precision", estimate_json(f.accuracy.within[i])},
+                                  {"recall", estimate_json(f.completeness.within[i])},
+                                  {"f_score", f.f_score[i]}});
+  }
+  return json;
+}
+
+std::string reconstruction_lines(const ReconstructionFigures& f, double diagonal) {
+  std::string out = fmt::format("\n  {:<40} {:>14} {:>12}\n", "reconstruction (REF the ground truth)",
+                                "model units", "/ diagonal");
+  const auto length = [&](const std::string& name, double value) {
+    out += fmt::format("  {:<40} {:>14.6g} {:>12.6g}\n", name, value, value / diagonal);
+  };
+  length("accuracy, mean (TEST to REF)", f.accuracy.mean.value);
+  length("accuracy, median", f.accuracy.median);
+  length("completeness, mean (REF to TEST)", f.completeness.mean.value);
+  length("completeness, median", f.completeness.median);
+  length("Chamfer, mean of the two", f.chamfer_mean);
+  length("Chamfer, sum of the two", f.chamfer_sum);
+  out += fmt::format("  {:<40} {:>14.6g}\n", "Chamfer, squared, mean of the two", f.chamfer_squared_mean);
+  out += fmt::format("  {:<40} {:>14.6g}\n", "normal consistency", f.normal_consistency);
+  for (std::size_t i = 0; i < f.thresholds.size(); ++i) {
+    out += fmt::format(
+        "  {:<40} {:>14}\n",
+        fmt::format("at tau = {:.6g} ({:.3g}%)", f.thresholds[i], 100 * f.thresholds[i] / diagonal),
+        fmt::format("P {:.4f} R {:.4f} F {:.4f}", f.precision[i], f.recall[i], f.f_score[i]));
+  }
+  return out;
+}
+
+}  // namespace
+
 std::string format_body(const MeasureReport& r) {
   std::string out;
   for (const DirectionReport& d : r.directions) {
@@ -488,8 +573,9 @@ std::string format_body(const MeasureReport& r) {
   out += "\n";
   for (const DirectionReport& d : r.directions) {
     const Statistics& s = d.statistics;
-    out += fmt::format("  {}no hit within h: {} of {} samples ({:.4g}%)\n", d.label.empty() ? "" : d.label + ": ",
-                       s.no_hit_count, s.sample_count, 100 * s.no_hit_fraction);
+    out += fmt::format("  {}no hit within h: {} of {} samples ({:.4g}%)\n",
+                       d.label.empty() ? "" : d.label + ": ", s.no_hit_count, s.sample_count,
+                       100 * s.no_hit_fraction);
   }
   out += wrapped(semantics_note(r.semantics));
   for (const DirectionReport& d : r.directions) {
@@ -497,8 +583,8 @@ std::string format_body(const MeasureReport& r) {
   }
   if (r.symmetric()) {
     const TwoSided t = r.two_sided();
-    const char* max_name =
-        r.semantics == Semantics::Closest ? "Hausdorff distance, sampled" : "max |d|, both directions (not Hausdorff)";
+    const char* max_name = r.semantics == Semantics::Closest ? "Hausdorff distance, sampled"
+                                                             : "max |d|, both directions (not Hausdorff)";
     out += fmt::format("\n  {:<40} {:>14} {:>12}\n", "two-sided (Metro)", "model units", "/ diagonal");
     for (const auto& [name, value] : {std::pair<std::string, double>{max_name, t.max_abs},
                                       {"mean |d|, both (area-weighted)", t.mean_abs},
@@ -510,6 +596,7 @@ std::string format_body(const MeasureReport& r) {
                          interval_text(t.hausdorff_lower, t.hausdorff_upper, r.diagonal));
     }
   }
+  if (r.reconstruction) out += reconstruction_lines(*r.reconstruction, r.diagonal);
   if (r.image_based) out += image_based_lines(*r.image_based);
   for (const DirectionReport& d : r.directions) {
     if (!d.result.gl) continue;
@@ -517,8 +604,8 @@ std::string format_body(const MeasureReport& r) {
     out += gl_lines(*d.result.gl);
   }
   out += fmt::format("  time: load {:.3f} s ({} {:.3f}, {} {:.3f}), total {:.3f} s\n",
-                     r.load_seconds[0] + r.load_seconds[1], r.symmetric() ? "A" : "reference", r.load_seconds[0],
-                     r.symmetric() ? "B" : "test", r.load_seconds[1], r.total_seconds);
+                     r.load_seconds[0] + r.load_seconds[1], r.symmetric() ? "A" : "reference",
+                     r.load_seconds[0], r.symmetric() ? "B" : "test", r.load_seconds[1], r.total_seconds);
   for (const DirectionReport& d : r.directions) {
     out += fmt::format("        {}build {:.3f} s, query {:.3f} s ({:.3g} samples/s)\n",
                        d.label.empty() ? "" : d.label + ": ", d.result.build_seconds, d.result.query_seconds,
@@ -531,32 +618,40 @@ std::string format_body(const MeasureReport& r) {
         return fmt::format("{} [{:.6g}, {:.6g}]", name, m.lower, m.upper);
       };
       out += fmt::format(
-          "  {}95% intervals of the surface means (eq. 1) from {} random samples (normal approximation): {}, {}, {}\n",
+          "  {}95% intervals of the surface means (eq. 1) from {} random samples (normal approximation): {}, "
+          "{}, {}\n",
           label, d.samples.size(), text("SiAD", d.intervals->siad), text("USiAD", d.intervals->usiad),
           text("RMS", d.intervals->rms));
       if (d.auto_sampling) {
-        out += fmt::format("  {}area:auto: {} samples in {} round(s) {} a half-width of {:.3g} for USiAD (asked {:.3g}){}\n",
-                           label, d.samples.size(), d.auto_sampling->rounds,
-                           d.auto_sampling->met ? "reached" : "did not reach, stopping at", d.auto_sampling->reached,
-                           d.auto_sampling->target, d.auto_sampling->met ? "" : ": the sample cap or round limit came first");
+        out += fmt::format(
+            "  {}area:auto: {} samples in {} round(s) {} a half-width of {:.3g} for USiAD (asked {:.3g}){}\n",
+            label, d.samples.size(), d.auto_sampling->rounds,
+            d.auto_sampling->met ? "reached" : "did not reach, stopping at", d.auto_sampling->reached,
+            d.auto_sampling->target,
+            d.auto_sampling->met ? "" : ": the sample cap or round limit came first");
       }
     } else {
       const double difference = d.statistics.usiad - d.statistics.usiad_area;
       out += fmt::format(
-          "  {}{} samples: SiAD, USiAD, RMS are the exact means over these samples (eq. 2), not estimates; as an "
-          "estimate of the surface mean (eq. 1) USiAD differs from its area-weighted form by {:.3g} ({:.3g}%)\n",
-          label, d.samples.kind, difference, d.statistics.usiad_area > 0 ? 100 * difference / d.statistics.usiad_area : 0.0);
+          "  {}{} samples: SiAD, USiAD, RMS are the exact means over these samples (eq. 2), not estimates; "
+          "as an "
+          "estimate of the surface mean (eq. 1) USiAD differs from its area-weighted form by {:.3g} "
+          "({:.3g}%)\n",
+          label, d.samples.kind, difference,
+          d.statistics.usiad_area > 0 ? 100 * difference / d.statistics.usiad_area : 0.0);
     }
   }
   for (const DirectionReport& d : r.directions) {
     if (!d.hausdorff) continue;
     const HausdorffInterval& h = *d.hausdorff;
     out += fmt::format(
-        "  {}Hausdorff distance from {} to {}, certified (every point of the surface, not only the samples): {}; "
+        "  {}Hausdorff distance from {} to {}, certified (every point of the surface, not only the samples): "
+        "{}; "
         "farthest point found ({:.6g}, {:.6g}, {:.6g}); {:.3f} s, {} closest-point queries\n",
         d.label.empty() ? "" : d.label + ": ", r.symmetric() ? d.label.substr(0, 1) : "REF",
-        r.symmetric() ? d.label.substr(d.label.size() - 1) : "TEST", interval_text(h.lower, h.upper, r.diagonal),
-        h.lower_point.x(), h.lower_point.y(), h.lower_point.z(), h.seconds, h.distance_queries);
+        r.symmetric() ? d.label.substr(d.label.size() - 1) : "TEST",
+        interval_text(h.lower, h.upper, r.diagonal), h.lower_point.x(), h.lower_point.y(), h.lower_point.z(),
+        h.seconds, h.distance_queries);
   }
   // Also printed to stderr as found (unless --quiet); here so that the report keeps them.
   for (const std::string& line : r.warnings) out += fmt::format("  warning: {}\n", line);
@@ -569,7 +664,8 @@ nlohmann::json to_json(const MeasureReport& r) {
   json["method"] = r.method;
   json["semantics"] = to_string(r.semantics);
   json["semantics_note"] = semantics_note(r.semantics);
-  json["max_error"] = {{"value", r.max_error}, {"given_as", r.max_error_text}, {"relative", r.max_error / r.diagonal}};
+  json["max_error"] = {
+      {"value", r.max_error}, {"given_as", r.max_error_text}, {"relative", r.max_error / r.diagonal}};
   json["diagonal"] = r.diagonal;
   json["diagonal_of"] = r.diagonal_of_both ? "both models" : "reference";
   json["seed"] = r.seed;
@@ -582,11 +678,12 @@ nlohmann::json to_json(const MeasureReport& r) {
       json["directions"].push_back(direction);
     }
     const TwoSided t = r.two_sided();
-    const nlohmann::json two_sided = {{"hausdorff", r.semantics == Semantics::Closest ? nlohmann::json(t.max_abs)
-                                                                                      : nlohmann::json(nullptr)},
-                                      {"max_abs", t.max_abs},
-                                      {"mean_both", t.mean_abs},
-                                      {"rms_both", t.rms}};
+    const nlohmann::json two_sided = {
+        {"hausdorff",
+         r.semantics == Semantics::Closest ? nlohmann::json(t.max_abs) : nlohmann::json(nullptr)},
+        {"max_abs", t.max_abs},
+        {"mean_both", t.mean_abs},
+        {"rms_both", t.rms}};
     json["two_sided"] = two_sided;
     if (t.certified) {
       json["two_sided"]["hausdorff_certified"] = {{"lower", t.hausdorff_lower}, {"upper", t.hausdorff_upper}};
@@ -597,8 +694,9 @@ nlohmann::json to_json(const MeasureReport& r) {
                                            {"psnr_ycbcr_611", std::min(ab.psnr_ycbcr_611, ba.psnr_ycbcr_611)},
                                            {"delta_e_mean", std::max(ab.delta_e_mean, ba.delta_e_mean)}};
     }
-    json["two_sided_relative_to_diagonal"] = relative_json(
-        {{"max_abs", t.max_abs}, {"mean_both", t.mean_abs}, {"rms_both", t.rms}}, r.diagonal);
+    json["two_sided_relative_to_diagonal"] =
+        relative_json({{"max_abs", t.max_abs}, {"mean_both", t.mean_abs}, {"rms_both", t.rms}}, r.diagonal);
+    if (r.reconstruction) json["reconstruction"] = reconstruction_json(*r.reconstruction);
   } else {
     json.update(direction_json(r.directions.front(), r));
   }

@@ -12,6 +12,7 @@
 #include "roving/core/distance_method.h"
 #include "roving/core/statistics.h"
 #include "roving/gl_methods/image_based.h"
+#include "roving/reconstruction/reconstruction_figures.h"
 #include "roving/reference_embree/certified_hausdorff.h"
 #include "roving/representations/model.h"
 
@@ -53,9 +54,9 @@ struct DirectionReport {
 // Metro's two-sided summary, over both directions' samples (closest-point semantics make the
 // maximum the Hausdorff distance).
 struct TwoSided {
-  double max_abs = 0;    // the larger direction's max |d| over hits
-  double mean_abs = 0;   // area-weighted mean |d| over both sample sets
-  double rms = 0;        // area-weighted RMS over both
+  double max_abs = 0;   // the larger direction's max |d| over hits
+  double mean_abs = 0;  // area-weighted mean |d| over both sample sets
+  double rms = 0;       // area-weighted RMS over both
   // The certified Hausdorff distance, max of both directions' intervals, where both were computed.
   bool certified = false;
   double hausdorff_lower = 0, hausdorff_upper = 0;
@@ -66,14 +67,16 @@ struct MeasureReport {
   std::string method;
   Semantics semantics = Semantics::FirstHit;
   double max_error = 0;
-  std::string max_error_text;  // as the user gave it, e.g. "5%"
-  double hausdorff_bound = 0;  // the certified interval's largest width, in model units
-  double diagonal = 0;         // every relative figure's denominator
+  std::string max_error_text;     // as the user gave it, e.g. "5%"
+  double hausdorff_bound = 0;     // the certified interval's largest width, in model units
+  double diagonal = 0;            // every relative figure's denominator
   bool diagonal_of_both = false;  // of both models' box (--symmetric), else the reference's
   std::uint64_t seed = 0;
   nlohmann::json provenance;  // tool, command line, inputs
   std::vector<std::string> warnings;
   std::optional<ImageBasedResult> image_based;  // --ibsm
+  // With --symmetric: the reconstruction figures, REF the ground truth and TEST the reconstruction.
+  std::optional<ReconstructionFigures> reconstruction;
   double load_seconds[2] = {0, 0};  // A (the reference), B (the test)
   double total_seconds = 0;
 

@@ -63,6 +63,10 @@ struct DistanceOptions {
   // takes the colour there), the GL methods draw the colour in the frame buffer beside the depth
   // and the nearest-vertex baselines take their vertex's (hit_colour), where TEST has colour.
   bool colour = false;
+  // Also give the face each hit lies on (DistanceResult::hit_face), where the method knows it (the
+  // exact references, the nearest-point baselines): for figures at the correspondence, as the
+  // reconstruction figures' normal consistency.
+  bool faces = false;
 };
 
 // How a GL method resolved one sample.

@@ -260,3 +260,48 @@ def test_type_stubs_name_exactly_the_commands_options():
 
     assert keywords["measure"] == options("measure") | {"progress"}
     assert keywords["batch"] == options("batch")
+
+
+def square(x1, z=0.0, cells=20):
+    """The rectangle [0, x1] x [0, 1] at height z, facing +z, in cells x cells quads."""
+    xs, ys = np.meshgrid(np.linspace(0, x1, cells + 1), np.linspace(0, 1, cells + 1))
+    vertices = np.stack([xs.ravel(), ys.ravel(), np.full(xs.size, z)], axis=1)
+    at = lambda i, j: j * (cells + 1) + i  # noqa: E731
+    faces = [[at(i, j), at(i + 1, j), at(i + 1, j + 1)] for j in range(cells) for i in range(cells)]
+    faces += [[at(i, j), at(i + 1, j + 1), at(i, j + 1)] for j in range(cells) for i in range(cells)]
+    return vertices, np.array(faces)
+
+
+def test_reconstruction_figures_in_closed_form():
+    # A model against itself: 0 (to rounding), and 1.
+    same = roving.measure(square(1), square(1), symmetric=True, threshold=["0.1%"], samples="area:5000")["reconstruction"]
+    assert same["chamfer_mean"] < 1e-15 and same["normal_consistency"] == 1
+    assert [t["f_score"] for t in same["thresholds"]] == [1]
+    # Two parallel squares 0.01 apart: every distance is 0.01 whichever way.
+    apart = roving.measure(square(1), square(1, 0.01), symmetric=True, threshold=["0.005", "0.02"],
+                           samples="area:5000", max_error="10%")["reconstruction"]
+    for name, value in (("chamfer_mean", 0.01), ("chamfer_sum", 0.02), ("chamfer_squared_mean", 1e-4),
+                        ("chamfer_squared_sum", 2e-4), ("normal_consistency", 1)):
+        assert abs(apart[name] - value) < 1e-12 * max(value, 1), (name, apart[name])
+    assert abs(apart["accuracy"]["median"] - 0.01) < 1e-12
+    assert [(t["precision"]["estimate"], t["recall"]["estimate"], t["f_score"]) for t in apart["thresholds"]] == \
+        [(0, 0, 0), (1, 1, 1)]
+    # REF the unit square, TEST its left half (the same plane): TEST is all within 0 of REF
+    # (precision 1), and REF within tau of TEST where x < 0.5 + tau (recall 0.5 + tau, by area);
+    # REF's mean distance is the integral of x - 0.5 over the right half, 0.125.
+    half = roving.measure(square(1), square(0.5), symmetric=True, semantics="closest", threshold=["0.1", "0.25"],
+                          samples="area:20000", max_error="50%")["reconstruction"]
+    for t, tau in zip(half["thresholds"], (0.1, 0.25)):
+        recall = t["recall"]
+        assert t["precision"]["estimate"] == 1
+        assert recall["lower"] <= 0.5 + tau <= recall["upper"], (tau, recall)
+        assert recall["upper"] - recall["lower"] < 0.03
+    assert abs(half["completeness"]["mean"]["estimate"] - 0.125) < 3 * (half["completeness"]["mean"]["upper"] -
+                                                                      half["completeness"]["mean"]["estimate"])
+
+
+def test_threshold_needs_both_directions():
+    with pytest.raises(roving.Error, match="add --symmetric"):
+        roving.measure(square(1), square(1), threshold="1%")
+    with pytest.raises(roving.Error, match="--threshold"):
+        roving.measure(square(1), square(1), symmetric=True, threshold="-1")
