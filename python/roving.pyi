@@ -39,6 +39,8 @@ def measure(
     ibsm_resolution: Optional[int] = ...,
     histogram_bins: Optional[int] = ...,
     threshold: Optional[Union[str, Sequence[str]]] = ...,
+    pcc: bool = ...,
+    pcc_resolution: Optional[float] = ...,
     quiet: bool = ...,
     trust_references: bool = ...,
     fail_above: Optional[Union[str, Sequence[str]]] = ...,
@@ -80,5 +82,7 @@ def batch(
     ibsm_resolution: Optional[int] = ...,
     histogram_bins: Optional[int] = ...,
     threshold: Optional[Union[str, Sequence[str]]] = ...,
+    pcc: bool = ...,
+    pcc_resolution: Optional[float] = ...,
     quiet: bool = ...,
 ) -> int: ...

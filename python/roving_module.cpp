@@ -334,7 +334,7 @@ py::dict measure(const py::object& reference, const py::object& test, const py::
     py::list directions = result["directions"];
     for (std::size_t i = 0; i < run.report.directions.size(); ++i)
       directions[i]["per_sample"] = per_sample(run.report.directions[i]);
-  } else {
+  } else if (!run.report.directions.empty()) {  // none with pcc=True: MPEG's figures alone
     result["per_sample"] = per_sample(run.report.directions.front());
   }
   return result;

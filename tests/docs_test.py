@@ -14,7 +14,11 @@ OTHER_PROGRAMS = {"--build", "--install", "--prefix", "--cflags", "--libs", "--d
                   "--benchmark_repetitions", "--benchmark_report_aggregates_only", "--benchmark_out",
                   "--benchmark_out_format", "--benchmark_filter", "--output-on-failure", "--test-dir",
                   "--headless", "--check", "--help", "--version", "--always", "--dirty",
-                  "--cpus-per-task", "--export", "--job-name", "--mem", "--output", "--parsable"}
+                  "--cpus-per-task", "--export", "--job-name", "--mem", "--output", "--parsable",
+                  # MPEG's pc_error (docs/mpeg.md; the regex stops at its options' capitals)
+                  "--file", "--color", "--hausdorff", "--nb", "--mse", "--dropdups", "--neighbors", "--average",
+                  "--input", "--single", "--lidar",
+                  "--mode"}  # mmetric's compare --mode
 
 
 def options_of(*command):

@@ -227,6 +227,8 @@ std::string pair_key(const MeasureArguments& a, const std::string& reference_sha
       a.symmetric, a.reference_type, a.test_type, a.histogram_bins, a.hausdorff_bound);
   // Added only when asked for, so that the keys of reports without it stay what they were.
   if (a.ibsm) identity += fmt::format("|ibsm={}x{}", a.ibsm_views, a.ibsm_resolution);
+  if (a.pcc) identity += "|pcc";
+  if (a.pcc_resolution) identity += fmt::format("|pcc_resolution={}", *a.pcc_resolution);
   unsigned char digest[EVP_MAX_MD_SIZE];
   unsigned int length = 0;
   EVP_Digest(identity.data(), identity.size(), digest, &length, EVP_sha256(), nullptr);
@@ -246,23 +248,27 @@ void write_json(const fs::path& path, const nlohmann::json& json) {
 std::vector<std::string> summary_row(const nlohmann::json& report) {
   const nlohmann::json& batch = report["batch"];
   const bool ok = batch["status"] == "ok";
-  const nlohmann::json& direction = !ok ? nlohmann::json() : report.contains("directions") ? report["directions"][0]
-                                                                                           : report;
+  // A --pcc report has MPEG's figures alone: the surface columns stay empty.
+  const bool surface = ok && report.contains("semantics");
+  const nlohmann::json& direction = !surface                      ? nlohmann::json()
+                                    : report.contains("directions") ? report["directions"][0]
+                                                                    : report;
   const auto number = [](const nlohmann::json& value) {
     return value.is_number() ? fmt::format("{}", value.get<double>()) : std::string();
   };
   std::vector<std::string> row = {std::to_string(batch["index"].get<std::size_t>()), batch["reference"],
                                   batch["test"], batch["status"], batch.value("error", "")};
   row.push_back(ok ? report["method"].get<std::string>() : "");
-  row.push_back(ok ? report["semantics"].get<std::string>() : "");
-  row.push_back(ok ? number(direction["samples"]["count"]) : "");
-  row.push_back(ok ? number(direction["no_hits"]) : "");
-  row.push_back(ok ? number(report["diagonal"]) : "");
-  row.push_back(ok ? number(report["max_error"]["value"]) : "");
+  row.push_back(surface ? report["semantics"].get<std::string>() : "");
+  row.push_back(surface ? number(direction["samples"]["count"]) : "");
+  row.push_back(surface ? number(direction["no_hits"]) : "");
+  row.push_back(surface ? number(report["diagonal"]) : "");
+  row.push_back(surface ? number(report["max_error"]["value"]) : "");
   const nlohmann::json statistics = statistics_json(Statistics());
-  for (const auto& item : statistics.items()) row.push_back(ok ? number(direction["statistics"][item.key()]) : "");
+  for (const auto& item : statistics.items())
+    row.push_back(surface ? number(direction["statistics"][item.key()]) : "");
   for (const char* key : {"hausdorff", "mean_both", "rms_both"}) {
-    row.push_back(ok && report.contains("two_sided") ? number(report["two_sided"][key]) : "");
+    row.push_back(surface && report.contains("two_sided") ? number(report["two_sided"][key]) : "");
   }
   // IBSM's figures (--ibsm), empty where it was not asked for or a model has no colour.
   const auto field = [&](const nlohmann::json& object, const char* key) {
@@ -273,6 +279,10 @@ std::vector<std::string> summary_row(const nlohmann::json& report) {
       ibsm.is_object() && ibsm.contains("colour") ? ibsm["colour"] : nlohmann::json();
   for (const char* key : {"psnr_rgb", "psnr_ycbcr_611"}) row.push_back(field(ibsm_colour, key));
   for (const char* key : {"depth_psnr", "unmatched_percent"}) row.push_back(field(ibsm, key));
+  // MPEG's point-cloud figures (two point clouds, or --pcc): the symmetric (worse) direction's.
+  const nlohmann::json mpeg =
+      ok && report.contains("mpeg_pcc") ? report["mpeg_pcc"]["symmetric"] : nlohmann::json();
+  for (const char* key : {"d1_psnr", "d2_psnr", "y_psnr"}) row.push_back(field(mpeg, key));
   row.push_back(ok ? number(report["seconds"]["total"]) : "");
   std::string warnings;
   if (ok) {
@@ -303,6 +313,8 @@ void write_index(const std::string& folder, const std::vector<std::string>& head
     shown.insert(shown.end(),
                  {"ibsm_psnr_rgb", "ibsm_psnr_ycbcr_611", "ibsm_depth_psnr", "ibsm_unmatched_percent"});
   }
+  if (std::any_of(reports.begin(), reports.end(), [](const nlohmann::json& r) { return r.contains("mpeg_pcc"); }))
+    shown.insert(shown.end(), {"mpeg_d1_psnr", "mpeg_d2_psnr", "mpeg_y_psnr"});
   shown.insert(shown.end(), {"seconds", "warnings"});
   HtmlIndex page;
   page.title = fmt::format("surface roving batch: {} pairs", reports.size());
@@ -369,7 +381,8 @@ std::pair<std::size_t, std::size_t> merge(const std::string& folder, bool html) 
   const nlohmann::json statistics = statistics_json(Statistics());
   for (const auto& item : statistics.items()) header.push_back(item.key());
   header.insert(header.end(), {"hausdorff", "mean_both", "rms_both", "ibsm_psnr_rgb", "ibsm_psnr_ycbcr_611",
-                               "ibsm_depth_psnr", "ibsm_unmatched_percent", "seconds", "warnings"});
+                               "ibsm_depth_psnr", "ibsm_unmatched_percent", "mpeg_d1_psnr", "mpeg_d2_psnr",
+                               "mpeg_y_psnr", "seconds", "warnings"});
   AtomicFile summary((fs::path(folder) / "summary.csv").string());
   fmt::print(summary.stream(), "{}\n", fmt::join(header, ","));
   std::size_t ok = 0;
@@ -394,13 +407,14 @@ struct LoadedModel {
 };
 
 const Model& cached_model(LoadedModel& cache, const std::string& path, const std::string& type_text,
-                          std::optional<ModelType> type) {
-  if (!cache.model || cache.path != path || cache.type != type_text) {
+                          const MeasurePlan& plan, std::optional<ModelType> type) {
+  const std::string how = type_text + (plan.pcc_only ? "|pcc" : "");  // --pcc reads point clouds as they are
+  if (!cache.model || cache.path != path || cache.type != how) {
     cache.model.reset();
     cache.samples.reset();
     cache.samples_spec.clear();
-    cache.model = std::make_unique<Model>(load_model(path, type));
-    cache.path = path, cache.type = type_text;
+    cache.model = std::make_unique<Model>(load_for(plan, path, type));
+    cache.path = path, cache.type = how;
   }
   return *cache.model;
 }
@@ -478,17 +492,31 @@ int run_batch(const BatchArguments& args, std::string& stage) {
       MeasureReport report;
       Stopwatch load;
       stage = fmt::format("loading {}", pair.reference);
-      const Model& reference = cached_model(reference_cache, pair.reference, a.reference_type, plan.reference_type);
+      const Model& reference = cached_model(reference_cache, pair.reference, a.reference_type, plan, plan.reference_type);
       report.load_seconds[0] = load.seconds();
       load = Stopwatch();
       stage = fmt::format("loading {}", pair.test);
-      const Model& test = cached_model(test_cache, pair.test, a.test_type, plan.test_type);
+      const Model& test = cached_model(test_cache, pair.test, a.test_type, plan, plan.test_type);
       report.load_seconds[1] = load.seconds();
       report.provenance = {{"tool", tool_json()},
                            {"command_line", a.command_line},
                            {"inputs",
-                            {input_json(a.symmetric ? "A" : "reference", pair.reference, sha256(pair.reference)),
-                             input_json(a.symmetric ? "B" : "test", pair.test, sha256(pair.test))}}};
+                            {input_json(a.symmetric || a.pcc ? "A" : "reference", pair.reference, sha256(pair.reference)),
+                             input_json(a.symmetric || a.pcc ? "B" : "test", pair.test, sha256(pair.test))}}};
+      const WarnFn keep = [&](const std::vector<std::string>& lines) {
+        report.warnings.insert(report.warnings.end(), lines.begin(), lines.end());
+      };
+      if (plan.pcc_only) {
+        measure_point_clouds(reference, test, plan, report, progress, stage, keep);
+        report.total_seconds = report.load_seconds[0] + report.load_seconds[1] + report.mpeg->seconds;
+        nlohmann::json json = to_json(report);
+        batch["status"] = "ok";
+        json["batch"] = batch;
+        write_json(done_path, json);
+        fs::remove(failed_path);
+        ++measured;
+        continue;
+      }
       describe_pair(reference, test, plan, report);
       // The reference's samples, made once while consecutive pairs share it and the sampling.
       if (reference_cache.samples_spec != plan.sample_spec.to_string() + std::to_string(plan.sample_spec.seed)) {
@@ -496,11 +524,7 @@ int run_batch(const BatchArguments& args, std::string& stage) {
         reference_cache.samples_spec = plan.sample_spec.to_string() + std::to_string(plan.sample_spec.seed);
       }
       const Stopwatch pair_watch;
-      measure_models(reference, test, plan, report, progress, stage,
-                     [&](const std::vector<std::string>& lines) {
-                       report.warnings.insert(report.warnings.end(), lines.begin(), lines.end());
-                     },
-                     reference_cache.samples.get());
+      measure_models(reference, test, plan, report, progress, stage, keep, reference_cache.samples.get());
       report.total_seconds = report.load_seconds[0] + report.load_seconds[1] + pair_watch.seconds();
       nlohmann::json json = to_json(report);
       batch["status"] = "ok";

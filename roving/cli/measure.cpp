@@ -2,11 +2,13 @@
 #include "measure.h"
 
 #include <fmt/format.h>
+#include <tbb/parallel_invoke.h>
 
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <future>
+#include <limits>
 #include <memory>
 
 #include "checks.h"
@@ -20,6 +22,7 @@
 #include "roving/formats/file_hash.h"
 #include "roving/formats/heatmap.h"
 #include "roving/formats/sample_output.h"
+#include "roving/mpeg/mpeg_points.h"
 #include "roving/pictures/heatmap_picture.h"
 #include "roving/registry/method_registry.h"
 
@@ -201,6 +204,27 @@ MeasurePlan plan_measurement(const MeasureArguments& args) {
     throw Error("--threshold: precision, recall and F-score need both directions; add --symmetric");
   }
   plan.options.faces = plan.symmetric;
+  if (args.pcc_resolution &&
+      !(*args.pcc_resolution > 0 && *args.pcc_resolution <= std::numeric_limits<float>::max())) {
+    throw Error(fmt::format("--pcc-resolution: expected a peak > 0 (e.g. 1023 for 10-bit voxels), found {}",
+                            *args.pcc_resolution));
+  }
+  plan.pcc_resolution = args.pcc_resolution;
+  plan.pcc_only = args.pcc;
+  if (args.pcc) {
+    // --pcc measures the points themselves: nothing drawn, sampled or mapped.
+    for (const auto& [option, given] :
+         {std::pair<const char*, bool>{"--symmetric", args.symmetric}, {"--ibsm", args.ibsm},
+          {"--threshold", !args.thresholds.empty()}, {"--fail-above", !args.gates.empty()},
+          {"--samples-out", !args.samples_csv_path.empty()}, {"--heatmap", !args.heatmap_path.empty()},
+          {"--heatmap-png", !args.heatmap_png_path.empty()}, {"--html", !args.html_path.empty()}}) {
+      if (given) {
+        throw Error(fmt::format("{}: not with --pcc, whose figures are pc_error's alone (both directions "
+                                "already); leave out --pcc for the surface figures",
+                                option));
+      }
+    }
+  }
   return plan;
 }
 
@@ -275,6 +299,56 @@ void describe_pair(const Model& a, const Model& b, MeasurePlan& plan, MeasureRep
   report.max_error = plan.options.max_error;
   if (plan.hausdorff_bound) report.hausdorff_bound = plan.hausdorff_bound->resolve(report.diagonal);
   require_representable(plan.options.max_error, both, plan.max_error_text);
+}
+
+namespace {
+
+// MPEG's point-cloud figures of two point clouds (pc_error's D2 takes A's normals from its file;
+// estimated ones are not pc_error's).
+MpegReport mpeg_report(const Model& a, const Model& b, std::optional<double> resolution) {
+  const Stopwatch watch;
+  MpegReport report;
+  MpegPoints a_points, b_points;
+  tbb::parallel_invoke([&] { a_points = mpeg_points(a.points, a.path(), !a.normals_estimated); },
+                       [&] { b_points = mpeg_points(b.points, b.path(), false); });
+  report.figures = mpeg_point_cloud_figures(a_points, b_points, resolution, a.path());
+  report.points_read[0] = a_points.points_read;
+  report.points_read[1] = b_points.points_read;
+  report.points[0] = a_points.size();
+  report.points[1] = b_points.size();
+  report.seconds = watch.seconds();
+  return report;
+}
+
+}  // namespace
+
+Model load_for(const MeasurePlan& plan, const std::string& path, std::optional<ModelType> type) {
+  if (!plan.pcc_only) return load_model(path, type);
+  Model model;
+  model.type = ModelType::Points;
+  model.mesh.path = path;
+  model.points = load_point_cloud(path, type);
+  return model;
+}
+
+void measure_point_clouds(const Model& a, const Model& b, const MeasurePlan& plan, MeasureReport& report,
+                          Progress& progress, std::string& stage, const WarnFn& warn) {
+  for (const Model* model : {&a, &b}) {
+    if (model->type != ModelType::Points) {
+      throw Error(fmt::format("{}: --pcc measures point clouds; found a {} model", model->path(),
+                              to_string(model->type)));
+    }
+  }
+  report.pcc_only = true;
+  if (a.points.colours.empty() != b.points.colours.empty()) {
+    const Model& coloured = a.points.colours.empty() ? b : a;
+    const Model& plain = a.points.colours.empty() ? a : b;
+    warn({fmt::format("colour: {} has colour but {} has none; no colour figures", coloured.path(), plain.path())});
+  }
+  stage = fmt::format("computing MPEG's point-cloud figures of {} and {}", a.path(), b.path());
+  progress.stage("MPEG point-cloud figures");
+  report.mpeg = mpeg_report(a, b, plan.pcc_resolution);
+  progress.clear();
 }
 
 void measure_models(const Model& a, const Model& b, MeasurePlan& plan, MeasureReport& report,
@@ -370,6 +444,11 @@ void measure_models(const Model& a, const Model& b, MeasurePlan& plan, MeasureRe
                                                    {&ba.samples, &ba.result, &test_surface(a)}, thresholds,
                                                    ab.samples.kind.rfind("area:", 0) == 0);
   }
+  if (a.type == ModelType::Points && b.type == ModelType::Points) {
+    stage = fmt::format("computing MPEG's point-cloud figures of {} and {}", a.path(), b.path());
+    progress.stage("MPEG point-cloud figures");
+    report.mpeg = mpeg_report(a, b, plan.pcc_resolution);
+  }
   if (plan.image_based) {
     stage = fmt::format("comparing {} and {} image by image (IBSM)", a.path(), b.path());
     progress.stage("image-based comparison");
@@ -409,6 +488,7 @@ MeasureRun measure_run(const MeasureArguments& args, std::string& stage, Progres
     return given ? std::async(std::launch::deferred, [] { return std::string(); })
                  : std::async(std::launch::async, file_sha256, path);
   };
+  const auto load = [&](const std::string& path, std::optional<ModelType> type) { return load_for(plan, path, type); };
   // The inputs' hashes on another core while they load.
   auto reference_hash = hash(given_a != nullptr, args.reference_path);
   auto test_hash = hash(given_b != nullptr, args.test_path);
@@ -418,7 +498,7 @@ MeasureRun measure_run(const MeasureArguments& args, std::string& stage, Progres
   } else {
     stage = fmt::format("loading the reference {}", args.reference_path);
     progress.stage("loading " + file_name(args.reference_path));
-    run.a = std::make_unique<Model>(load_model(args.reference_path, plan.reference_type));
+    run.a = std::make_unique<Model>(load(args.reference_path, plan.reference_type));
   }
   report.load_seconds[0] = watch.seconds();
   watch = Stopwatch();
@@ -427,7 +507,7 @@ MeasureRun measure_run(const MeasureArguments& args, std::string& stage, Progres
   } else {
     stage = fmt::format("loading the test {}", args.test_path);
     progress.stage("loading " + file_name(args.test_path));
-    run.b = std::make_unique<Model>(load_model(args.test_path, plan.test_type));
+    run.b = std::make_unique<Model>(load(args.test_path, plan.test_type));
   }
   report.load_seconds[1] = watch.seconds();
   Model& a = *run.a;
@@ -435,8 +515,8 @@ MeasureRun measure_run(const MeasureArguments& args, std::string& stage, Progres
   report.provenance = {{"tool", tool_json()},
                        {"command_line", args.command_line},
                        {"inputs",
-                        {input_json(args.symmetric ? "A" : "reference", a.path(), reference_hash.get()),
-                         input_json(args.symmetric ? "B" : "test", b.path(), test_hash.get())}}};
+                        {input_json(args.symmetric || args.pcc ? "A" : "reference", a.path(), reference_hash.get()),
+                         input_json(args.symmetric || args.pcc ? "B" : "test", b.path(), test_hash.get())}}};
 
   const auto warn = [&](const std::vector<std::string>& lines) {
     if (lines.empty()) return;
@@ -446,6 +526,13 @@ MeasureRun measure_run(const MeasureArguments& args, std::string& stage, Progres
       report.warnings.push_back(line);
     }
   };
+  if (plan.pcc_only) {
+    report.pcc_only = true;
+    if (on_described) on_described(run);
+    measure_point_clouds(a, b, plan, report, progress, stage, warn);
+    report.total_seconds = total.seconds();
+    return run;
+  }
   describe_pair(a, b, plan, report);
   if (on_described) on_described(run);
   measure_models(a, b, plan, report, progress, stage, warn, nullptr,

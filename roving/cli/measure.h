@@ -42,6 +42,8 @@ struct MeasureArguments {
   bool quiet = false;
   std::vector<std::string> gates;       // --fail-above METRIC=LIMIT
   std::vector<std::string> thresholds;  // --threshold TAU: precision, recall, F-score at TAU
+  bool pcc = false;                     // MPEG's point-cloud figures alone (pc_error's)
+  std::optional<double> pcc_resolution;  // their PSNR peak; unset: pc_error's default
   std::string command_line;
 };
 
@@ -65,6 +67,8 @@ struct MeasurePlan {
   std::optional<double> heatmap_delta_e_range;   // --heatmap-range with --heatmap-of delta-e
   std::optional<ImageBasedOptions> image_based;  // --ibsm
   std::vector<MaxErrorSpec> thresholds;          // --threshold, resolved per pair
+  bool pcc_only = false;                         // --pcc: MPEG's point-cloud figures, nothing else
+  std::optional<double> pcc_resolution;          // --pcc-resolution
 };
 
 // A bad option value or combination on the command line: the tool exits 2, as for a parse error.
@@ -92,6 +96,15 @@ std::vector<std::string> heatmap_paths(const std::string& path, bool symmetric);
 HeatmapLayout heatmap_layout(const Model& reference, const SampleSet& samples);
 
 using WarnFn = std::function<void(const std::vector<std::string>&)>;
+
+// A model read for `plan`: as load_model reads it, or, with --pcc, a point cloud as its file has it
+// (no surfels, no normals estimated).
+Model load_for(const MeasurePlan& plan, const std::string& path, std::optional<ModelType> type);
+
+// --pcc: MPEG's point-cloud figures of a and b alone (report.pcc_only); throws naming a model that
+// is not a point cloud.
+void measure_point_clouds(const Model& a, const Model& b, const MeasurePlan& plan, MeasureReport& report,
+                          Progress& progress, std::string& stage, const WarnFn& warn);
 
 // Fills the report's method, semantics, diagonal and h for the loaded pair; throws on a pair the
 // plan cannot measure (a point-cloud test, h beyond both models).

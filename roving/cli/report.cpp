@@ -102,7 +102,9 @@ std::string model_line(const std::string& role, const Model& model) {
   if (model.type == ModelType::Points) {
     std::string line = fmt::format("{:<10} {}: point cloud, {} points, normals {}{}\n", role, loaded.path,
                                    model.points.positions.size(),
-                                   model.normals_estimated ? "estimated (PCA, k = 12)" : "from the file",
+                                   model.normals_estimated        ? "estimated (PCA, k = 12)"
+                                   : model.points.normals.empty() ? "none"
+                                                                  : "from the file",
                                    model.points.colours.empty() ? "" : "; colour: point colours");
     if (model.surfels) {
       const SurfelSurface& s = *model.surfels;
@@ -468,6 +470,11 @@ TwoSided MeasureReport::two_sided() const {
 }
 
 std::string format_header(const Model& a, const Model& b, const MeasureReport& r) {
+  if (r.pcc_only) {
+    return model_line("A", a) + model_line("B", b) +
+           fmt::format("{:<10} MPEG's point-cloud figures, as pc_error (mpeg-pcc-dmetric 0.14) computes them\n",
+                       "figures");
+  }
   const bool symmetric = r.diagonal_of_both;
   std::string out = model_line(symmetric ? "A" : "reference", a) + model_line(symmetric ? "B" : "test", b);
   out += fmt::format("{:<10} bounding-box diagonal {:.6g} ({})\n", "", r.diagonal,
@@ -545,9 +552,106 @@ std::string reconstruction_lines(const ReconstructionFigures& f, double diagonal
   return out;
 }
 
+// A PSNR as JSON: null where the MSE is 0 (+infinity).
+nlohmann::json psnr_json(double psnr) { return std::isfinite(psnr) ? nlohmann::json(psnr) : nlohmann::json(nullptr); }
+
+nlohmann::json mpeg_direction_json(const MpegDirection& d, const MpegFigures& f) {
+  nlohmann::json json = {{"points", d.points},
+                         {"d1_mse", d.d1_mse},
+                         {"d1_psnr", psnr_json(geometry_psnr(d.d1_mse, f.peak))},
+                         {"d1_hausdorff", d.d1_hausdorff},
+                         {"d1_hausdorff_psnr", psnr_json(geometry_psnr(d.d1_hausdorff, f.peak))}};
+  if (f.d2) {
+    json["d2_mse"] = d.d2_mse;
+    json["d2_psnr"] = psnr_json(geometry_psnr(d.d2_mse, f.peak));
+    json["d2_hausdorff"] = d.d2_hausdorff;
+    json["d2_hausdorff_psnr"] = psnr_json(geometry_psnr(d.d2_hausdorff, f.peak));
+  }
+  if (f.colour) {
+    const char* ycbcr[3] = {"y", "cb", "cr"};
+    const char* rgb[3] = {"r", "g", "b"};
+    for (int c = 0; c < 3; ++c) {
+      json[fmt::format("{}_mse", ycbcr[c])] = d.ycbcr_mse[c];
+      json[fmt::format("{}_psnr", ycbcr[c])] = psnr_json(colour_psnr(d.ycbcr_mse[c], 1));
+    }
+    for (int c = 0; c < 3; ++c) {
+      json[fmt::format("{}_mse", rgb[c])] = d.rgb_mse[c];
+      json[fmt::format("{}_psnr", rgb[c])] = psnr_json(colour_psnr(d.rgb_mse[c], 255));
+      json[fmt::format("{}_hausdorff", rgb[c])] = d.rgb_hausdorff[c];
+      json[fmt::format("{}_hausdorff_psnr", rgb[c])] = psnr_json(colour_psnr(d.rgb_hausdorff[c], 255));
+    }
+  }
+  return json;
+}
+
+nlohmann::json mpeg_json(const MpegReport& m) {
+  const MpegFigures& f = m.figures;
+  return {
+      {"definition",
+       "MPEG pc_error (mpeg-pcc-dmetric 0.14, default options): each point paired with the other cloud's "
+       "nearest; D1 = squared distance, D2 = squared distance along the normal (A's normals, carried onto B "
+       "for A -> B); MSE = mean over the points, hausdorff = largest; PSNR = 10 log10(3 peak^2 / MSE); colour "
+       "over BT.709 Y'CbCr on [0, 1] (peak 1) and RGB (peak 255); symmetric = the worse direction; points at "
+       "one position merged first. See docs/mpeg.md"},
+      {"peak", f.peak},
+      {"peak_from", f.peak_given ? "--pcc-resolution" : "the largest nearest-neighbour spacing within A"},
+      {"points_read", {m.points_read[0], m.points_read[1]}},
+      {"points", {m.points[0], m.points[1]}},
+      {"d2", f.d2 ? nlohmann::json(true) : nlohmann::json("none: A has no normals in its file")},
+      {"colour", f.colour},
+      {"a_to_b", mpeg_direction_json(f.a_to_b, f)},
+      {"b_to_a", mpeg_direction_json(f.b_to_a, f)},
+      {"symmetric", mpeg_direction_json(f.symmetric(), f)},
+      {"seconds", m.seconds}};
+}
+
+std::string mpeg_lines(const MpegReport& m) {
+  const MpegFigures& f = m.figures;
+  std::string out = fmt::format(
+      "\n  MPEG point-cloud figures (pc_error's): peak {:.9g} ({}); {} and {} points ({} and {} read)\n",
+      f.peak, f.peak_given ? "--pcc-resolution" : "largest nearest-neighbour spacing within A", m.points[0],
+      m.points[1], m.points_read[0], m.points_read[1]);
+  out += fmt::format("  {:<28} {:>16} {:>16} {:>16}\n", "figure", "A -> B", "B -> A", "symmetric");
+  const MpegDirection both = f.symmetric();
+  const auto row = [&](const char* name, auto value) {
+    const auto text = [](double v) { return std::isfinite(v) ? fmt::format("{:.9g}", v) : std::string("inf"); };
+    out += fmt::format("  {:<28} {:>16} {:>16} {:>16}\n", name, text(value(f.a_to_b)), text(value(f.b_to_a)),
+                       text(value(both)));
+  };
+  row("D1 MSE (p2point)", [](const MpegDirection& d) { return d.d1_mse; });
+  row("D1 PSNR, dB", [&](const MpegDirection& d) { return geometry_psnr(d.d1_mse, f.peak); });
+  if (f.d2) {
+    row("D2 MSE (p2plane)", [](const MpegDirection& d) { return d.d2_mse; });
+    row("D2 PSNR, dB", [&](const MpegDirection& d) { return geometry_psnr(d.d2_mse, f.peak); });
+  }
+  row("D1 Hausdorff (squared)", [](const MpegDirection& d) { return d.d1_hausdorff; });
+  row("D1 Hausdorff PSNR, dB", [&](const MpegDirection& d) { return geometry_psnr(d.d1_hausdorff, f.peak); });
+  if (f.d2) {
+    row("D2 Hausdorff (squared)", [](const MpegDirection& d) { return d.d2_hausdorff; });
+    row("D2 Hausdorff PSNR, dB", [&](const MpegDirection& d) { return geometry_psnr(d.d2_hausdorff, f.peak); });
+  }
+  if (f.colour) {
+    const char* names[3] = {"Y PSNR, dB", "Cb PSNR, dB", "Cr PSNR, dB"};
+    for (int c = 0; c < 3; ++c)
+      row(names[c], [&](const MpegDirection& d) { return colour_psnr(d.ycbcr_mse[c], 1); });
+    const char* rgb[3] = {"R PSNR, dB", "G PSNR, dB", "B PSNR, dB"};
+    for (int c = 0; c < 3; ++c)
+      row(rgb[c], [&](const MpegDirection& d) { return colour_psnr(d.rgb_mse[c], 255); });
+  }
+  if (!f.d2) out += "  no D2: A has no normals in its file (pc_error takes D2's normals from A alone)\n";
+  return out;
+}
+
 }  // namespace
 
 std::string format_body(const MeasureReport& r) {
+  if (r.pcc_only) {
+    std::string out = mpeg_lines(*r.mpeg);
+    out += fmt::format("  time: load {:.3f} s, figures {:.3f} s, total {:.3f} s\n",
+                       r.load_seconds[0] + r.load_seconds[1], r.mpeg->seconds, r.total_seconds);
+    for (const std::string& line : r.warnings) out += fmt::format("  warning: {}\n", line);
+    return out;
+  }
   std::string out;
   for (const DirectionReport& d : r.directions) {
     out += fmt::format("{:<10} {}{}\n", "samples", d.label.empty() ? "" : d.label + ": ",
@@ -597,6 +701,7 @@ std::string format_body(const MeasureReport& r) {
     }
   }
   if (r.reconstruction) out += reconstruction_lines(*r.reconstruction, r.diagonal);
+  if (r.mpeg) out += mpeg_lines(*r.mpeg);
   if (r.image_based) out += image_based_lines(*r.image_based);
   for (const DirectionReport& d : r.directions) {
     if (!d.result.gl) continue;
@@ -661,6 +766,14 @@ std::string format_body(const MeasureReport& r) {
 nlohmann::json to_json(const MeasureReport& r) {
   nlohmann::json json = {{"schema_version", kReportSchemaVersion}};
   json.update(r.provenance);
+  if (r.pcc_only) {
+    json["method"] = "pcc";
+    json["warnings"] = r.warnings;
+    json["mpeg_pcc"] = mpeg_json(*r.mpeg);
+    json["seconds"] = {
+        {"load_reference", r.load_seconds[0]}, {"load_test", r.load_seconds[1]}, {"total", r.total_seconds}};
+    return json;
+  }
   json["method"] = r.method;
   json["semantics"] = to_string(r.semantics);
   json["semantics_note"] = semantics_note(r.semantics);
@@ -700,6 +813,7 @@ nlohmann::json to_json(const MeasureReport& r) {
   } else {
     json.update(direction_json(r.directions.front(), r));
   }
+  if (r.mpeg) json["mpeg_pcc"] = mpeg_json(*r.mpeg);
   if (r.image_based) {
     const ImageBasedResult& ib = *r.image_based;
     json["image_based"] = {{"definition", "MPEG IBSM (mmetric 1.1.7 compare --mode ibsm)"},

@@ -12,6 +12,7 @@
 #include "roving/core/distance_method.h"
 #include "roving/core/statistics.h"
 #include "roving/gl_methods/image_based.h"
+#include "roving/mpeg/point_cloud_psnr.h"
 #include "roving/reconstruction/reconstruction_figures.h"
 #include "roving/reference_embree/certified_hausdorff.h"
 #include "roving/representations/model.h"
@@ -62,6 +63,14 @@ struct TwoSided {
   double hausdorff_lower = 0, hausdorff_upper = 0;
 };
 
+// MPEG's point-cloud figures (pc_error's) of two point clouds, A the original and B the processed.
+struct MpegReport {
+  MpegFigures figures;
+  std::size_t points_read[2] = {0, 0};  // A, B as read
+  std::size_t points[2] = {0, 0};       // after pc_error's merging of points at one position
+  double seconds = 0;
+};
+
 struct MeasureReport {
   std::vector<DirectionReport> directions;  // 1, or 2 with --symmetric
   std::string method;
@@ -77,6 +86,9 @@ struct MeasureReport {
   std::optional<ImageBasedResult> image_based;  // --ibsm
   // With --symmetric: the reconstruction figures, REF the ground truth and TEST the reconstruction.
   std::optional<ReconstructionFigures> reconstruction;
+  // For two point clouds: MPEG's figures; with --pcc (pcc_only) nothing else is measured.
+  std::optional<MpegReport> mpeg;
+  bool pcc_only = false;
   double load_seconds[2] = {0, 0};  // A (the reference), B (the test)
   double total_seconds = 0;
 

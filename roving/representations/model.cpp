@@ -110,6 +110,15 @@ Model load_model(const std::string& path, std::optional<ModelType> type) {
   return model;
 }
 
+PointCloud load_point_cloud(const std::string& path, std::optional<ModelType> type) {
+  const ModelType found = type ? *type : type_by_extension(path);
+  if (found != ModelType::Points) {
+    throw Error(fmt::format("{}: expected a point cloud (.xyz, or .ply without faces), found a {} model", path,
+                            to_string(found)));
+  }
+  return read_point_cloud(path);
+}
+
 Model model_from_mesh(TriangleMesh mesh, const std::string& name) {
   Model model;
   model.mesh.path = name;

@@ -46,6 +46,11 @@ struct Model {
 // Point clouds without normals get PCA normals (k = 12), oriented consistently and outward.
 Model load_model(const std::string& path, std::optional<ModelType> type = std::nullopt);
 
+// A point-cloud file's points as the file has them (no normals estimated, none normalised), for
+// figures defined on the points themselves (MPEG's). Throws roving::Error naming `path` where it is
+// not a point cloud (by `type`, else by extension and header).
+PointCloud load_point_cloud(const std::string& path, std::optional<ModelType> type = std::nullopt);
+
 // Models of what is already in memory, `name` standing for a path in messages and reports: a mesh
 // (checked as its constructor checks it), or a point cloud (finite points; normals, where given,
 // one per point, non-zero, normalised here; where not, estimated as load_model does; colours one

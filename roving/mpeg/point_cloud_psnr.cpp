@@ -1,0 +1,287 @@
+#include "roving/mpeg/point_cloud_psnr.h"
+
+#include <fmt/format.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
+
+#include <algorithm>
+#include <cmath>
+#include <nanoflann.hpp>
+#include <vector>
+
+#include "roving/core/error.h"
+
+namespace roving {
+namespace {
+
+using Point = std::array<float, 3>;
+
+struct PointsAdaptor {
+  const std::vector<Point>& points;
+  std::size_t kdtree_get_point_count() const { return points.size(); }
+  float kdtree_get_pt(std::uint32_t i, std::size_t axis) const { return points[i][axis]; }
+  template <class Box>
+  bool kdtree_get_bbox(Box&) const {
+    return false;
+  }
+};
+
+// Squared distances in double of single-precision differences, as pc_error's (and nanoflann's
+// L2 metric on float points) are: the figures then agree to the last bit.
+using KdTree =
+    nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Adaptor<float, PointsAdaptor, double>, PointsAdaptor, 3,
+                                        std::uint32_t>;
+
+constexpr std::size_t kMaxNeighbours = 30;  // pc_error's bound on the neighbours it looks at
+
+struct Neighbours {
+  std::array<std::uint32_t, kMaxNeighbours> index;
+  std::array<double, kMaxNeighbours> squared;
+  std::size_t found = 0;
+};
+
+// The nearest `first` points of `tree` (and 5 more at a time, up to 30, while all found are at the
+// nearest distance): pc_error's search, whose extent decides which ties it sees.
+Neighbours nearest(const KdTree& tree, std::size_t size, const Point& q, std::size_t first) {
+  Neighbours n;
+  std::size_t k = std::min(first, size);
+  for (;;) {
+    n.found = tree.knnSearch(q.data(), k, n.index.data(), n.squared.data());
+    const bool all_tied = n.found > 0 && n.squared[0] == n.squared[n.found - 1];
+    if (!all_tied || k + 5 > kMaxNeighbours || k >= size) return n;
+    k = std::min(k + 5, size);
+  }
+}
+
+// How many of the nearest points count as one: consecutive squared distances within 1e-8.
+std::size_t tied_run(const Neighbours& n) {
+  std::size_t count = 1;
+  while (count < n.found && std::fabs(n.squared[count] - n.squared[count - 1]) < 1e-8) ++count;
+  return count;
+}
+
+// The points pc_error's search (nearest(..., 10)) counts as tied with the nearest, found cheaply:
+// where the run of ties ends within the nearest 4, it is the same set; else its search runs.
+Neighbours nearest_tied(const KdTree& tree, std::size_t size, const Point& q) {
+  Neighbours n;
+  n.found = tree.knnSearch(q.data(), std::min<std::size_t>(4, size), n.index.data(), n.squared.data());
+  const std::size_t tied = tied_run(n);
+  if (tied < n.found) {
+    n.found = tied;
+    return n;
+  }
+  n = nearest(tree, size, q, 10);
+  n.found = tied_run(n);
+  return n;
+}
+
+// The points at exactly the nearest distance among pc_error's search from 5 (normals_carried).
+Neighbours nearest_equal(const KdTree& tree, std::size_t size, const Point& q) {
+  Neighbours n;
+  n.found = tree.knnSearch(q.data(), std::min<std::size_t>(2, size), n.index.data(), n.squared.data());
+  if (n.found == 2 && n.squared[1] == n.squared[0]) n = nearest(tree, size, q, 5);
+  std::size_t equal = 0;
+  for (std::size_t k = 0; k < n.found; ++k) {
+    if (n.squared[k] != n.squared[0]) continue;
+    n.index[equal] = n.index[k];
+    n.squared[equal++] = n.squared[k];
+  }
+  n.found = equal;
+  return n;
+}
+
+// Fixed blocks of points, so that sums over them, taken block by block in order, are the same
+// whatever the threads.
+constexpr std::size_t kBlock = 4096;
+
+template <class Body>
+void for_each_block(std::size_t count, const Body& body) {
+  tbb::parallel_for(std::size_t{0}, (count + kBlock - 1) / kBlock, [&](std::size_t block) {
+    body(block, block * kBlock, std::min(count, (block + 1) * kBlock));
+  });
+}
+
+// pc_error's BT.709 Y'CbCr on [0, 1], in single precision as it stores it.
+std::array<float, 3> ycbcr(const std::array<std::uint8_t, 3>& c) {
+  const double r = c[0], g = c[1], b = c[2];
+  return {float((0.2126 * r + 0.7152 * g + 0.0722 * b) / 255.0),
+          float((-0.1146 * r - 0.3854 * g + 0.5000 * b) / 255.0 + 0.5000),
+          float((0.5000 * r - 0.4542 * g - 0.0458 * b) / 255.0 + 0.5000)};
+}
+
+// A's normals carried onto B's points (see the header).
+std::vector<Point> normals_carried(const MpegPoints& a, const MpegPoints& b, const KdTree& b_tree,
+                                   const KdTree& a_tree) {
+  // Each A point's exactly tied nearest B points, found in parallel block by block, then added in
+  // A's order (the single-precision sums then round as pc_error's do).
+  std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>> reached((a.size() + kBlock - 1) / kBlock);
+  for_each_block(a.size(), [&](std::size_t block, std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) {
+      const Neighbours n = nearest_equal(b_tree, b.size(), a.positions[i]);
+      for (std::size_t k = 0; k < n.found; ++k) reached[block].emplace_back(std::uint32_t(i), n.index[k]);
+    }
+  });
+  std::vector<Point> normals(b.size(), Point{0, 0, 0});
+  std::vector<int> count(b.size(), 0);
+  for (auto& pairs : reached) {
+    for (const auto& [i, j] : pairs) {
+      for (int c = 0; c < 3; ++c) normals[j][c] += a.normals[i][c];
+      ++count[j];
+    }
+    std::vector<std::pair<std::uint32_t, std::uint32_t>>().swap(pairs);
+  }
+  tbb::parallel_for(std::size_t{0}, b.size(), [&](std::size_t j) {
+    if (count[j] > 0) {
+      for (int c = 0; c < 3; ++c) normals[j][c] /= float(count[j]);
+      return;
+    }
+    const Neighbours n = nearest_equal(a_tree, a.size(), b.positions[j]);
+    for (std::size_t k = 0; k < n.found; ++k)
+      for (int c = 0; c < 3; ++c) normals[j][c] += a.normals[n.index[k]][c];
+    for (int c = 0; c < 3; ++c) normals[j][c] /= float(n.found);
+  });
+  return normals;
+}
+
+// Each point of `from` against `to`: sums and maxima per block, then over the blocks in order.
+MpegDirection direction(const MpegPoints& from, const MpegPoints& to, const KdTree& to_tree,
+                        const std::vector<Point>* to_normals, bool colour) {
+  const bool ties = to_normals || colour;  // D1 needs the nearest point alone
+  std::vector<MpegDirection> blocks((from.size() + kBlock - 1) / kBlock);
+  for_each_block(from.size(), [&](std::size_t block, std::size_t begin, std::size_t end) {
+    MpegDirection& sum = blocks[block];
+    for (std::size_t i = begin; i < end; ++i) {
+      const Point& p = from.positions[i];
+      Neighbours n;
+      if (ties) {
+        n = nearest_tied(to_tree, to.size(), p);
+      } else {
+        n.found = to_tree.knnSearch(p.data(), 1, n.index.data(), n.squared.data());
+      }
+      sum.d1_mse += n.squared[0];
+      sum.d1_hausdorff = std::max(sum.d1_hausdorff, n.squared[0]);
+      if (to_normals) {
+        // In single precision, as pc_error's sum of products; averaged over the ties.
+        double d2 = 0;
+        for (std::size_t k = 0; k < n.found; ++k) {
+          const Point& q = to.positions[n.index[k]];
+          const Point& normal = (*to_normals)[n.index[k]];
+          const float e = (p[0] - q[0]) * normal[0] + (p[1] - q[1]) * normal[1] + (p[2] - q[2]) * normal[2];
+          d2 += double(e * e);
+        }
+        d2 /= double(n.found);
+        sum.d2_mse += d2;
+        sum.d2_hausdorff = std::max(sum.d2_hausdorff, d2);
+      }
+      if (colour) {
+        unsigned total[3] = {0, 0, 0};
+        for (std::size_t k = 0; k < n.found; ++k)
+          for (int c = 0; c < 3; ++c) total[c] += to.colours[n.index[k]][c];
+        std::array<std::uint8_t, 3> mean;
+        for (int c = 0; c < 3; ++c) mean[c] = std::uint8_t(std::round(double(total[c]) / double(n.found)));
+        const std::array<float, 3> in = ycbcr(from.colours[i]), met = ycbcr(mean);
+        for (int c = 0; c < 3; ++c) {
+          const float dy = in[c] - met[c];
+          sum.ycbcr_mse[c] += double(dy * dy);
+          const float dc = float(from.colours[i][c]) - float(mean[c]);
+          sum.rgb_mse[c] += double(dc * dc);
+          sum.rgb_hausdorff[c] = std::max(sum.rgb_hausdorff[c], double(dc * dc));
+        }
+      }
+    }
+  });
+  MpegDirection d;
+  d.points = from.size();
+  for (const MpegDirection& b : blocks) {
+    d.d1_mse += b.d1_mse;
+    d.d1_hausdorff = std::max(d.d1_hausdorff, b.d1_hausdorff);
+    d.d2_mse += b.d2_mse;
+    d.d2_hausdorff = std::max(d.d2_hausdorff, b.d2_hausdorff);
+    for (int c = 0; c < 3; ++c) {
+      d.ycbcr_mse[c] += b.ycbcr_mse[c];
+      d.rgb_mse[c] += b.rgb_mse[c];
+      d.rgb_hausdorff[c] = std::max(d.rgb_hausdorff[c], b.rgb_hausdorff[c]);
+    }
+  }
+  const double count = double(from.size());
+  d.d1_mse /= count;
+  d.d2_mse /= count;
+  for (int c = 0; c < 3; ++c) {
+    d.ycbcr_mse[c] /= count;
+    d.rgb_mse[c] /= count;
+  }
+  return d;
+}
+
+// pc_error's default peak: the largest distance from a point of A to its nearest other point,
+// leaving out points with another within 1e-5.
+std::optional<double> largest_spacing(const MpegPoints& a, const KdTree& a_tree) {
+  std::vector<double> spacing(a.size(), 0);
+  tbb::parallel_for(std::size_t{0}, a.size(), [&](std::size_t i) {
+    std::uint32_t index[2];
+    double squared[2];
+    const std::size_t found = a_tree.knnSearch(a.positions[i].data(), 2, index, squared);
+    if (found == 2 && index[0] == i && squared[1] > 1e-10) spacing[i] = std::sqrt(squared[1]);
+  });
+  const double largest = *std::max_element(spacing.begin(), spacing.end());
+  if (largest > 0) return largest;
+  return std::nullopt;
+}
+
+}  // namespace
+
+MpegDirection MpegFigures::symmetric() const {
+  MpegDirection worse;
+  worse.points = std::max(a_to_b.points, b_to_a.points);
+  worse.d1_mse = std::max(a_to_b.d1_mse, b_to_a.d1_mse);
+  worse.d1_hausdorff = std::max(a_to_b.d1_hausdorff, b_to_a.d1_hausdorff);
+  worse.d2_mse = std::max(a_to_b.d2_mse, b_to_a.d2_mse);
+  worse.d2_hausdorff = std::max(a_to_b.d2_hausdorff, b_to_a.d2_hausdorff);
+  for (int c = 0; c < 3; ++c) {
+    worse.ycbcr_mse[c] = std::max(a_to_b.ycbcr_mse[c], b_to_a.ycbcr_mse[c]);
+    worse.rgb_mse[c] = std::max(a_to_b.rgb_mse[c], b_to_a.rgb_mse[c]);
+    worse.rgb_hausdorff[c] = std::max(a_to_b.rgb_hausdorff[c], b_to_a.rgb_hausdorff[c]);
+  }
+  return worse;
+}
+
+double geometry_psnr(double mse, double peak) { return 10 * std::log10(3 * peak * peak / mse); }
+
+double colour_psnr(double mse, double peak) { return 10 * std::log10(peak * peak / mse); }
+
+MpegFigures mpeg_point_cloud_figures(const MpegPoints& a, const MpegPoints& b, std::optional<double> resolution,
+                                     const std::string& a_name) {
+  if (resolution && !(std::isfinite(*resolution) && *resolution > 0)) {
+    throw Error(fmt::format("--pcc-resolution: expected a finite peak > 0, found {}", *resolution));
+  }
+  const PointsAdaptor a_points{a.positions}, b_points{b.positions};
+  const auto flag = nanoflann::KDTreeSingleIndexAdaptorFlags::SkipInitialBuildIndex;
+  KdTree a_tree(3, a_points, {10, flag}), b_tree(3, b_points, {10, flag});
+  tbb::parallel_invoke([&] { a_tree.buildIndex(); }, [&] { b_tree.buildIndex(); });
+
+  MpegFigures figures;
+  figures.peak_given = resolution.has_value();
+  if (resolution) {
+    // pc_error reads --resolution as a float.
+    figures.peak = double(float(*resolution));
+  } else {
+    const std::optional<double> spacing = largest_spacing(a, a_tree);
+    if (!spacing) {
+      throw Error(fmt::format(
+          "{}: no two points are 1e-5 or more apart, so there is no spacing to take as the PSNR's peak; "
+          "give --pcc-resolution",
+          a_name));
+    }
+    figures.peak = *spacing;
+  }
+  figures.d2 = !a.normals.empty();
+  figures.colour = !a.colours.empty() && !b.colours.empty();
+  std::vector<Point> b_normals;
+  if (figures.d2) b_normals = normals_carried(a, b, b_tree, a_tree);
+  figures.a_to_b = direction(a, b, b_tree, figures.d2 ? &b_normals : nullptr, figures.colour);
+  figures.b_to_a = direction(b, a, a_tree, figures.d2 ? &a.normals : nullptr, figures.colour);
+  return figures;
+}
+
+}  // namespace roving

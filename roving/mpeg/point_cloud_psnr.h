@@ -1,0 +1,61 @@
+// MPEG's geometry and colour figures for two point clouds, defined as its pc_error
+// (mpeg-pcc-dmetric release 0.14, default options) computes them, so that a codec paper's D1 / D2
+// PSNR comes out of roving as it comes out of pc_error (docs/mpeg.md lists every rule and where we
+// part from it):
+// - each point of one cloud is paired with its nearest point of the other (squared Euclidean
+//   distance in double on single-precision coordinates);
+// - D1 (point-to-point): that squared distance; D2 (point-to-plane): its squared projection on the
+//   other point's normal, averaged over the nearest points at the same distance (consecutive
+//   squared distances within 1e-8 of each other, among up to 30 neighbours);
+// - normals come from A alone: B -> A uses A's normals; A -> B uses A's normals carried onto B
+//   (each A point's normal added to its nearest B points, exact ties all; averaged, not
+//   normalised; a B point no A point reached takes the mean of its nearest A points' normals);
+//   without normals in A there is no D2;
+// - colour: the nearest points' 8-bit colours averaged (rounded) over the same ties, compared in
+//   BT.709 Y'CbCr on [0, 1] (peak 1) and in RGB (peak 255);
+// - MSE is the mean over the cloud's points; Hausdorff the largest squared distance; PSNR
+//   10 log10(3 p^2 / MSE) for geometry with p the peak: `resolution` when given, else the largest
+//   distance from a point of A to its nearest other point of A (pc_error's default);
+// - symmetric: the worse direction (largest MSE, smallest PSNR).
+#pragma once
+
+#include <array>
+#include <optional>
+#include <string>
+
+#include "roving/mpeg/mpeg_points.h"
+
+namespace roving {
+
+// One direction: each point of `from` against `to`. Squared distances, in model units squared.
+struct MpegDirection {
+  std::size_t points = 0;
+  double d1_mse = 0, d1_hausdorff = 0;
+  double d2_mse = 0, d2_hausdorff = 0;           // where there is D2
+  std::array<double, 3> ycbcr_mse{}, rgb_mse{};  // where there is colour
+  std::array<double, 3> rgb_hausdorff{};         // largest squared difference per RGB channel
+};
+
+struct MpegFigures {
+  double peak = 0;
+  bool peak_given = false;  // from `resolution`, else A's largest nearest-neighbour spacing
+  bool d2 = false;          // A has normals
+  bool colour = false;      // both have colour
+  MpegDirection a_to_b, b_to_a;
+  // The worse direction's figure (pc_error's "Final (symmetric)").
+  MpegDirection symmetric() const;
+};
+
+// PSNR of a squared-distance figure with pc_error's geometry formula, 10 log10(3 p^2 / mse);
+// +infinity where mse is 0.
+double geometry_psnr(double mse, double peak);
+// PSNR of a colour MSE against `peak` (1 for Y'CbCr on [0, 1], 255 for RGB); +infinity at 0.
+double colour_psnr(double mse, double peak);
+
+// Both directions' figures. Throws roving::Error for a resolution that is not finite and > 0, or,
+// where none is given, for an A whose points are all within 1e-5 of one another (no spacing to
+// take as the peak), naming `a_name`.
+MpegFigures mpeg_point_cloud_figures(const MpegPoints& a, const MpegPoints& b, std::optional<double> resolution,
+                                     const std::string& a_name);
+
+}  // namespace roving

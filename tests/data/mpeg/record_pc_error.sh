@@ -1,0 +1,31 @@
+#!/usr/bin/env bash
+# Records MPEG pc_error's own output on the pairs of make_clouds.py, the golden values
+# tests/mpeg_test.cpp holds roving's `measure --pcc` to. pc_error is not part of roving: build it
+# from https://github.com/MPEGGroup/mpeg-pcc-dmetric (tag release-v0.14.2, `cmake -S source -B build
+# && cmake --build build`) and give its path:
+#   PC_ERROR=/path/to/pc_error bash tests/data/mpeg/record_pc_error.sh
+# Each golden file starts with the command that made it; the rest is pc_error's stdout as printed.
+set -euo pipefail
+cd "$(dirname "$0")"
+: "${PC_ERROR:?set PC_ERROR to the pc_error executable}"
+mkdir -p golden
+record() {  # name, A, B, pc_error options
+  local name=$1 a=$2 b=$3
+  shift 3
+  local command=(pc_error "--fileA=$a" "--fileB=$b" "$@")
+  {
+    echo "# ${command[*]}"
+    "$PC_ERROR" "${command[@]:1}"
+  } > "golden/$name.txt"
+}
+record sphere10_r1023 sphere10_a.ply sphere10_b.ply --color=1 --hausdorff=1 --resolution=1023 --nbThreads=1
+record sphere10_peak sphere10_a.ply sphere10_b.ply --color=1 --hausdorff=1 --nbThreads=1
+record sphere10_rgb sphere10_a.ply sphere10_b.ply --color=1 --mseSpace=0 --hausdorff=1 --resolution=1023 --nbThreads=1
+record torus11_r2047 torus11_a.ply torus11_b.ply --hausdorff=1 --resolution=2047 --nbThreads=1
+record torus11_peak torus11_a.ply torus11_b.ply --hausdorff=1 --nbThreads=1
+record blob_float_peak blob_float_a.ply blob_float_b.ply --color=1 --hausdorff=1 --nbThreads=1
+record blob_float_rgb blob_float_a.ply blob_float_b.ply --color=1 --mseSpace=0 --hausdorff=1 --nbThreads=1
+# A against itself: every MSE 0.
+record sphere10_identical sphere10_a.ply sphere10_a.ply --color=1 --hausdorff=1 --resolution=1023 --nbThreads=1
+# B against A: B has no normals, so pc_error computes no D2.
+record sphere10_swapped sphere10_b.ply sphere10_a.ply --color=1 --hausdorff=1 --resolution=1023 --nbThreads=1

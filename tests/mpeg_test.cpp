@@ -1,0 +1,222 @@
+// MPEG's point-cloud figures (roving/mpeg/) against pc_error's own output: the golden files in
+// tests/data/mpeg/golden/ are pc_error's stdout on the pairs of tests/data/mpeg/make_clouds.py,
+// each headed by its command (tests/data/mpeg/record_pc_error.sh, mpeg-pcc-dmetric release-v0.14.2).
+// pc_error prints 9 significant digits (float's max_digits10), so a figure agrees when it rounds
+// to what it printed: relative 1e-8. A PSNR pc_error prints as inf is null in our JSON.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <regex>
+#include <sstream>
+
+#include "cli_support.h"
+
+namespace roving {
+namespace {
+
+using testing::cli::CliRun;
+using testing::cli::expect_error;
+using testing::cli::run_cli;
+
+const std::string kData = std::string(ROVING_SOURCE_DIR) + "/tests/data/mpeg/";
+
+struct Golden {
+  std::string command;                        // pc_error's, as recorded
+  std::string file_a, file_b;
+  std::string resolution;                     // empty: pc_error's default peak
+  bool rgb = false;                           // --mseSpace=0: c[k] are R, G, B
+  double peak = 0;
+  std::map<std::string, std::string> values;  // "a_to_b/d1_mse" -> "1.48473455"
+};
+
+Golden read_golden(const std::string& name) {
+  std::ifstream in(kData + "golden/" + name + ".txt");
+  EXPECT_TRUE(in) << name;
+  Golden g;
+  std::getline(in, g.command);
+  std::smatch m;
+  const auto option = [&](const char* key) {
+    const std::regex pattern(std::string("--") + key + "=(\\S+)");
+    return std::regex_search(g.command, m, pattern) ? m[1].str() : std::string();
+  };
+  g.file_a = option("fileA");
+  g.file_b = option("fileB");
+  g.resolution = option("resolution");
+  g.rgb = option("mseSpace") == "0";
+  const char* sections[] = {"a_to_b", "b_to_a", "symmetric"};
+  const char* ycbcr[] = {"y", "cb", "cr"};
+  const char* rgb[] = {"r", "g", "b"};
+  const std::regex geometry(R"(^\s*(mse|h\.)[12F]?(,PSNR)?\s*[12F]?\s*\((p2point|p2plane)\): (\S+))");
+  const std::regex colour(R"(^\s*(h\.)?c\[(\d)\],(PSNR)?\s*[12F]\s*: (\S+))");
+  const std::regex peak(R"(^Peak distance for PSNR: (\S+))");
+  std::string section;
+  for (std::string line; std::getline(in, line);) {
+    if (line.size() > 2 && line[1] == '.' && line[0] >= '1' && line[0] <= '3') section = sections[line[0] - '1'];
+    if (std::regex_search(line, m, peak)) g.peak = std::stod(m[1]);
+    if (std::regex_search(line, m, geometry)) {
+      const bool hausdorff = m[1] == "h.", psnr = m[2].matched;
+      const std::string figure = std::string(m[3] == "p2point" ? "d1" : "d2") + (hausdorff ? "_hausdorff" : "") +
+                                 (psnr ? "_psnr" : hausdorff ? "" : "_mse");
+      g.values[section + "/" + figure] = m[4];
+    } else if (std::regex_search(line, m, colour)) {
+      const int channel = std::stoi(m[2]);
+      const bool hausdorff = m[1].matched;
+      const std::string name = hausdorff || g.rgb ? rgb[channel] : ycbcr[channel];
+      const bool psnr = m[3].matched;
+      g.values[section + "/" + name + (hausdorff ? "_hausdorff" : "") + (psnr ? "_psnr" : hausdorff ? "" : "_mse")] =
+          m[4];
+    }
+  }
+  return g;
+}
+
+nlohmann::json measure_pcc(const Golden& g) {
+  const CliRun run = run_cli("measure " + kData + g.file_a + " " + kData + g.file_b + " --pcc --json -" +
+                             (g.resolution.empty() ? "" : " --pcc-resolution " + g.resolution));
+  EXPECT_EQ(run.exit_code, 0) << run.err;
+  return nlohmann::json::parse(run.out)["mpeg_pcc"];
+}
+
+void expect_equal_to_pc_error(const std::string& name, std::size_t at_least) {
+  SCOPED_TRACE(name);
+  const Golden g = read_golden(name);
+  ASSERT_GE(g.values.size(), at_least) << g.command;
+  const nlohmann::json ours = measure_pcc(g);
+  EXPECT_NEAR(ours["peak"].get<double>(), g.peak, 1e-8 * g.peak);
+  for (const auto& [key, printed] : g.values) {
+    const auto slash = key.find('/');
+    const nlohmann::json& value = ours[key.substr(0, slash)][key.substr(slash + 1)];
+    if (printed == "inf") {
+      EXPECT_TRUE(value.is_null()) << key << ": " << value;
+      continue;
+    }
+    ASSERT_TRUE(value.is_number()) << key << " missing from " << ours.dump();
+    // pc_error starts its maxima from the smallest double, so where every distance is 0 it prints
+    // that (2.22507386e-308) for 0 (docs/mpeg.md).
+    const double theirs = printed == "2.22507386e-308" ? 0.0 : std::stod(printed);
+    EXPECT_NEAR(value.get<double>(), theirs, 1e-8 * std::abs(theirs)) << key << " (pc_error printed " << printed << ")";
+  }
+}
+
+// 10-bit voxels with duplicates in both clouds (averaged colours), D2 from A's normals carried onto
+// B, Y'CbCr and RGB colour, the peak given and pc_error's default.
+TEST(PcErrorGolden, VoxelisedTenBitsWithDuplicates) {
+  expect_equal_to_pc_error("sphere10_r1023", 3 * 8 + 3 * 12);
+  expect_equal_to_pc_error("sphere10_peak", 3 * 8 + 3 * 12);
+  expect_equal_to_pc_error("sphere10_rgb", 3 * 8 + 3 * 12);
+}
+
+// B as A: B has no normals, so neither has D2 (pc_error takes D2's normals from A alone).
+TEST(PcErrorGolden, WithoutNormalsThereIsNoD2) {
+  expect_equal_to_pc_error("sphere10_swapped", 3 * 4 + 3 * 12);
+  const nlohmann::json ours = measure_pcc(read_golden("sphere10_swapped"));
+  EXPECT_TRUE(ours["d2"].is_string());
+  EXPECT_FALSE(ours["symmetric"].contains("d2_mse"));
+}
+
+TEST(PcErrorGolden, ElevenBitsWithoutColour) {
+  expect_equal_to_pc_error("torus11_r2047", 3 * 8);
+  expect_equal_to_pc_error("torus11_peak", 3 * 8);
+}
+
+TEST(PcErrorGolden, FloatCoordinates) {
+  expect_equal_to_pc_error("blob_float_peak", 3 * 8 + 3 * 12);
+  expect_equal_to_pc_error("blob_float_rgb", 3 * 8 + 3 * 12);
+}
+
+// A cloud against itself: every MSE and Hausdorff 0, every PSNR infinite (null), as pc_error's.
+TEST(PcErrorGolden, ACloudAgainstItselfIsExact) {
+  expect_equal_to_pc_error("sphere10_identical", 3 * 8 + 3 * 12);
+  const std::string a = kData + "sphere10_a.ply";
+  const CliRun run = run_cli("measure " + a + " " + a + " --pcc --pcc-resolution 1023 --json -");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const nlohmann::json s = nlohmann::json::parse(run.out)["mpeg_pcc"]["symmetric"];
+  for (const char* key : {"d1_mse", "d2_mse", "d1_hausdorff", "d2_hausdorff", "y_mse", "r_mse", "r_hausdorff"})
+    EXPECT_EQ(s[key].get<double>(), 0.0) << key;
+  for (const char* key : {"d1_psnr", "d2_psnr", "d1_hausdorff_psnr", "y_psnr", "r_psnr"})
+    EXPECT_TRUE(s[key].is_null()) << key;
+}
+
+// Two point clouds without --pcc: the surface figures (surfels) and pc_error's beside them.
+TEST(PcErrorFigures, GivenBesideTheSurfaceFiguresForTwoPointClouds) {
+  const Golden g = read_golden("blob_float_peak");
+  const CliRun run = run_cli("measure " + kData + g.file_a + " " + kData + g.file_b + " --json -");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const nlohmann::json json = nlohmann::json::parse(run.out);
+  EXPECT_TRUE(json.contains("statistics"));
+  EXPECT_NEAR(json["mpeg_pcc"]["symmetric"]["d1_psnr"].get<double>(), std::stod(g.values.at("symmetric/d1_psnr")),
+              1e-6);
+  const CliRun text = run_cli("measure " + kData + g.file_a + " " + kData + g.file_b);
+  EXPECT_NE(text.out.find("MPEG point-cloud figures"), std::string::npos) << text.out;
+}
+
+// batch --pcc: each pair's figures in its report and the summary's MPEG columns, duplicates and all.
+TEST(PcErrorFigures, BatchSummaryHasThem) {
+  const testing::cli::fs::path folder = testing::cli::fs::temp_directory_path() / "roving-mpeg-batch";
+  testing::cli::fs::remove_all(folder);
+  testing::cli::fs::create_directories(folder);
+  {
+    std::ofstream manifest(folder / "pairs.csv");
+    manifest << "reference,test\n";
+    for (const char* pair : {"sphere10", "torus11"}) manifest << kData << pair << "_a.ply," << kData << pair << "_b.ply\n";
+  }
+  const CliRun run = run_cli("batch " + (folder / "pairs.csv").string() + " --pcc --pcc-resolution 1023 --quiet --out " +
+                             (folder / "out").string());
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  std::ifstream summary(folder / "out" / "summary.csv");
+  std::string header, line;
+  std::getline(summary, header);
+  std::vector<std::string> columns;
+  std::stringstream split(header);
+  for (std::string c; std::getline(split, c, ',');) columns.push_back(c);
+  const std::size_t d1 = std::find(columns.begin(), columns.end(), "mpeg_d1_psnr") - columns.begin();
+  ASSERT_LT(d1, columns.size());
+  for (const char* pair : {"sphere10", "torus11"}) {
+    ASSERT_TRUE(std::getline(summary, line));
+    std::vector<std::string> cells;
+    std::stringstream row(line);
+    for (std::string c; std::getline(row, c, ',');) cells.push_back(c);
+    const CliRun one = run_cli("measure " + kData + pair + "_a.ply " + kData + pair +
+                               "_b.ply --pcc --pcc-resolution 1023 --json -");
+    const double expected = nlohmann::json::parse(one.out)["mpeg_pcc"]["symmetric"]["d1_psnr"].get<double>();
+    EXPECT_DOUBLE_EQ(std::stod(cells.at(d1)), expected) << pair;
+  }
+  testing::cli::fs::remove_all(folder);
+}
+
+TEST(PcErrorFigures, BadInputIsOneLine) {
+  const std::string a = kData + "sphere10_a.ply", b = kData + "sphere10_b.ply";
+  for (const char* peak : {"0", "-1", "nan", "1e40"}) {
+    SCOPED_TRACE(peak);
+    const CliRun run = run_cli("measure " + a + " " + b + " --pcc --pcc-resolution " + peak);
+    EXPECT_EQ(run.exit_code, 2) << run.err;
+    EXPECT_NE(run.err.find("--pcc-resolution"), std::string::npos) << run.err;
+  }
+  const CliRun symmetric = run_cli("measure " + a + " " + b + " --pcc --symmetric");
+  EXPECT_EQ(symmetric.exit_code, 2);
+  EXPECT_NE(symmetric.err.find("--symmetric: not with --pcc"), std::string::npos) << symmetric.err;
+  // A mesh is not a point cloud.
+  expect_error("measure " + testing::cli::bunny() + " " + b + " --pcc", {"stanford-bunny.obj", "point cloud"});
+
+  const testing::cli::fs::path folder = testing::cli::fs::temp_directory_path() / "roving-mpeg-test";
+  testing::cli::fs::create_directories(folder);
+  const auto write = [&](const std::string& name, const std::string& text) {
+    std::ofstream(folder / name) << text;
+    return (folder / name).string();
+  };
+  // A NaN coordinate, named with its file.
+  const std::string nan_cloud = write("nan.xyz", "0 0 0\n1 0 0\nnan 1 0\n0 0 1\n");
+  expect_error("measure " + nan_cloud + " " + b + " --pcc", {"nan.xyz", "point 2", "non-finite"});
+  // One point: no spacing to take as the peak unless one is given.
+  const std::string one = write("one.xyz", "1 2 3\n");
+  const std::string plain = kData + "torus11_b.ply";
+  expect_error("measure " + one + " " + plain + " --pcc", {"one.xyz", "--pcc-resolution"});
+  EXPECT_EQ(run_cli("measure " + one + " " + plain + " --pcc --pcc-resolution 1023").exit_code, 0);
+  testing::cli::fs::remove_all(folder);
+}
+
+}  // namespace
+}  // namespace roving
