@@ -18,7 +18,7 @@ OTHER_PROGRAMS = {"--build", "--install", "--prefix", "--cflags", "--libs", "--d
                   # MPEG's pc_error (docs/mpeg.md; the regex stops at its options' capitals)
                   "--file", "--color", "--hausdorff", "--nb", "--mse", "--dropdups", "--neighbors", "--average",
                   "--input", "--single", "--lidar",
-                  "--mode"}  # mmetric's compare --mode
+                  "--mode", "--normal"}  # mmetric's compare --mode, --normalCalcModificationEnable
 
 
 def options_of(*command):

@@ -1,8 +1,9 @@
-// MPEG's point-cloud figures (roving/mpeg/) against pc_error's own output: the golden files in
-// tests/data/mpeg/golden/ are pc_error's stdout on the pairs of tests/data/mpeg/make_clouds.py,
-// each headed by its command (tests/data/mpeg/record_pc_error.sh, mpeg-pcc-dmetric release-v0.14.2).
-// pc_error prints 9 significant digits (float's max_digits10), so a figure agrees when it rounds
-// to what it printed: relative 1e-8. A PSNR pc_error prints as inf is null in our JSON.
+// MPEG's point-cloud figures (roving/mpeg/) against the tools' own output: the golden files in
+// tests/data/mpeg/golden/ are pc_error's stdout on the pairs of tests/data/mpeg/make_clouds.py
+// (tests/data/mpeg/record_pc_error.sh, mpeg-pcc-dmetric release-v0.14.2) and mmetric's on the mesh
+// pairs of make_meshes.py (record_mmetric.sh, mmetric 1.1.7 `mm compare --mode pcc`), each headed by
+// its command. Both print 9 significant digits (float's max_digits10), so a figure agrees when it
+// rounds to what they printed: relative 1e-8. A PSNR printed as inf is null in our JSON.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -42,8 +43,8 @@ Golden read_golden(const std::string& name) {
     const std::regex pattern(std::string("--") + key + "=(\\S+)");
     return std::regex_search(g.command, m, pattern) ? m[1].str() : std::string();
   };
-  g.file_a = option("fileA");
-  g.file_b = option("fileB");
+  g.file_a = option("fileA") + option("inputModelA");  // pc_error's or mmetric's
+  g.file_b = option("fileB") + option("inputModelB");
   g.resolution = option("resolution");
   g.rgb = option("mseSpace") == "0";
   const char* sections[] = {"a_to_b", "b_to_a", "symmetric"};
@@ -141,6 +142,26 @@ TEST(PcErrorGolden, ACloudAgainstItselfIsExact) {
 }
 
 // Two point clouds without --pcc: the surface figures (surfels) and pc_error's beside them.
+// Meshes as a mesh codec outputs them (decimated, quantised, with degenerate triangles), sampled as
+// mmetric samples them: its sample counts, default peak (A's box diagonal), D2 with B's own
+// normals, merged normals averaged, and a mesh against a point cloud.
+TEST(MmetricGolden, MeshesSampledAsMmetricSamplesThem) {
+  expect_equal_to_pc_error("mmetric_fandisk10", 3 * 8 + 3 * 12);
+  expect_equal_to_pc_error("mmetric_fandisk10_r1023", 3 * 8 + 3 * 12);
+  expect_equal_to_pc_error("mmetric_rocker8", 3 * 8);
+  expect_equal_to_pc_error("mmetric_fandisk10_points", 3 * 8 + 3 * 12);
+  const nlohmann::json ours = measure_pcc(read_golden("mmetric_fandisk10"));
+  std::ifstream golden(kData + "golden/mmetric_fandisk10.txt");
+  const std::string text((std::istreambuf_iterator<char>(golden)), std::istreambuf_iterator<char>());
+  // "Generated N points" per mesh, then the merged sizes.
+  EXPECT_NE(text.find("Generated " + std::to_string(ours["points_read"][0].get<int>()) + " points"), std::string::npos);
+  EXPECT_NE(text.find("Generated " + std::to_string(ours["points_read"][1].get<int>()) + " points"), std::string::npos);
+  EXPECT_NE(text.find("scaling ratio: " + std::to_string(ours["points"][0].get<int>()) + ", " +
+                      std::to_string(ours["points"][1].get<int>())),
+            std::string::npos);
+  EXPECT_EQ(ours["computed_as"].get<std::string>().rfind("mmetric", 0), 0u);
+}
+
 TEST(PcErrorFigures, GivenBesideTheSurfaceFiguresForTwoPointClouds) {
   const Golden g = read_golden("blob_float_peak");
   const CliRun run = run_cli("measure " + kData + g.file_a + " " + kData + g.file_b + " --json -");
@@ -198,8 +219,9 @@ TEST(PcErrorFigures, BadInputIsOneLine) {
   const CliRun symmetric = run_cli("measure " + a + " " + b + " --pcc --symmetric");
   EXPECT_EQ(symmetric.exit_code, 2);
   EXPECT_NE(symmetric.err.find("--symmetric: not with --pcc"), std::string::npos) << symmetric.err;
-  // A mesh is not a point cloud.
-  expect_error("measure " + testing::cli::bunny() + " " + b + " --pcc", {"stanford-bunny.obj", "point cloud"});
+  // Bezier patches are neither a point cloud nor a mesh.
+  expect_error("measure " + roving::testing::data_file("teapot.bpt") + " " + b + " --pcc",
+               {"teapot.bpt", "point clouds and meshes"});
 
   const testing::cli::fs::path folder = testing::cli::fs::temp_directory_path() / "roving-mpeg-test";
   testing::cli::fs::create_directories(folder);

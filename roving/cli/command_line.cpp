@@ -128,10 +128,12 @@ void add_measurement_options(CLI::App& app, MeasureArguments& args, bool& trust_
       "--pcc", args.pcc,
       "MPEG's point-cloud figures alone, as its pc_error computes them: D1 and D2 MSE and PSNR, their "
       "Hausdorff forms, colour PSNR, per direction and the worse of the two (two point clouds; given "
-      "without --pcc for two point clouds too, beside the surface figures)");
+      "without --pcc for two point clouds too, beside the surface figures); on meshes, as mmetric's "
+      "compare --mode pcc, each mesh sampled as mmetric samples it");
   app.add_option("--pcc-resolution", args.pcc_resolution,
                  "the geometry PSNR's peak p in 10 log10(3 p^2 / MSE), pc_error's --resolution (e.g. 1023 "
-                 "for 10-bit voxels); default: the largest nearest-neighbour spacing within A, as pc_error's");
+                 "for 10-bit voxels); default: the largest nearest-neighbour spacing within A, as pc_error's "
+                 "(on meshes the diagonal of A's box, as mmetric's)");
   app.add_option("--histogram-bins", args.histogram_bins, "bins of the signed-d histogram")
       ->check(CLI::Range(1, 100000))
       ->capture_default_str();

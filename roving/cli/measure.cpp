@@ -22,6 +22,7 @@
 #include "roving/formats/file_hash.h"
 #include "roving/formats/heatmap.h"
 #include "roving/formats/sample_output.h"
+#include "roving/mpeg/mmetric_sampling.h"
 #include "roving/mpeg/mpeg_points.h"
 #include "roving/pictures/heatmap_picture.h"
 #include "roving/registry/method_registry.h"
@@ -303,15 +304,24 @@ void describe_pair(const Model& a, const Model& b, MeasurePlan& plan, MeasureRep
 
 namespace {
 
-// MPEG's point-cloud figures of two point clouds (pc_error's D2 takes A's normals from its file;
-// estimated ones are not pc_error's).
+// MPEG's point-cloud figures: of two point clouds as pc_error computes them (its D2 takes A's
+// normals from its file; estimated ones are not pc_error's), or, where a model is a mesh, as
+// mmetric's compare --mode pcc does, each mesh sampled as mmetric samples it.
 MpegReport mpeg_report(const Model& a, const Model& b, std::optional<double> resolution) {
   const Stopwatch watch;
   MpegReport report;
+  MpegRules rules;
+  rules.resolution = resolution;
+  rules.mmetric = a.type == ModelType::Mesh || b.type == ModelType::Mesh;
+  const auto points_of = [&](const Model& model, bool normals) {
+    if (model.type == ModelType::Mesh) {
+      return mpeg_points(mmetric_samples(model.mesh.mesh, model.path()), model.path(), true, true);
+    }
+    return mpeg_points(model.points, model.path(), normals && !model.normals_estimated, rules.mmetric);
+  };
   MpegPoints a_points, b_points;
-  tbb::parallel_invoke([&] { a_points = mpeg_points(a.points, a.path(), !a.normals_estimated); },
-                       [&] { b_points = mpeg_points(b.points, b.path(), false); });
-  report.figures = mpeg_point_cloud_figures(a_points, b_points, resolution, a.path());
+  tbb::parallel_invoke([&] { a_points = points_of(a, true); }, [&] { b_points = points_of(b, rules.mmetric); });
+  report.figures = mpeg_point_cloud_figures(a_points, b_points, rules, a.path());
   report.points_read[0] = a_points.points_read;
   report.points_read[1] = b_points.points_read;
   report.points[0] = a_points.size();
@@ -323,7 +333,7 @@ MpegReport mpeg_report(const Model& a, const Model& b, std::optional<double> res
 }  // namespace
 
 Model load_for(const MeasurePlan& plan, const std::string& path, std::optional<ModelType> type) {
-  if (!plan.pcc_only) return load_model(path, type);
+  if (!plan.pcc_only || (type ? *type : model_type_of(path)) != ModelType::Points) return load_model(path, type);
   Model model;
   model.type = ModelType::Points;
   model.mesh.path = path;
@@ -334,16 +344,18 @@ Model load_for(const MeasurePlan& plan, const std::string& path, std::optional<M
 void measure_point_clouds(const Model& a, const Model& b, const MeasurePlan& plan, MeasureReport& report,
                           Progress& progress, std::string& stage, const WarnFn& warn) {
   for (const Model* model : {&a, &b}) {
-    if (model->type != ModelType::Points) {
-      throw Error(fmt::format("{}: --pcc measures point clouds; found a {} model", model->path(),
+    if (model->type != ModelType::Points && model->type != ModelType::Mesh) {
+      throw Error(fmt::format("{}: --pcc measures point clouds and meshes; found a {} model", model->path(),
                               to_string(model->type)));
     }
   }
   report.pcc_only = true;
-  if (a.points.colours.empty() != b.points.colours.empty()) {
-    const Model& coloured = a.points.colours.empty() ? b : a;
-    const Model& plain = a.points.colours.empty() ? a : b;
-    warn({fmt::format("colour: {} has colour but {} has none; no colour figures", coloured.path(), plain.path())});
+  const auto coloured = [](const Model& m) {
+    return m.type == ModelType::Points ? !m.points.colours.empty() : !m.mesh.mesh.vertex_colours().empty();
+  };
+  if (coloured(a) != coloured(b)) {
+    warn({fmt::format("colour: {} has colour but {} has none; no colour figures", (coloured(a) ? a : b).path(),
+                      (coloured(a) ? b : a).path())});
   }
   stage = fmt::format("computing MPEG's point-cloud figures of {} and {}", a.path(), b.path());
   progress.stage("MPEG point-cloud figures");

@@ -472,7 +472,8 @@ TwoSided MeasureReport::two_sided() const {
 std::string format_header(const Model& a, const Model& b, const MeasureReport& r) {
   if (r.pcc_only) {
     return model_line("A", a) + model_line("B", b) +
-           fmt::format("{:<10} MPEG's point-cloud figures, as pc_error (mpeg-pcc-dmetric 0.14) computes them\n",
+           fmt::format("{:<10} MPEG's point-cloud figures, as pc_error (mpeg-pcc-dmetric 0.14) computes them (as "
+                       "mmetric's compare --mode pcc where a model is a mesh)\n",
                        "figures");
   }
   const bool symmetric = r.diagonal_of_both;
@@ -593,8 +594,12 @@ nlohmann::json mpeg_json(const MpegReport& m) {
        "for A -> B); MSE = mean over the points, hausdorff = largest; PSNR = 10 log10(3 peak^2 / MSE); colour "
        "over BT.709 Y'CbCr on [0, 1] (peak 1) and RGB (peak 255); symmetric = the worse direction; points at "
        "one position merged first. See docs/mpeg.md"},
+      {"computed_as", f.mmetric ? "mmetric 1.1.7 compare --mode pcc: meshes sampled as mmetric samples them"
+                                : "pc_error (mpeg-pcc-dmetric 0.14)"},
       {"peak", f.peak},
-      {"peak_from", f.peak_given ? "--pcc-resolution" : "the largest nearest-neighbour spacing within A"},
+      {"peak_from", f.peak_given ? "--pcc-resolution"
+                    : f.mmetric  ? "the diagonal of A's box (mmetric's default)"
+                                 : "the largest nearest-neighbour spacing within A"},
       {"points_read", {m.points_read[0], m.points_read[1]}},
       {"points", {m.points[0], m.points[1]}},
       {"d2", f.d2 ? nlohmann::json(true) : nlohmann::json("none: A has no normals in its file")},
@@ -608,9 +613,12 @@ nlohmann::json mpeg_json(const MpegReport& m) {
 std::string mpeg_lines(const MpegReport& m) {
   const MpegFigures& f = m.figures;
   std::string out = fmt::format(
-      "\n  MPEG point-cloud figures (pc_error's): peak {:.9g} ({}); {} and {} points ({} and {} read)\n",
-      f.peak, f.peak_given ? "--pcc-resolution" : "largest nearest-neighbour spacing within A", m.points[0],
-      m.points[1], m.points_read[0], m.points_read[1]);
+      "\n  MPEG point-cloud figures ({}): peak {:.9g} ({}); {} and {} points ({} and {} {})\n",
+      f.mmetric ? "mmetric's compare --mode pcc" : "pc_error's", f.peak,
+      f.peak_given ? "--pcc-resolution"
+      : f.mmetric  ? "diagonal of A's box"
+                   : "largest nearest-neighbour spacing within A",
+      m.points[0], m.points[1], m.points_read[0], m.points_read[1], f.mmetric ? "sampled or read" : "read");
   out += fmt::format("  {:<28} {:>16} {:>16} {:>16}\n", "figure", "A -> B", "B -> A", "symmetric");
   const MpegDirection both = f.symmetric();
   const auto row = [&](const char* name, auto value) {

@@ -23,7 +23,7 @@ std::array<float, 3> to_float(const Vec3& v, const std::string& name, const char
 
 }  // namespace
 
-MpegPoints mpeg_points(const PointCloud& cloud, const std::string& name, bool with_normals) {
+MpegPoints mpeg_points(const PointCloud& cloud, const std::string& name, bool with_normals, bool average_normals) {
   const std::size_t n = cloud.positions.size();
   if (n == 0) throw Error(fmt::format("{}: no points; expected a point cloud", name));
   if (with_normals && !cloud.normals.empty() && cloud.normals.size() != n) {
@@ -54,7 +54,17 @@ MpegPoints mpeg_points(const PointCloud& cloud, const std::string& name, bool wi
     while (end < n && order[end].position == order[run].position) ++end;
     const std::uint32_t first = order[run].index;
     points.positions.push_back(order[run].position);
-    if (normals) points.normals.push_back(to_float(cloud.normals[first], name, "normal", first));
+    if (normals && average_normals) {
+      std::array<float, 3> sum = {0, 0, 0};  // in single precision, in the sorted order, as mmetric
+      for (std::size_t k = run; k < end; ++k) {
+        const std::array<float, 3> n = to_float(cloud.normals[order[k].index], name, "normal", order[k].index);
+        for (int c = 0; c < 3; ++c) sum[c] += n[c];
+      }
+      for (int c = 0; c < 3; ++c) sum[c] /= float(end - run);
+      points.normals.push_back(sum);
+    } else if (normals) {
+      points.normals.push_back(to_float(cloud.normals[first], name, "normal", first));
+    }
     if (!cloud.colours.empty()) {
       // pc_error sums the 8-bit values and divides as integers: the mean, truncated.
       long sum[3] = {0, 0, 0};

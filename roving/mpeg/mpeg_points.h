@@ -22,9 +22,11 @@ struct MpegPoints {
 };
 
 // `cloud` as pc_error holds it, its normals kept where `with_normals` (pc_error uses A's alone).
-// Colours are rounded to 8 bits (pc_error reads only 8-bit ones).
+// Colours are rounded to 8 bits (pc_error reads only 8-bit ones). With `average_normals` (mmetric's
+// own merging), merged points get the mean of their normals (not normalised) instead of the first.
 // Throws roving::Error naming `name` for a cloud with no points, a coordinate or normal that is not
 // finite (or beyond float's range), or normals or colours not one per point.
-MpegPoints mpeg_points(const PointCloud& cloud, const std::string& name, bool with_normals);
+MpegPoints mpeg_points(const PointCloud& cloud, const std::string& name, bool with_normals,
+                       bool average_normals = false);
 
 }  // namespace roving

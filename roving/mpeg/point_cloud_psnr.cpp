@@ -54,25 +54,25 @@ Neighbours nearest(const KdTree& tree, std::size_t size, const Point& q, std::si
   }
 }
 
-// How many of the nearest points count as one: consecutive squared distances within 1e-8.
-std::size_t tied_run(const Neighbours& n) {
+// How many of the nearest points count as one: consecutive squared distances within `threshold`.
+std::size_t tied_run(const Neighbours& n, double threshold) {
   std::size_t count = 1;
-  while (count < n.found && std::fabs(n.squared[count] - n.squared[count - 1]) < 1e-8) ++count;
+  while (count < n.found && std::fabs(n.squared[count] - n.squared[count - 1]) < threshold) ++count;
   return count;
 }
 
 // The points pc_error's search (nearest(..., 10)) counts as tied with the nearest, found cheaply:
 // where the run of ties ends within the nearest 4, it is the same set; else its search runs.
-Neighbours nearest_tied(const KdTree& tree, std::size_t size, const Point& q) {
+Neighbours nearest_tied(const KdTree& tree, std::size_t size, const Point& q, double threshold) {
   Neighbours n;
   n.found = tree.knnSearch(q.data(), std::min<std::size_t>(4, size), n.index.data(), n.squared.data());
-  const std::size_t tied = tied_run(n);
+  const std::size_t tied = tied_run(n, threshold);
   if (tied < n.found) {
     n.found = tied;
     return n;
   }
   n = nearest(tree, size, q, 10);
-  n.found = tied_run(n);
+  n.found = tied_run(n, threshold);
   return n;
 }
 
@@ -146,7 +146,7 @@ std::vector<Point> normals_carried(const MpegPoints& a, const MpegPoints& b, con
 
 // Each point of `from` against `to`: sums and maxima per block, then over the blocks in order.
 MpegDirection direction(const MpegPoints& from, const MpegPoints& to, const KdTree& to_tree,
-                        const std::vector<Point>* to_normals, bool colour) {
+                        const std::vector<Point>* to_normals, bool colour, double threshold) {
   const bool ties = to_normals || colour;  // D1 needs the nearest point alone
   std::vector<MpegDirection> blocks((from.size() + kBlock - 1) / kBlock);
   for_each_block(from.size(), [&](std::size_t block, std::size_t begin, std::size_t end) {
@@ -155,7 +155,7 @@ MpegDirection direction(const MpegPoints& from, const MpegPoints& to, const KdTr
       const Point& p = from.positions[i];
       Neighbours n;
       if (ties) {
-        n = nearest_tied(to_tree, to.size(), p);
+        n = nearest_tied(to_tree, to.size(), p, threshold);
       } else {
         n.found = to_tree.knnSearch(p.data(), 1, n.index.data(), n.squared.data());
       }
@@ -250,8 +250,19 @@ double geometry_psnr(double mse, double peak) { return 10 * std::log10(3 * peak 
 
 double colour_psnr(double mse, double peak) { return 10 * std::log10(peak * peak / mse); }
 
-MpegFigures mpeg_point_cloud_figures(const MpegPoints& a, const MpegPoints& b, std::optional<double> resolution,
+// mmetric's default peak: the diagonal of A's box, in single precision.
+double box_diagonal(const MpegPoints& a) {
+  Point low = a.positions.front(), high = low;
+  for (const Point& p : a.positions) {
+    for (int c = 0; c < 3; ++c) low[c] = std::min(low[c], p[c]), high[c] = std::max(high[c], p[c]);
+  }
+  const float x = high[0] - low[0], y = high[1] - low[1], z = high[2] - low[2];
+  return double(std::sqrt(x * x + y * y + z * z));
+}
+
+MpegFigures mpeg_point_cloud_figures(const MpegPoints& a, const MpegPoints& b, const MpegRules& rules,
                                      const std::string& a_name) {
+  const std::optional<double>& resolution = rules.resolution;
   if (resolution && !(std::isfinite(*resolution) && *resolution > 0)) {
     throw Error(fmt::format("--pcc-resolution: expected a finite peak > 0, found {}", *resolution));
   }
@@ -261,10 +272,18 @@ MpegFigures mpeg_point_cloud_figures(const MpegPoints& a, const MpegPoints& b, s
   tbb::parallel_invoke([&] { a_tree.buildIndex(); }, [&] { b_tree.buildIndex(); });
 
   MpegFigures figures;
+  figures.mmetric = rules.mmetric;
   figures.peak_given = resolution.has_value();
   if (resolution) {
     // pc_error reads --resolution as a float.
     figures.peak = double(float(*resolution));
+  } else if (rules.mmetric) {
+    figures.peak = box_diagonal(a);
+    if (!(figures.peak > 0)) {
+      throw Error(fmt::format("{}: its samples have no extent, so there is no diagonal to take as the PSNR's "
+                              "peak; give --pcc-resolution",
+                              a_name));
+    }
   } else {
     const std::optional<double> spacing = largest_spacing(a, a_tree);
     if (!spacing) {
@@ -277,10 +296,14 @@ MpegFigures mpeg_point_cloud_figures(const MpegPoints& a, const MpegPoints& b, s
   }
   figures.d2 = !a.normals.empty();
   figures.colour = !a.colours.empty() && !b.colours.empty();
-  std::vector<Point> b_normals;
-  if (figures.d2) b_normals = normals_carried(a, b, b_tree, a_tree);
-  figures.a_to_b = direction(a, b, b_tree, figures.d2 ? &b_normals : nullptr, figures.colour);
-  figures.b_to_a = direction(b, a, a_tree, figures.d2 ? &a.normals : nullptr, figures.colour);
+  // B's normals for A -> B: mmetric takes B's own where it has them, pc_error carries A's over.
+  std::vector<Point> carried;
+  const bool own = rules.mmetric && !b.normals.empty();
+  if (figures.d2 && !own) carried = normals_carried(a, b, b_tree, a_tree);
+  const std::vector<Point>* b_normals = !figures.d2 ? nullptr : own ? &b.normals : &carried;
+  const double threshold = rules.tie_threshold();
+  figures.a_to_b = direction(a, b, b_tree, b_normals, figures.colour, threshold);
+  figures.b_to_a = direction(b, a, a_tree, figures.d2 ? &a.normals : nullptr, figures.colour, threshold);
   return figures;
 }
 

@@ -38,12 +38,23 @@ struct MpegDirection {
 
 struct MpegFigures {
   double peak = 0;
-  bool peak_given = false;  // from `resolution`, else A's largest nearest-neighbour spacing
+  bool peak_given = false;  // from `resolution`, else the tool's default (MpegRules)
   bool d2 = false;          // A has normals
   bool colour = false;      // both have colour
+  bool mmetric = false;     // by mmetric's rules (MpegRules)
   MpegDirection a_to_b, b_to_a;
   // The worse direction's figure (pc_error's "Final (symmetric)").
   MpegDirection symmetric() const;
+};
+
+// Where mmetric's `compare --mode pcc` (meshes sampled by mmetric_sampling.h) differs from pc_error.
+struct MpegRules {
+  std::optional<double> resolution;  // the peak; unset: the tool's default below
+  bool mmetric = false;
+  // pc_error: ties are consecutive squared distances within 1e-8; mmetric passes 1e-20.
+  double tie_threshold() const { return mmetric ? 1e-20 : 1e-8; }
+  // mmetric: A -> B's D2 uses B's own normals where B has them (its default
+  // --normalCalcModificationEnable), and the default peak is the diagonal of A's box.
 };
 
 // PSNR of a squared-distance figure with pc_error's geometry formula, 10 log10(3 p^2 / mse);
@@ -53,9 +64,9 @@ double geometry_psnr(double mse, double peak);
 double colour_psnr(double mse, double peak);
 
 // Both directions' figures. Throws roving::Error for a resolution that is not finite and > 0, or,
-// where none is given, for an A whose points are all within 1e-5 of one another (no spacing to
-// take as the peak), naming `a_name`.
-MpegFigures mpeg_point_cloud_figures(const MpegPoints& a, const MpegPoints& b, std::optional<double> resolution,
+// where none is given, for an A without extent (pc_error: no two points 1e-5 or more apart; no
+// spacing to take as the peak), naming `a_name`.
+MpegFigures mpeg_point_cloud_figures(const MpegPoints& a, const MpegPoints& b, const MpegRules& rules,
                                      const std::string& a_name);
 
 }  // namespace roving

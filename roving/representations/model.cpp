@@ -110,6 +110,8 @@ Model load_model(const std::string& path, std::optional<ModelType> type) {
   return model;
 }
 
+ModelType model_type_of(const std::string& path) { return type_by_extension(path); }
+
 PointCloud load_point_cloud(const std::string& path, std::optional<ModelType> type) {
   const ModelType found = type ? *type : type_by_extension(path);
   if (found != ModelType::Points) {

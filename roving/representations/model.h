@@ -46,6 +46,10 @@ struct Model {
 // Point clouds without normals get PCA normals (k = 12), oriented consistently and outward.
 Model load_model(const std::string& path, std::optional<ModelType> type = std::nullopt);
 
+// The type load_model reads `path` as without a type given: by extension, and for .ply by whether
+// its header declares faces.
+ModelType model_type_of(const std::string& path);
+
 // A point-cloud file's points as the file has them (no normals estimated, none normalised), for
 // figures defined on the points themselves (MPEG's). Throws roving::Error naming `path` where it is
 // not a point cloud (by `type`, else by extension and header).

@@ -78,6 +78,7 @@ def assert_same(cli, py, where="report"):
      {"method": "cooperative", "samples": "area:2000", "ibsm": True, "ibsm_resolution": 128}),
     ((os.path.join(MPEG, "sphere10_a.ply"), os.path.join(MPEG, "sphere10_b.ply")), {"pcc": True, "pcc_resolution": 1023}),
     ((os.path.join(MPEG, "blob_float_a.ply"), os.path.join(MPEG, "blob_float_b.ply")), {"samples": "vertices"}),
+    ((os.path.join(MPEG, "fandisk10_a.ply"), os.path.join(MPEG, "fandisk10_b.ply")), {"pcc": True}),
 ])
 def test_report_equals_the_clis(pair, options):
     result = roving.measure(*pair, **options)
