@@ -583,7 +583,8 @@ TEST(CliReport, JsonLayoutIsTheDocumentedOne) {
         cubes.pair + " --symmetric --threshold 1%", cubes.pair + " --symmetric --threshold 1% --samples area:200",
         cubes.pair + " --method cooperative --views 4x2 --resolution 64",
         teapot + " " + teapot + " --samples area:100", points + " " + cubes.small,
-        cubes.small + " " + grid, grid + " " + grid + " --samples vertices", points + " " + grid + " --pcc"}) {
+        cubes.small + " " + grid, grid + " " + grid + " --samples vertices", points + " " + grid + " --pcc",
+        coloured + " --pcc --samples area:500"}) {
     const CliRun run = run_cli("measure " + arguments + " --json -");
     ASSERT_EQ(run.exit_code, 0) << arguments << ": " << run.err;
     const auto json = nlohmann::json::parse(run.out);

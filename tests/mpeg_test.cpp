@@ -162,6 +162,42 @@ TEST(MmetricGolden, MeshesSampledAsMmetricSamplesThem) {
   EXPECT_EQ(ours["computed_as"].get<std::string>().rfind("mmetric", 0), 0u);
 }
 
+// Beside mmetric's sampled figures, D1 of the surfaces themselves. Two parallel squares t apart,
+// side 100 in 10 x 10 cells: every point of each has its closest point straight across, so the
+// surfaces' D1 MSE is t^2 exactly (area samples give it with a zero-width interval), and the
+// certified Hausdorff interval holds t^2. The sampled figure is no smaller (a point's nearest
+// sample is never nearer than the surface it lies on).
+TEST(MmetricGolden, SurfacesOwnD1BesideTheSampledOne) {
+  const testing::cli::fs::path folder = testing::cli::fs::temp_directory_path() / "roving-mpeg-planes";
+  testing::cli::fs::create_directories(folder);
+  const auto square = [&](const std::string& name, double z) {
+    std::ofstream obj(folder / name);
+    for (int j = 0; j <= 10; ++j)
+      for (int i = 0; i <= 10; ++i) obj << "v " << 10 * i << " " << 10 * j << " " << z << "\n";
+    for (int j = 0; j < 10; ++j) {
+      for (int i = 0; i < 10; ++i) {
+        const int a = j * 11 + i + 1;
+        obj << "f " << a << " " << a + 1 << " " << a + 12 << "\nf " << a << " " << a + 12 << " " << a + 11 << "\n";
+      }
+    }
+    return (folder / name).string();
+  };
+  const double t = 3;
+  const std::string a = square("a.obj", 0), b = square("b.obj", t);
+  const CliRun run = run_cli("measure " + a + " " + b + " --pcc --samples area:20000 --json -");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const nlohmann::json mpeg = nlohmann::json::parse(run.out)["mpeg_pcc"];
+  const nlohmann::json exact = mpeg["exact_surface"]["symmetric"];
+  EXPECT_NEAR(exact["d1_mse"].get<double>(), t * t, 1e-9);
+  EXPECT_NEAR(exact["d1_mse_interval"][0].get<double>(), t * t, 1e-9);
+  EXPECT_NEAR(exact["d1_mse_interval"][1].get<double>(), t * t, 1e-9);
+  EXPECT_LE(exact["d1_hausdorff_certified"][0].get<double>(), t * t + 1e-9);
+  EXPECT_GE(exact["d1_hausdorff_certified"][1].get<double>(), t * t - 1e-9);
+  EXPECT_GE(mpeg["symmetric"]["d1_mse"].get<double>(), t * t - 1e-9);
+  EXPECT_EQ(exact["no_hits"], 0);
+  testing::cli::fs::remove_all(folder);
+}
+
 TEST(PcErrorFigures, GivenBesideTheSurfaceFiguresForTwoPointClouds) {
   const Golden g = read_golden("blob_float_peak");
   const CliRun run = run_cli("measure " + kData + g.file_a + " " + kData + g.file_b + " --json -");
@@ -216,9 +252,12 @@ TEST(PcErrorFigures, BadInputIsOneLine) {
     EXPECT_EQ(run.exit_code, 2) << run.err;
     EXPECT_NE(run.err.find("--pcc-resolution"), std::string::npos) << run.err;
   }
-  const CliRun symmetric = run_cli("measure " + a + " " + b + " --pcc --symmetric");
-  EXPECT_EQ(symmetric.exit_code, 2);
-  EXPECT_NE(symmetric.err.find("--symmetric: not with --pcc"), std::string::npos) << symmetric.err;
+  const CliRun ibsm = run_cli("measure " + a + " " + b + " --pcc --ibsm");
+  EXPECT_EQ(ibsm.exit_code, 2);
+  EXPECT_NE(ibsm.err.find("--ibsm: not with --pcc"), std::string::npos) << ibsm.err;
+  const CliRun first_hit = run_cli("measure " + a + " " + b + " --pcc --semantics first-hit");
+  EXPECT_EQ(first_hit.exit_code, 2);
+  EXPECT_NE(first_hit.err.find("closest-point"), std::string::npos) << first_hit.err;
   // Bezier patches are neither a point cloud nor a mesh.
   expect_error("measure " + roving::testing::data_file("teapot.bpt") + " " + b + " --pcc",
                {"teapot.bpt", "point clouds and meshes"});

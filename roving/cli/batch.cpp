@@ -506,7 +506,7 @@ int run_batch(const BatchArguments& args, std::string& stage) {
       const WarnFn keep = [&](const std::vector<std::string>& lines) {
         report.warnings.insert(report.warnings.end(), lines.begin(), lines.end());
       };
-      if (plan.pcc_only) {
+      if (plan.pcc_only && !(reference.type == ModelType::Mesh && test.type == ModelType::Mesh)) {
         measure_point_clouds(reference, test, plan, report, progress, stage, keep);
         report.total_seconds = report.load_seconds[0] + report.load_seconds[1] + report.mpeg->seconds;
         nlohmann::json json = to_json(report);

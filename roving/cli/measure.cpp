@@ -24,6 +24,7 @@
 #include "roving/formats/sample_output.h"
 #include "roving/mpeg/mmetric_sampling.h"
 #include "roving/mpeg/mpeg_points.h"
+#include "roving/mpeg/surface_psnr.h"
 #include "roving/pictures/heatmap_picture.h"
 #include "roving/registry/method_registry.h"
 
@@ -159,7 +160,7 @@ MeasurePlan plan_measurement(const MeasureArguments& args) {
     plan.options.semantics = parse_semantics(args.semantics);
   } else {
     // Metro's two-sided figures are closest-point ones: the default wherever the method has it.
-    plan.options.semantics = args.symmetric && plan.method->supports(Semantics::Closest)
+    plan.options.semantics = (args.symmetric || args.pcc) && plan.method->supports(Semantics::Closest)
                                  ? Semantics::Closest
                                  : plan.method->supported_semantics().front();
   }
@@ -177,7 +178,8 @@ MeasurePlan plan_measurement(const MeasureArguments& args) {
   };
   plan.reference_type = type(args.reference_type, "--ref-type");
   plan.test_type = type(args.test_type, "--test-type");
-  plan.symmetric = args.symmetric;
+  // --pcc on meshes sets the surfaces' own figures beside mmetric's: both directions.
+  plan.symmetric = args.symmetric || args.pcc;
   plan.histogram_bins = args.histogram_bins;
   if (plan.sample_spec.automatic) {
     try {
@@ -214,14 +216,19 @@ MeasurePlan plan_measurement(const MeasureArguments& args) {
   plan.pcc_only = args.pcc;
   if (args.pcc) {
     // --pcc measures the points themselves: nothing drawn, sampled or mapped.
+    if (plan.options.semantics != Semantics::Closest) {
+      throw Error(fmt::format("--semantics {}: --pcc's surface figures are closest-point ones; leave "
+                              "--semantics out, or use a method that has closest semantics",
+                              to_string(plan.options.semantics)));
+    }
     for (const auto& [option, given] :
-         {std::pair<const char*, bool>{"--symmetric", args.symmetric}, {"--ibsm", args.ibsm},
+         {std::pair<const char*, bool>{"--ibsm", args.ibsm},
           {"--threshold", !args.thresholds.empty()}, {"--fail-above", !args.gates.empty()},
           {"--samples-out", !args.samples_csv_path.empty()}, {"--heatmap", !args.heatmap_path.empty()},
           {"--heatmap-png", !args.heatmap_png_path.empty()}, {"--html", !args.html_path.empty()}}) {
       if (given) {
-        throw Error(fmt::format("{}: not with --pcc, whose figures are pc_error's alone (both directions "
-                                "already); leave out --pcc for the surface figures",
+        throw Error(fmt::format("{}: not with --pcc, whose figures are MPEG's (both directions already); "
+                                "leave out --pcc for the other figures",
                                 option));
       }
     }
@@ -456,10 +463,21 @@ void measure_models(const Model& a, const Model& b, MeasurePlan& plan, MeasureRe
                                                    {&ba.samples, &ba.result, &test_surface(a)}, thresholds,
                                                    ab.samples.kind.rfind("area:", 0) == 0);
   }
-  if (a.type == ModelType::Points && b.type == ModelType::Points) {
+  if ((a.type == ModelType::Points && b.type == ModelType::Points) || plan.pcc_only) {
     stage = fmt::format("computing MPEG's point-cloud figures of {} and {}", a.path(), b.path());
     progress.stage("MPEG point-cloud figures");
     report.mpeg = mpeg_report(a, b, plan.pcc_resolution);
+    // Two meshes measured both ways with closest semantics: D1 of the surfaces themselves.
+    if (plan.pcc_only && report.symmetric()) {
+      std::array<SurfaceD1, 2> exact;
+      for (int i = 0; i < 2; ++i) {
+        const DirectionReport& d = report.directions[i];
+        std::optional<Interval> hausdorff;
+        if (d.hausdorff) hausdorff = Interval{d.hausdorff->lower, d.hausdorff->upper};
+        exact[i] = surface_d1(d.statistics, d.intervals ? &*d.intervals : nullptr, hausdorff);
+      }
+      report.mpeg->surface = exact;
+    }
   }
   if (plan.image_based) {
     stage = fmt::format("comparing {} and {} image by image (IBSM)", a.path(), b.path());
@@ -538,7 +556,9 @@ MeasureRun measure_run(const MeasureArguments& args, std::string& stage, Progres
       report.warnings.push_back(line);
     }
   };
-  if (plan.pcc_only) {
+  // --pcc: point clouds (one at least) get MPEG's figures alone; two meshes the surface
+  // measurement too, for the exact figures beside mmetric's.
+  if (plan.pcc_only && !(a.type == ModelType::Mesh && b.type == ModelType::Mesh)) {
     report.pcc_only = true;
     if (on_described) on_described(run);
     measure_point_clouds(a, b, plan, report, progress, stage, warn);

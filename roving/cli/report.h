@@ -2,6 +2,7 @@
 // warnings; as text or JSON. One direction (REF -> TEST), or both with --symmetric.
 #pragma once
 
+#include <array>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -13,6 +14,7 @@
 #include "roving/core/statistics.h"
 #include "roving/gl_methods/image_based.h"
 #include "roving/mpeg/point_cloud_psnr.h"
+#include "roving/mpeg/surface_psnr.h"
 #include "roving/reconstruction/reconstruction_figures.h"
 #include "roving/reference_embree/certified_hausdorff.h"
 #include "roving/representations/model.h"
@@ -69,6 +71,8 @@ struct MpegReport {
   std::size_t points_read[2] = {0, 0};  // A, B as read
   std::size_t points[2] = {0, 0};       // after pc_error's merging of points at one position
   double seconds = 0;
+  // Two meshes under --pcc: D1 of the surfaces themselves, A -> B and B -> A (surface_psnr.h).
+  std::optional<std::array<SurfaceD1, 2>> surface;
 };
 
 struct MeasureReport {
