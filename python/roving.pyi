@@ -44,6 +44,7 @@ def measure(
     quiet: bool = ...,
     trust_references: bool = ...,
     fail_above: Optional[Union[str, Sequence[str]]] = ...,
+    fail_below: Optional[Union[str, Sequence[str]]] = ...,
     gate_on: Optional[str] = ...,
     json: Optional[str] = ...,
     samples_out: Optional[str] = ...,

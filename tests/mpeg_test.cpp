@@ -244,6 +244,23 @@ TEST(PcErrorFigures, BatchSummaryHasThem) {
   testing::cli::fs::remove_all(folder);
 }
 
+// --fail-below gates MPEG's PSNRs: exit 3 below the floor with a line naming it, 0 above; a floor on
+// a figure not measured fails before the work.
+TEST(PcErrorFigures, PsnrFloorsGate) {
+  const std::string pair = kData + "sphere10_a.ply " + kData + "sphere10_b.ply --pcc --pcc-resolution 1023";
+  // D1 63.2522 dB, D2 68.0986 dB, Y 34.3333 dB (the golden values above).
+  EXPECT_EQ(run_cli("measure " + pair + " --fail-below mpeg_d1_psnr=63 --fail-below mpeg_d2_psnr=68").exit_code, 0);
+  const CliRun low = run_cli("measure " + pair + " --fail-below mpeg_d1_psnr=63.3 --fail-below mpeg_y_psnr=30");
+  EXPECT_EQ(low.exit_code, 3);
+  EXPECT_NE(low.err.find("gate breached: mpeg_d1_psnr = 63.2522 dB is below the floor 63.3 dB"), std::string::npos)
+      << low.err;
+  EXPECT_EQ(low.err.find("mpeg_y_psnr"), std::string::npos) << low.err;
+  expect_error("measure " + pair + " --fail-below mpeg_surface_d1_psnr=60", {"--fail-below", "mpeg_surface_d1_psnr"});
+  const CliRun unknown = run_cli("measure " + pair + " --fail-below usiad=1");
+  EXPECT_EQ(unknown.exit_code, 2);
+  EXPECT_NE(unknown.err.find("expected a metric among mpeg_d1_psnr"), std::string::npos) << unknown.err;
+}
+
 TEST(PcErrorFigures, BadInputIsOneLine) {
   const std::string a = kData + "sphere10_a.ply", b = kData + "sphere10_b.ply";
   for (const char* peak : {"0", "-1", "nan", "1e40"}) {

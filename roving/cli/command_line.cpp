@@ -191,6 +191,10 @@ std::unique_ptr<CommandLine> make_command_line() {
                                   "the samples): exit 3 if METRIC's magnitude exceeds LIMIT; repeatable. "
                                   "Metrics: {}",
                                   fmt::join(gate_metrics(true), ", ")));
+  measure->add_option("--fail-below", args.floors,
+                      fmt::format("METRIC=FLOOR in dB: exit 3 if METRIC, a PSNR (the worse direction's), is below "
+                                  "FLOOR; repeatable. Metrics: {}",
+                                  fmt::join(floor_metrics(), ", ")));
   measure
       ->add_option(
           "--gate-on", args.gate_on,

@@ -23,15 +23,32 @@ std::vector<std::string> gate_metrics(bool symmetric) {
   return names;
 }
 
-Gate parse_gate(const std::string& text, bool symmetric) {
+std::vector<std::string> floor_metrics() {
+  return {"mpeg_d1_psnr", "mpeg_d2_psnr", "mpeg_y_psnr", "mpeg_surface_d1_psnr"};
+}
+
+Gate parse_gate(const std::string& text, bool symmetric, bool floor) {
   const auto fail = [&](const std::string& expected) {
-    return Error(fmt::format("--fail-above: expected {}, found '{}'", expected, text));
+    return Error(fmt::format("{}: expected {}, found '{}'", floor ? "--fail-below" : "--fail-above", expected, text));
   };
   const std::size_t equals = text.find('=');
-  if (equals == std::string::npos) throw fail("METRIC=LIMIT (for example usiad=0.1%)");
+  if (equals == std::string::npos) {
+    throw fail(floor ? "METRIC=FLOOR (for example mpeg_d1_psnr=60)" : "METRIC=LIMIT (for example usiad=0.1%)");
+  }
   Gate gate;
   gate.text = text;
+  gate.floor = floor;
   gate.metric = text.substr(0, equals);
+  if (floor) {
+    const auto names = floor_metrics();
+    if (std::find(names.begin(), names.end(), gate.metric) == names.end()) {
+      throw fail(fmt::format("a metric among {}", fmt::join(names, ", ")));
+    }
+    if (!parse_number(std::string_view(text).substr(equals + 1), gate.limit) || !std::isfinite(gate.limit)) {
+      throw fail(fmt::format("a PSNR floor in dB after '{}='", gate.metric));
+    }
+    return gate;
+  }
   const auto names = gate_metrics(symmetric);
   if (std::find(names.begin(), names.end(), gate.metric) == names.end()) {
     const bool two_sided = gate.metric == "hausdorff" || gate.metric == "mean_both" || gate.metric == "rms_both";
@@ -57,10 +74,11 @@ void require_gate_values(const std::vector<Gate>& gates, const std::vector<Metri
     const bool measured = std::any_of(values.begin(), values.end(),
                                       [&](const MetricValue& v) { return v.metric == gate.metric; });
     if (!measured) {
-      throw Error(
-          fmt::format("--fail-above {}: nothing measured gives '{}' (colour figures need vertex colours "
-                      "on both meshes and --method embree or cgal)",
-                      gate.text, gate.metric));
+      throw Error(fmt::format(
+          "{} {}: nothing measured gives '{}' ({})", gate.option(), gate.text, gate.metric,
+          gate.floor ? "MPEG's figures need two point clouds, or --pcc; D2 normals on A; Y colour on both; the "
+                       "surfaces' D1 two meshes under --pcc"
+                     : "colour figures need vertex colours on both meshes and --method embree or cgal"));
     }
   }
 }
@@ -84,6 +102,17 @@ std::vector<std::string> breached_gates(const std::vector<Gate>& gates, const st
     for (const MetricValue& v : values) {
       if (v.metric != gate.metric) continue;
       const double limit = limit_of(gate, v);
+      if (gate.floor) {  // a PSNR: more is better; an infinite one (identical) passes
+        const bool lower = on == GateOn::Upper && !std::isnan(v.low);
+        const double compared = lower ? v.low : v.value;
+        if (!(compared >= limit)) {
+          lines.push_back(fmt::format("gate breached: {}{} = {:.6g} dB{} is below the floor {:.6g} dB (--fail-below {})",
+                                      gate.metric, where(v), v.value,
+                                      lower ? fmt::format(", its interval reaching down to {:.6g},", v.low) : "",
+                                      limit, gate.text));
+        }
+        continue;
+      }
       const bool upper = on == GateOn::Upper && !std::isnan(v.high);
       const double compared = upper ? v.high : std::abs(v.value);
       if (std::isnan(compared)) {  // fails closed: a figure that could not be measured passes no gate
@@ -107,6 +136,15 @@ std::vector<std::string> undecided_gates(const std::vector<Gate>& gates, const s
     for (const MetricValue& v : values) {
       const double limit = limit_of(gate, v);
       if (v.metric != gate.metric || std::isnan(v.low)) continue;
+      if (gate.floor) {
+        if (v.low < limit && limit < v.high) {
+          lines.push_back(fmt::format(
+              "gate {}{}: the floor {:.6g} dB lies inside the interval [{:.6g}, {:.6g}] of {:.6g}: the decision "
+              "rests on sampling (more samples narrow it; --gate-on upper decides on the interval's lower end)",
+              gate.metric, where(v), limit, v.low, v.high, v.value));
+        }
+        continue;
+      }
       if (std::abs(v.value) <= limit && limit <= v.low) {  // a sampled maximum below a certified interval
         lines.push_back(fmt::format(
             "gate {}{}: {:.6g} passes the limit {:.6g}, but the interval [{:.6g}, {:.6g}] lies wholly above it: the "

@@ -1,5 +1,6 @@
 // Gates for a user's CI: `--fail-above METRIC=LIMIT`, the limit a length in model units or
-// P% of the report's diagonal (no_hits: a count, or P% of the samples). A breached gate makes
+// P% of the report's diagonal (no_hits: a count, or P% of the samples); `--fail-below
+// METRIC=FLOOR` for figures where more is better (MPEG's PSNRs, in dB). A breached gate makes
 // `roving` exit with kGateExitCode and print one line naming the metric, the limit and the value.
 #pragma once
 
@@ -15,7 +16,9 @@ struct Gate {
   std::string metric;
   double limit = 0;
   bool percent = false;
-  std::string text;  // as given
+  bool floor = false;  // --fail-below: breached below the limit
+  std::string text;    // as given
+  std::string option() const { return floor ? "--fail-below" : "--fail-above"; }
 };
 
 // A measured value a gate can check. `where` says which direction it came from ("A -> B"), or
@@ -39,9 +42,13 @@ enum class GateOn { Estimate, Upper };
 // rms_both).
 std::vector<std::string> gate_metrics(bool symmetric);
 
-// Parses METRIC=VALUE or METRIC=P%; throws roving::Error naming --fail-above, what was
-// expected and what was found.
-Gate parse_gate(const std::string& text, bool symmetric);
+// The metrics --fail-below may name: MPEG's symmetric (worse-direction) D1, D2 and Y PSNR, and the
+// surfaces' own D1 PSNR (two meshes under --pcc), in dB.
+std::vector<std::string> floor_metrics();
+
+// Parses METRIC=VALUE or METRIC=P% (a floor: METRIC=dB); throws roving::Error naming the option,
+// what was expected and what was found.
+Gate parse_gate(const std::string& text, bool symmetric, bool floor = false);
 
 // True for the colour figures' names (delta_e_*, colour_rms_y).
 bool is_colour_metric(const std::string& metric);
@@ -52,7 +59,8 @@ void require_gate_values(const std::vector<Gate>& gates, const std::vector<Metri
 
 // One line per breached gate and value: magnitudes are compared (a signed mean of -0.3
 // breaches siad=0.2), and a metric measured in both directions is checked in each.
-// Under GateOn::Upper a value with an interval is compared by its interval's upper end.
+// Under GateOn::Upper a value with an interval is compared by its interval's upper end (a floor
+// by its lower end).
 std::vector<std::string> breached_gates(const std::vector<Gate>& gates, const std::vector<MetricValue>& values,
                                         GateOn on = GateOn::Estimate);
 

@@ -107,6 +107,22 @@ std::vector<MetricValue> gate_values(const MeasureReport& report) {
       }
     }
   }
+  if (report.mpeg) {  // MPEG's PSNRs, the worse direction's (--fail-below)
+    const MpegFigures& f = report.mpeg->figures;
+    const MpegDirection worse_direction = f.symmetric();
+    values.push_back({"mpeg_d1_psnr", "", geometry_psnr(worse_direction.d1_mse, f.peak), 0});
+    if (f.d2) values.push_back({"mpeg_d2_psnr", "", geometry_psnr(worse_direction.d2_mse, f.peak), 0});
+    if (f.colour) values.push_back({"mpeg_y_psnr", "", colour_psnr(worse_direction.ycbcr_mse[0], 1), 0});
+    if (report.mpeg->surface) {
+      const SurfaceD1 both = worse((*report.mpeg->surface)[0], (*report.mpeg->surface)[1]);
+      MetricValue v{"mpeg_surface_d1_psnr", "", geometry_psnr(both.mse, f.peak), 0};
+      if (both.mse_interval) {
+        v.low = geometry_psnr(both.mse_interval->upper, f.peak);
+        v.high = geometry_psnr(both.mse_interval->lower, f.peak);
+      }
+      values.push_back(v);
+    }
+  }
   if (report.symmetric()) {
     const TwoSided t = report.two_sided();
     MetricValue hausdorff{"hausdorff", "", t.max_abs, report.diagonal};
@@ -173,6 +189,7 @@ MeasurePlan plan_measurement(const MeasureArguments& args) {
                               text, to_string(plan.options.semantics)));
     }
   }
+  for (const std::string& text : args.floors) plan.gates.push_back(parse_gate(text, args.symmetric, true));
   const auto type = [](const std::string& text, const char* option) {
     return text.empty() ? std::nullopt : std::optional<ModelType>(parse_model_type(text, option));
   };
@@ -223,7 +240,7 @@ MeasurePlan plan_measurement(const MeasureArguments& args) {
     }
     for (const auto& [option, given] :
          {std::pair<const char*, bool>{"--ibsm", args.ibsm},
-          {"--threshold", !args.thresholds.empty()}, {"--fail-above", !args.gates.empty()},
+          {"--threshold", !args.thresholds.empty()},
           {"--samples-out", !args.samples_csv_path.empty()}, {"--heatmap", !args.heatmap_path.empty()},
           {"--heatmap-png", !args.heatmap_png_path.empty()}, {"--html", !args.html_path.empty()}}) {
       if (given) {
@@ -562,6 +579,7 @@ MeasureRun measure_run(const MeasureArguments& args, std::string& stage, Progres
     report.pcc_only = true;
     if (on_described) on_described(run);
     measure_point_clouds(a, b, plan, report, progress, stage, warn);
+    require_gate_values(plan.gates, gate_values(report));
     report.total_seconds = total.seconds();
     return run;
   }

@@ -41,6 +41,7 @@ struct MeasureArguments {
   bool symmetric = false;
   bool quiet = false;
   std::vector<std::string> gates;       // --fail-above METRIC=LIMIT
+  std::vector<std::string> floors;      // --fail-below METRIC=FLOOR
   std::vector<std::string> thresholds;  // --threshold TAU: precision, recall, F-score at TAU
   bool pcc = false;                     // MPEG's point-cloud figures alone (pc_error's)
   std::optional<double> pcc_resolution;  // their PSNR peak; unset: pc_error's default
