@@ -40,7 +40,7 @@ in_root sh -c 'cd /tmp && python3 -c "import roving; print(\"import roving:\", r
 # The Python tests against the installed module and CLI, with pytest and NumPy from Debian (the parts
 # needing Open3D or matplotlib are left to the main suite, where setup.sh installs them).
 rm -rf "$root/tmp/src" && mkdir -p "$root/tmp/src/tests" "$root/tmp/src/python" "$root/tmp/src/docs"
-cp -r tests/python tests/ibsm "$root/tmp/src/tests/" && cp -r data "$root/tmp/src/" && cp python/roving.pyi "$root/tmp/src/python/"
+cp -r tests/python tests/ibsm tests/data "$root/tmp/src/tests/" && cp -r data "$root/tmp/src/" && cp python/roving.pyi "$root/tmp/src/python/"
 cp docs/python.md "$root/tmp/src/docs/"
 step "the Python tests on the installed module (python3-pytest, python3-numpy)" in_root sh -c \
   "apt-get install -y -qq --no-install-recommends python3-pytest python3-numpy >/dev/null && cd /tmp && \
