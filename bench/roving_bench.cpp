@@ -14,6 +14,7 @@
 
 #include "analytic.h"
 #include "colour_study.h"
+#include "mpeg_study.h"
 #include "data_folder.h"
 #include "decimate.h"
 #include "exact_throughput.h"
@@ -737,6 +738,33 @@ void write_colour_page(Bench& bench, const ColourStudy& study, const fs::path& o
   std::ofstream(out / "colour.md") << markdown + machine_section(bench);
 }
 
+// The MPEG table (mpeg_study.h): joins the other tables and the checked figures; its own page.
+MpegStudy mpeg_table(Bench& bench) {
+  bench.progress.step("MPEG: mmetric's sampled D1 / D2 against the surfaces' own");
+  std::vector<std::pair<std::string, TriangleMesh>> models = {{"bunny", bench.load("stanford-bunny.obj")}};
+  if (!bench.options().quick) {
+    for (const auto& [name, file] : {std::pair{"Fandisk", "fandisk.obj"}, {"Rocker Arm", "rocker-arm.obj"}, {"Igea", "igea.ply"}})
+      models.emplace_back(name, bench.load(file));
+  }
+  MpegStudy study = mpeg_study(models, bench.options().quick, [&](const std::string& what) { bench.progress.step(what); });
+  bench.tables.insert(bench.tables.end(), study.tables.begin(), study.tables.end());
+  bench.figures.insert(study.figures.begin(), study.figures.end());
+  return study;
+}
+
+void write_mpeg_page(Bench& bench, const MpegStudy& study, const fs::path& out) {
+  std::string markdown = fmt::format(
+      "# MPEG's D1 / D2: sampled against the surfaces' own\n\nWritten by `roving-bench{}`; do not edit by hand. "
+      "How far the figure mesh-codec papers report (mmetric's `compare --mode pcc`, which samples both meshes "
+      "and compares the samples) is from the distance between the surfaces themselves ([docs/mpeg.md](../"
+      "{}docs/mpeg.md)).\n\n",
+      bench.options().quick ? " --quick" : "", bench.options().quick ? "../" : "");
+  for (const ReportTable& t : study.tables)
+    markdown += "## " + t.title + "\n\n" + t.settings + "\n\n" + t.markdown() + "\n";
+  markdown += study.notes + "\n";
+  std::ofstream(out / "mpeg.md") << markdown + machine_section(bench);
+}
+
 // How far a recomputed figure may move. The CPU references compute each sample alone in double
 // and sum in order: 1e-6 relative. GL figures rest on llvmpipe's float rasterisation, whose
 // rounding may differ with the CPU's vector width: 1e-3 relative. An observation count moves
@@ -941,9 +969,11 @@ int main(int argc, char** argv) {
     hausdorff_table(bench);
     throughput_table(bench);
     const ColourStudy colour = colour_table(bench);
+    const MpegStudy mpeg = mpeg_table(bench);
     if (options.check) return check(bench, out / "accuracy.csv");
     write_results(bench, out);
     write_colour_page(bench, colour, out);
+    write_mpeg_page(bench, mpeg, out);
     bench.progress.step(fmt::format("written to {}", out.string()));
     for (const std::string& f : bench.failures) std::fprintf(stderr, "roving-bench: %s\n", f.c_str());
     return bench.failures.empty() ? 0 : 1;
