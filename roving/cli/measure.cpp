@@ -232,7 +232,7 @@ MeasurePlan plan_measurement(const MeasureArguments& args) {
   plan.pcc_resolution = args.pcc_resolution;
   plan.pcc_only = args.pcc;
   if (args.pcc) {
-    // --pcc measures the points themselves: nothing drawn, sampled or mapped.
+    // --pcc's outputs are MPEG's figures in the report: no per-sample files, pictures or pages.
     if (plan.options.semantics != Semantics::Closest) {
       throw Error(fmt::format("--semantics {}: --pcc's surface figures are closest-point ones; leave "
                               "--semantics out, or use a method that has closest semantics",

@@ -102,8 +102,9 @@ using WarnFn = std::function<void(const std::vector<std::string>&)>;
 // (no surfels, no normals estimated).
 Model load_for(const MeasurePlan& plan, const std::string& path, std::optional<ModelType> type);
 
-// --pcc: MPEG's point-cloud figures of a and b alone (report.pcc_only); throws naming a model that
-// is not a point cloud.
+// --pcc where a model is a point cloud: MPEG's figures of a and b alone (report.pcc_only; a mesh
+// among them sampled as mmetric samples it); throws naming a model that is neither a point cloud
+// nor a mesh.
 void measure_point_clouds(const Model& a, const Model& b, const MeasurePlan& plan, MeasureReport& report,
                           Progress& progress, std::string& stage, const WarnFn& warn);
 
