@@ -10,7 +10,7 @@ packages=(
   libcgal-dev libembree-dev libopenmesh-dev libeigen3-dev libtbb-dev
   libosmesa6-dev libegl-dev libegl-mesa0 libgles-dev libgl-dev
   libbenchmark-dev libgtest-dev libgmock-dev
-  libcli11-dev libnanoflann-dev nlohmann-json3-dev libfmt-dev libssl-dev libassimp-dev libcairo2-dev libpng-dev libjpeg-dev libjs-three
+  libcli11-dev libnanoflann-dev libmatio-dev nlohmann-json3-dev libfmt-dev libssl-dev libassimp-dev libcairo2-dev libpng-dev libjpeg-dev libjs-three
   python3 python3-dev python3-matplotlib python3-numpy python3-pytest pybind11-dev python3-open3d
 )
 if [ "${1:-}" = browser ]; then packages+=(chromium); fi

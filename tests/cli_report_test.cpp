@@ -576,6 +576,10 @@ TEST(CliReport, JsonLayoutIsTheDocumentedOne) {
   const std::string grid = cubes.folder.file("grid.xyz", grid_points);
   const std::string coloured = cubes.folder.file("red.ply", coloured_cube_ply(0.5, 200)) + " " +
                                cubes.folder.file("redder.ply", coloured_cube_ply(0.55, 210));
+  const std::string dtu = std::string(ROVING_SOURCE_DIR) + "/tests/data/dtu/";
+  const std::string dtu_protocol = dtu + "Points/stl/stl001_total.ply " + dtu + "scan1_mesh.ply --protocol dtu " +
+                                   "--dtu-obs-mask " + dtu + "ObsMask/ObsMask1_10.mat --dtu-plane " + dtu +
+                                   "ObsMask/Plane1.mat --protocol-runs 2";
   std::set<std::string> written;
   for (const std::string& arguments :
        {coloured + " --symmetric", coloured + " --ibsm --ibsm-resolution 64", cubes.pair,
@@ -584,7 +588,7 @@ TEST(CliReport, JsonLayoutIsTheDocumentedOne) {
         cubes.pair + " --method cooperative --views 4x2 --resolution 64",
         teapot + " " + teapot + " --samples area:100", points + " " + cubes.small,
         cubes.small + " " + grid, grid + " " + grid + " --samples vertices", points + " " + grid + " --pcc",
-        coloured + " --pcc --samples area:500"}) {
+        coloured + " --pcc --samples area:500", dtu_protocol, dtu_protocol + " --symmetric"}) {
     const CliRun run = run_cli("measure " + arguments + " --json -");
     ASSERT_EQ(run.exit_code, 0) << arguments << ": " << run.err;
     const auto json = nlohmann::json::parse(run.out);

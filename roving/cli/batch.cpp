@@ -436,6 +436,11 @@ int run_batch(const BatchArguments& args, std::string& stage) {
     throw UsageError(fmt::format("batch: expected a manifest (.csv or .jsonl) or two folders, found {} argument(s)",
                             args.inputs.size()));
   }
+  if (!args.defaults.protocol.empty()) {
+    // Each DTU scan has its own mask and plane: one `roving measure` per scan.
+    throw UsageError("--protocol: not in batch (each scan has its own mask and plane files); run roving measure "
+                     "per scan");
+  }
   const auto [first, last] = shard_range(args.shard, pairs.size());
   plan_command_line(args.defaults);  // the command line's own options: a usage error (exit 2) if bad
   // Every pair's options are checked before any is measured: a typo fails the batch at once.

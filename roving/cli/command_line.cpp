@@ -134,6 +134,33 @@ void add_measurement_options(CLI::App& app, MeasureArguments& args, bool& trust_
                  "the geometry PSNR's peak p in 10 log10(3 p^2 / MSE), pc_error's --resolution (e.g. 1023 "
                  "for 10-bit voxels); default: the largest nearest-neighbour spacing within A, as pc_error's "
                  "(on meshes the diagonal of A's box, as mmetric's)");
+  app.add_option("--protocol", args.protocol,
+                 "a benchmark's own evaluation, step by step, on REF (its ground truth) and TEST (the "
+                 "reconstruction): dtu, as DTUeval-python's eval.py computes it (needs --dtu-obs-mask and "
+                 "--dtu-plane); alone, or beside the exact figures with --symmetric")
+      ->check(CLI::IsMember({"dtu"}));
+  app.add_option("--dtu-obs-mask", args.dtu_obs_mask,
+                 "with --protocol dtu: the scan's observation mask, the data set's ObsMask/ObsMask<scan>_10.mat");
+  app.add_option("--dtu-plane", args.dtu_plane,
+                 "with --protocol dtu: the scan's ground plane, the data set's ObsMask/Plane<scan>.mat");
+  app.add_option("--dtu-density", args.dtu_density,
+                 "with --protocol dtu: the mesh sampling step and thinning radius (eval.py's downsample_density)")
+      ->capture_default_str();
+  app.add_option("--dtu-patch", args.dtu_patch,
+                 "with --protocol dtu: the margin around the mask's box (eval.py's patch_size)")
+      ->capture_default_str();
+  app.add_option("--dtu-max-dist", args.dtu_max_dist,
+                 "with --protocol dtu: distances at or beyond it are left out of the means (eval.py's max_dist)")
+      ->capture_default_str();
+  app.add_option("--protocol-seed", args.protocol_seed,
+                 "with --protocol: the first seed of the shuffle before thinning (eval.py's is unseeded), or "
+                 "none for the points' own order")
+      ->capture_default_str();
+  app.add_option("--protocol-runs", args.protocol_runs,
+                 "with --protocol: runs with seeds --protocol-seed, +1, ...; the first is reported, the spread "
+                 "of all beside it")
+      ->check(CLI::Range(1, 1000))
+      ->capture_default_str();
   app.add_option("--histogram-bins", args.histogram_bins, "bins of the signed-d histogram")
       ->check(CLI::Range(1, 100000))
       ->capture_default_str();

@@ -1,12 +1,16 @@
 // `roving measure`: the run from options to report.
 #include "measure.h"
 
+#include <charconv>
+#include <fstream>
 #include <fmt/format.h>
 #include <tbb/parallel_invoke.h>
 
 #include <algorithm>
+#include <charconv>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <future>
 #include <limits>
 #include <memory>
@@ -134,6 +138,69 @@ std::vector<MetricValue> gate_values(const MeasureReport& report) {
   return values;
 }
 
+namespace {
+
+// --protocol and its options; the data set's files are read when the models are, but must exist now.
+void plan_protocol(const MeasureArguments& args, MeasurePlan& plan) {
+  if (args.protocol.empty()) {
+    for (const auto& [option, given] : {std::pair{"--dtu-obs-mask", args.dtu_obs_mask}, {"--dtu-plane", args.dtu_plane}}) {
+      if (!given.empty()) throw Error(fmt::format("{}: only with --protocol dtu", option));
+    }
+    return;
+  }
+  if (args.pcc) throw Error("--protocol: not with --pcc; run MPEG's figures and the protocol as two measurements");
+  DtuPlan dtu;
+  for (const auto& [option, path, target] :
+       {std::tuple{"--dtu-obs-mask", args.dtu_obs_mask, &dtu.obs_mask}, {"--dtu-plane", args.dtu_plane, &dtu.plane}}) {
+    if (path.empty()) {
+      throw Error(fmt::format("--protocol dtu: needs {} (the data set's ObsMask/{}.mat)", option,
+                              std::string(option) == "--dtu-plane" ? "Plane<scan>" : "ObsMask<scan>_10"));
+    }
+    if (!std::ifstream(path)) throw Error(fmt::format("{}: cannot read '{}'", option, path));
+    *target = path;
+  }
+  for (const auto& [option, value, positive] :
+       {std::tuple{"--dtu-density", args.dtu_density, true}, {"--dtu-patch", args.dtu_patch, false},
+        {"--dtu-max-dist", args.dtu_max_dist, true}}) {
+    if (!(std::isfinite(value) && (positive ? value > 0 : value >= 0))) {
+      throw Error(fmt::format("{}: expected a length {} 0 in the models' units (DTU's are mm), found {}", option,
+                              positive ? ">" : ">=", value));
+    }
+  }
+  dtu.options.density = args.dtu_density;
+  dtu.options.patch = args.dtu_patch;
+  dtu.options.max_dist = args.dtu_max_dist;
+  dtu.options.runs = args.protocol_runs;
+  if (args.protocol_seed == "none") {
+    dtu.options.first_seed.reset();
+  } else {
+    std::uint64_t seed = 0;
+    const char* end = args.protocol_seed.data() + args.protocol_seed.size();
+    const auto [last, error] = std::from_chars(args.protocol_seed.data(), end, seed);
+    if (args.protocol_seed.empty() || error != std::errc() || last != end) {
+      throw Error(fmt::format("--protocol-seed: expected an unsigned integer or 'none', found '{}'", args.protocol_seed));
+    }
+    dtu.options.first_seed = seed;
+  }
+  plan.dtu = dtu;
+  plan.protocol_only = !args.symmetric;
+  if (plan.protocol_only) {
+    // The protocol alone reports its figures: no per-sample files, pictures or pages.
+    for (const auto& [option, given] :
+         {std::pair<const char*, bool>{"--ibsm", args.ibsm}, {"--samples-out", !args.samples_csv_path.empty()},
+          {"--heatmap", !args.heatmap_path.empty()}, {"--heatmap-png", !args.heatmap_png_path.empty()},
+          {"--html", !args.html_path.empty()}}) {
+      if (given) {
+        throw Error(fmt::format("{}: --protocol alone gives the protocol's figures; add --symmetric for the exact "
+                                "measurement and its outputs beside them",
+                                option));
+      }
+    }
+  }
+}
+
+}  // namespace
+
 MeasurePlan plan_measurement(const MeasureArguments& args) {
   MeasurePlan plan;
   parse_views(args.views, plan.gl);
@@ -250,6 +317,7 @@ MeasurePlan plan_measurement(const MeasureArguments& args) {
       }
     }
   }
+  plan_protocol(args, plan);
   return plan;
 }
 
@@ -357,7 +425,8 @@ MpegReport mpeg_report(const Model& a, const Model& b, std::optional<double> res
 }  // namespace
 
 Model load_for(const MeasurePlan& plan, const std::string& path, std::optional<ModelType> type) {
-  if (!plan.pcc_only || (type ? *type : model_type_of(path)) != ModelType::Points) return load_model(path, type);
+  const bool raw = plan.pcc_only || plan.protocol_only;  // clouds as their files have them
+  if (!raw || (type ? *type : model_type_of(path)) != ModelType::Points) return load_model(path, type);
   Model model;
   model.type = ModelType::Points;
   model.mesh.path = path;
@@ -536,6 +605,11 @@ MeasureRun measure_run(const MeasureArguments& args, std::string& stage, Progres
                  : std::async(std::launch::async, file_sha256, path);
   };
   const auto load = [&](const std::string& path, std::optional<ModelType> type) { return load_for(plan, path, type); };
+  std::optional<DtuFiles> dtu_files;  // the data set's files before the models: a wrong one fails at once
+  if (plan.dtu) {
+    stage = fmt::format("reading the DTU data set's files {} and {}", plan.dtu->obs_mask, plan.dtu->plane);
+    dtu_files = read_dtu_files(*plan.dtu);
+  }
   // The inputs' hashes on another core while they load.
   auto reference_hash = hash(given_a != nullptr, args.reference_path);
   auto test_hash = hash(given_b != nullptr, args.test_path);
@@ -583,10 +657,25 @@ MeasureRun measure_run(const MeasureArguments& args, std::string& stage, Progres
     report.total_seconds = total.seconds();
     return run;
   }
+  const auto run_protocol = [&] {
+    stage = fmt::format("running the DTU protocol on {} (ground truth) and {}", a.path(), b.path());
+    progress.stage("DTU protocol");
+    report.dtu = dtu_report(a, b, *plan.dtu, *dtu_files);
+    progress.clear();
+  };
+  if (plan.protocol_only) {
+    report.protocol_only = true;
+    if (on_described) on_described(run);
+    run_protocol();
+    require_gate_values(plan.gates, gate_values(report));
+    report.total_seconds = total.seconds();
+    return run;
+  }
   describe_pair(a, b, plan, report);
   if (on_described) on_described(run);
   measure_models(a, b, plan, report, progress, stage, warn, nullptr,
                  reference_only_sampled(args, plan) ? &a : nullptr);
+  if (plan.dtu) run_protocol();
   require_gate_values(plan.gates, gate_values(report));
   report.total_seconds = total.seconds();
   return run;

@@ -10,6 +10,7 @@
 
 #include "gates.h"
 #include "progress.h"
+#include "protocols.h"
 #include "report.h"
 #include "roving/core/error.h"
 #include "roving/formats/heatmap.h"
@@ -45,6 +46,11 @@ struct MeasureArguments {
   std::vector<std::string> thresholds;  // --threshold TAU: precision, recall, F-score at TAU
   bool pcc = false;                     // MPEG's point-cloud figures alone (pc_error's)
   std::optional<double> pcc_resolution;  // their PSNR peak; unset: pc_error's default
+  std::string protocol;                  // "dtu": a benchmark's own evaluation (protocols.h)
+  std::string dtu_obs_mask, dtu_plane;   // its data set's files
+  double dtu_density = 0.2, dtu_patch = 60, dtu_max_dist = 20;
+  std::string protocol_seed = "1";  // or "none": the points' own order
+  int protocol_runs = 5;
   std::string command_line;
 };
 
@@ -70,6 +76,8 @@ struct MeasurePlan {
   std::vector<MaxErrorSpec> thresholds;          // --threshold, resolved per pair
   bool pcc_only = false;                         // --pcc: MPEG's point-cloud figures, nothing else
   std::optional<double> pcc_resolution;          // --pcc-resolution
+  std::optional<DtuPlan> dtu;                    // --protocol dtu
+  bool protocol_only = false;                    // --protocol without --symmetric: its figures alone
 };
 
 // A bad option value or combination on the command line: the tool exits 2, as for a parse error.

@@ -470,6 +470,11 @@ TwoSided MeasureReport::two_sided() const {
 }
 
 std::string format_header(const Model& a, const Model& b, const MeasureReport& r) {
+  if (r.protocol_only) {
+    return model_line("reference", a) + model_line("test", b) +
+           fmt::format("{:<10} the DTU benchmark's own evaluation (DTUeval-python's eval.py), REF its ground truth\n",
+                       "figures");
+  }
   if (r.pcc_only) {
     return model_line("A", a) + model_line("B", b) +
            fmt::format("{:<10} MPEG's point-cloud figures, as pc_error (mpeg-pcc-dmetric 0.14) computes them (as "
@@ -705,9 +710,121 @@ std::string mpeg_lines(const MpegReport& m) {
   return out;
 }
 
+// The mean, sample standard deviation, least and largest of one figure over the protocol's runs.
+struct Spread {
+  double mean = 0, sd = 0, min = 0, max = 0;
+};
+
+Spread spread_of(const std::vector<DtuRun>& runs, double DtuRun::*figure) {
+  Spread s{0, 0, runs.front().*figure, runs.front().*figure};
+  for (const DtuRun& run : runs) {
+    s.mean += run.*figure / runs.size();
+    s.min = std::min(s.min, run.*figure);
+    s.max = std::max(s.max, run.*figure);
+  }
+  for (const DtuRun& run : runs) s.sd += (run.*figure - s.mean) * (run.*figure - s.mean);
+  s.sd = runs.size() > 1 ? std::sqrt(s.sd / (runs.size() - 1)) : 0;
+  return s;
+}
+
+constexpr std::array<std::pair<const char*, double DtuRun::*>, 3> kDtuFigures = {
+    {{"accuracy", &DtuRun::accuracy}, {"completeness", &DtuRun::completeness}, {"overall", &DtuRun::overall}}};
+
+std::string dtu_order(const DtuFigures& f) {
+  if (!f.options.first_seed) return "the points' own order (eval.py with its shuffle left out)";
+  const std::uint64_t first = *f.options.first_seed;
+  return f.runs.size() == 1 ? fmt::format("shuffled with seed {}", first)
+                            : fmt::format("shuffled with seeds {} to {}", first, first + f.runs.size() - 1);
+}
+
+nlohmann::json dtu_json(const DtuReport& d) {
+  const DtuFigures& f = d.figures;
+  const DtuRun& first = f.runs.front();
+  nlohmann::json runs = nlohmann::json::array();
+  for (const DtuRun& r : f.runs) {
+    runs.push_back({{"seed", r.seed ? nlohmann::json(*r.seed) : nlohmann::json(nullptr)},
+                    {"accuracy", r.accuracy},
+                    {"completeness", r.completeness},
+                    {"overall", r.overall},
+                    {"thinned", r.thinned},
+                    {"in_box", r.in_box},
+                    {"observed", r.observed},
+                    {"accuracy_counted", r.accuracy_counted},
+                    {"completeness_counted", r.completeness_counted}});
+  }
+  nlohmann::json spread = nullptr;
+  if (f.runs.size() > 1) {
+    spread = nlohmann::json::object();
+    for (const auto& [name, figure] : kDtuFigures) {
+      const Spread s = spread_of(f.runs, figure);
+      spread[name] = {{"mean", s.mean}, {"sd", s.sd}, {"min", s.min}, {"max", s.max}};
+    }
+  }
+  return {{"definition",
+           "DTU MVS evaluation as DTUeval-python's eval.py computes it: TEST sampled (a mesh: its vertices, then "
+           "per face a grid of step density scaled to its shape) or read (points), shuffled, thinned to no two "
+           "points within density, kept inside BB - patch .. BB + 2 patch; accuracy = mean distance from the "
+           "kept points inside ObsMask to REF's nearest point, completeness = mean distance from REF's points "
+           "above the plane P to the kept points' nearest, each over the distances below max_dist; overall = "
+           "(accuracy + completeness) / 2. See docs/reconstruction.md"},
+          {"computed_as", "DTUeval-python eval.py (github.com/jzhangbs/DTUeval-python, 45b4fec), step by step"},
+          {"obs_mask", d.obs_mask},
+          {"plane", d.plane},
+          {"density", f.options.density},
+          {"patch", f.options.patch},
+          {"max_dist", f.options.max_dist},
+          {"order", dtu_order(f)},
+          {"reconstruction_points", f.reconstruction_points},
+          {"samples", f.samples},
+          {"ground_truth_points", f.ground_truth_points},
+          {"ground_truth_above", f.ground_truth_above},
+          {"seed", first.seed ? nlohmann::json(*first.seed) : nlohmann::json(nullptr)},
+          {"accuracy", first.accuracy},
+          {"completeness", first.completeness},
+          {"overall", first.overall},
+          {"runs", runs},
+          {"spread", spread},
+          {"seconds", d.seconds}};
+}
+
+std::string dtu_lines(const DtuReport& d) {
+  const DtuFigures& f = d.figures;
+  const DtuRun& first = f.runs.front();
+  std::string out = fmt::format(
+      "\n  DTU protocol (DTUeval-python's eval.py): density {:.6g}, patch {:.6g}, max_dist {:.6g}; {}\n", f.options.density,
+      f.options.patch, f.options.max_dist, dtu_order(f));
+  out += fmt::format("  reconstruction {} points ({} sampled from faces); ground truth {} points, {} above the plane\n",
+                     f.reconstruction_points, f.samples, f.ground_truth_points, f.ground_truth_above);
+  const std::string first_label = first.seed ? fmt::format("seed {}", *first.seed) : std::string("own order");
+  out += fmt::format("  {:<14} {:>14}", "figure", first_label);
+  if (f.runs.size() > 1) out += fmt::format(" {:>30} {:>28}", fmt::format("mean +- sd over {} runs", f.runs.size()), "[min, max]");
+  out += "\n";
+  for (const auto& [name, figure] : kDtuFigures) {
+    out += fmt::format("  {:<14} {:>14.8g}", name, first.*figure);
+    if (f.runs.size() > 1) {
+      const Spread s = spread_of(f.runs, figure);
+      out += fmt::format(" {:>30} {:>28}", fmt::format("{:.8g} +- {:.2g}", s.mean, s.sd),
+                         fmt::format("[{:.8g}, {:.8g}]", s.min, s.max));
+    }
+    out += "\n";
+  }
+  out += fmt::format(
+      "  ({}: {} points after thinning, {} in the box, {} observed; below max_dist: {} of the observed, {} of the "
+      "ground truth above the plane)\n",
+      first_label, first.thinned, first.in_box, first.observed, first.accuracy_counted, first.completeness_counted);
+  return out;
+}
+
 }  // namespace
 
 std::string format_body(const MeasureReport& r) {
+  if (r.protocol_only) {
+    std::string out = dtu_lines(*r.dtu);
+    out += fmt::format("  time: load {:.3f} s, protocol {:.3f} s, total {:.3f} s\n", r.load_seconds[0] + r.load_seconds[1],
+                       r.dtu->seconds, r.total_seconds);
+    for (const std::string& line : r.warnings) out += fmt::format("  warning: {}\n", line);
+    return out;
+  }
   if (r.pcc_only) {
     std::string out = mpeg_lines(*r.mpeg);
     out += fmt::format("  time: load {:.3f} s, figures {:.3f} s, total {:.3f} s\n",
@@ -765,6 +882,7 @@ std::string format_body(const MeasureReport& r) {
   }
   if (r.reconstruction) out += reconstruction_lines(*r.reconstruction, r.diagonal);
   if (r.mpeg) out += mpeg_lines(*r.mpeg);
+  if (r.dtu) out += dtu_lines(*r.dtu);
   if (r.image_based) out += image_based_lines(*r.image_based);
   for (const DirectionReport& d : r.directions) {
     if (!d.result.gl) continue;
@@ -829,6 +947,14 @@ std::string format_body(const MeasureReport& r) {
 nlohmann::json to_json(const MeasureReport& r) {
   nlohmann::json json = {{"schema_version", kReportSchemaVersion}};
   json.update(r.provenance);
+  if (r.protocol_only) {
+    json["method"] = "protocol";
+    json["warnings"] = r.warnings;
+    json["dtu_protocol"] = dtu_json(*r.dtu);
+    json["seconds"] = {
+        {"load_reference", r.load_seconds[0]}, {"load_test", r.load_seconds[1]}, {"total", r.total_seconds}};
+    return json;
+  }
   if (r.pcc_only) {
     json["method"] = "pcc";
     json["warnings"] = r.warnings;
@@ -877,6 +1003,7 @@ nlohmann::json to_json(const MeasureReport& r) {
     json.update(direction_json(r.directions.front(), r));
   }
   if (r.mpeg) json["mpeg_pcc"] = mpeg_json(*r.mpeg);
+  if (r.dtu) json["dtu_protocol"] = dtu_json(*r.dtu);
   if (r.image_based) {
     const ImageBasedResult& ib = *r.image_based;
     json["image_based"] = {{"definition", "MPEG IBSM (mmetric 1.1.7 compare --mode ibsm)"},

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "protocols.h"
 #include "roving/core/colour_statistics.h"
 #include "roving/core/confidence.h"
 #include "roving/core/distance_method.h"
@@ -93,6 +94,9 @@ struct MeasureReport {
   // For two point clouds: MPEG's figures; with --pcc (pcc_only) nothing else is measured.
   std::optional<MpegReport> mpeg;
   bool pcc_only = false;
+  // --protocol dtu: the benchmark's own figures; with protocol_only nothing else is measured.
+  std::optional<DtuReport> dtu;
+  bool protocol_only = false;
   double load_seconds[2] = {0, 0};  // A (the reference), B (the test)
   double total_seconds = 0;
 

@@ -19,6 +19,7 @@ CLI = os.environ["ROVING_CLI"]
 SOURCE = os.environ["ROVING_SOURCE_DIR"]
 DATA = os.environ.get("ROVING_DATA") or os.path.join(SOURCE, "data")
 MPEG = os.path.join(SOURCE, "tests", "data", "mpeg")
+DTU = os.path.join(SOURCE, "tests", "data", "dtu")
 BUNNY = os.path.join(DATA, "stanford-bunny.obj")
 FANDISK = os.path.join(DATA, "fandisk.obj")
 IBSM = os.path.join(SOURCE, "tests", "ibsm")
@@ -79,6 +80,9 @@ def assert_same(cli, py, where="report"):
     ((os.path.join(MPEG, "sphere10_a.ply"), os.path.join(MPEG, "sphere10_b.ply")), {"pcc": True, "pcc_resolution": 1023}),
     ((os.path.join(MPEG, "blob_float_a.ply"), os.path.join(MPEG, "blob_float_b.ply")), {"samples": "vertices"}),
     ((os.path.join(MPEG, "fandisk10_a.ply"), os.path.join(MPEG, "fandisk10_b.ply")), {"pcc": True}),
+    ((os.path.join(DTU, "Points/stl/stl001_total.ply"), os.path.join(DTU, "scan1_mesh.ply")),
+     {"protocol": "dtu", "dtu_obs_mask": os.path.join(DTU, "ObsMask/ObsMask1_10.mat"),
+      "dtu_plane": os.path.join(DTU, "ObsMask/Plane1.mat"), "protocol_seed": 3, "protocol_runs": 2}),
 ])
 def test_report_equals_the_clis(pair, options):
     result = roving.measure(*pair, **options)

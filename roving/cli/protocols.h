@@ -1,0 +1,39 @@
+// --protocol: a benchmark's own evaluation on the pair, step by step (DTU's, as DTUeval-python
+// computes it: roving/reconstruction/dtu_protocol.h), from the data set's own files.
+#pragma once
+
+#include <string>
+
+#include "roving/reconstruction/dtu_protocol.h"
+#include "roving/representations/model.h"
+
+namespace roving {
+
+struct DtuPlan {
+  DtuOptions options;
+  std::string obs_mask, plane;  // ObsMask<scan>_10.mat, Plane<scan>.mat
+};
+
+struct DtuReport {
+  DtuFigures figures;
+  std::string obs_mask, plane;
+  double seconds = 0;
+};
+
+// The data set's files for one scan: its observation mask and ground plane.
+struct DtuFiles {
+  DtuObservationMask mask;
+  std::array<double, 4> plane{};
+};
+
+// Reads them, before the models (a wrong file fails at once). Throws roving::Error naming the file
+// and variable that is missing or malformed.
+DtuFiles read_dtu_files(const DtuPlan& plan);
+
+// The protocol with `ground_truth` (REF: DTU's STL points, or a mesh's vertices) and
+// `reconstruction` (TEST: a mesh, sampled as the script samples it, or a point cloud). Throws
+// roving::Error naming a model that is neither a mesh nor a point cloud.
+DtuReport dtu_report(const Model& ground_truth, const Model& reconstruction, const DtuPlan& plan,
+                     const DtuFiles& files);
+
+}  // namespace roving
