@@ -8,13 +8,17 @@
 // the mean over 20 seeds agrees with the script's mean over its 20 within 3 standard errors.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <numeric>
 #include <sstream>
 
 #include "cli_support.h"
+#include "roving/reconstruction/dtu_protocol.h"
+#include "roving/reconstruction/greedy_thinning.h"
 
 namespace roving {
 namespace {
@@ -109,6 +113,67 @@ TEST(DtuProtocol, CountsFollowTheScene) {
   EXPECT_LT(run["observed"].get<int>(), run["in_box"].get<int>());  // x >= 8 is not observed
   EXPECT_LT(run["accuracy_counted"].get<int>(), run["observed"].get<int>());  // the far square
   EXPECT_EQ(d["reconstruction_points"].get<int>(), 3159 + d["samples"].get<int>());  // every vertex, then samples
+}
+
+TEST(DtuProtocol, TheGridOriginIsTheBoxInSinglePrecision) {
+  // eval.py rounds BB to float32 before (p - BB) / Res. On this point (found on a 10^7-point scene)
+  // BB in double puts it in voxel 102 along x, BB in single precision in 101: only 101 is observed.
+  DtuObservationMask mask;
+  mask.dims = {129, 129, 129};
+  mask.observed.assign(129 * 129 * 129, 0);
+  mask.observed[101 + 129 * (96 + 129 * 33)] = 1;
+  mask.box_min = Vec3::Constant(-196.25365277680484);
+  mask.box_max = Vec3::Constant(196.25365277680484);
+  mask.resolution = 3.0664633246375756;
+  const Vec3 p(114.9923770904541, 98.352924060821536, -94.251779079437256);
+  DtuOptions options;
+  options.first_seed.reset();
+  const DtuFigures f = dtu_figures({p}, {p + Vec3(0.5, 0, 0)}, mask, {0, 0, 0, 1}, options);
+  EXPECT_EQ(f.runs[0].observed, 1u);
+  EXPECT_DOUBLE_EQ(f.runs[0].accuracy, 0.5);
+  EXPECT_DOUBLE_EQ(f.runs[0].completeness, 0.5);
+}
+
+TEST(DtuProtocol, ThinningIsTheSequentialGreedyOne) {
+  // greedy_thinning decides in rounds over the points in spatial order; it must keep exactly what
+  // visiting them one by one keeps, in their own order and shuffled. The points are dense enough
+  // that most have several neighbours, with duplicates and a pair exactly `density` apart, and far
+  // from the origin as DTU's scenes are, so that cell coordinates are rounded (one point of a
+  // 10^6-point scene once fell a cell short of the grid's margin).
+  std::vector<Vec3> points;
+  std::uint64_t state = 12345;
+  const auto next = [&] {
+    state = state * 6364136223846793005ull + 1442695040888963407ull;
+    return state >> 11;
+  };
+  const auto uniform = [&] { return double(next()) / double(1ull << 53); };
+  const Vec3 offset(-56.514225006103516, 4.0419769287109375, -156.51042557);
+  for (int i = 0; i < 4000; ++i) points.push_back(offset + Vec3(2 * uniform(), 2 * uniform(), 2 * uniform()));
+  for (int i = 0; i < 50; ++i) points.push_back(points[i * 7]);
+  points.push_back(offset + Vec3(3, 3, 3));
+  points.push_back(offset + Vec3(3.2, 3, 3));
+  const double r = 0.2;
+  std::vector<std::uint32_t> own(points.size()), shuffled(points.size());
+  std::iota(own.begin(), own.end(), 0u);
+  std::vector<std::uint32_t> order = own;
+  for (std::size_t i = order.size(); i > 1; --i) std::swap(order[i - 1], order[next() % i]);
+  for (std::size_t k = 0; k < order.size(); ++k) shuffled[order[k]] = static_cast<std::uint32_t>(k);
+  for (const auto& rank : {own, shuffled}) {
+    std::vector<std::uint32_t> visiting(points.size());
+    for (std::size_t i = 0; i < points.size(); ++i) visiting[rank[i]] = static_cast<std::uint32_t>(i);
+    std::vector<std::uint8_t> expected(points.size(), 0);
+    std::vector<Vec3> kept;
+    for (const std::uint32_t i : visiting) {
+      const Vec3& p = points[i];
+      const bool near = std::any_of(kept.begin(), kept.end(), [&](const Vec3& q) {
+        const double dx = p[0] - q[0], dy = p[1] - q[1], dz = p[2] - q[2];
+        return dx * dx + dy * dy + dz * dz <= r * r;
+      });
+      if (!near) kept.push_back(p), expected[i] = 1;
+    }
+    EXPECT_EQ(greedy_thinning(points, rank, r), expected);
+    EXPECT_LT(kept.size(), points.size() / 2);  // the case is dense: most points are dropped
+  }
 }
 
 TEST(DtuProtocol, BesideTheExactFiguresWithSymmetric) {

@@ -2,15 +2,19 @@
 
 #include <fmt/format.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
 
+#include <algorithm>
 #include <cmath>
+#include <future>
 #include <limits>
+#include <memory>
 #include <nanoflann.hpp>
 #include <numeric>
 #include <random>
-#include <unordered_map>
 
 #include "roving/core/error.h"
+#include "roving/reconstruction/greedy_thinning.h"
 
 namespace roving {
 namespace {
@@ -40,68 +44,38 @@ std::uint64_t below(std::mt19937_64& random, std::uint64_t bound) {
   return static_cast<std::uint64_t>(m >> 64);
 }
 
-std::vector<std::uint32_t> visiting_order(std::size_t count, std::optional<std::uint64_t> seed) {
+// Each point's place in the visiting order: a Fisher-Yates shuffle of the points' own order under
+// `seed`, or that order itself.
+std::vector<std::uint32_t> visiting_rank(std::size_t count, std::optional<std::uint64_t> seed) {
   std::vector<std::uint32_t> order(count);
   std::iota(order.begin(), order.end(), 0u);
   if (!seed) return order;
   std::mt19937_64 random(*seed);
   for (std::size_t i = count; i > 1; --i) std::swap(order[i - 1], order[below(random, i)]);
-  return order;
+  std::vector<std::uint32_t> rank(count);
+  for (std::size_t k = 0; k < count; ++k) rank[order[k]] = static_cast<std::uint32_t>(k);
+  return rank;
 }
 
-// The script's thinning: visiting points in `order`, each is kept unless a point kept before it is
-// within `radius` (squared distance <= radius^2, as scikit-learn's radius query tests it).
-// Kept points are found through a hash grid of cells 2 * radius wide: a ball meets at most two
-// cells per axis. Cells that share a hash share a list, which costs time, never a wrong answer.
-std::vector<std::uint32_t> thinned(const std::vector<Vec3>& points, const std::vector<std::uint32_t>& order,
-                                   double radius) {
-  const double cell = 2 * radius, r2 = radius * radius;
-  const auto key = [](std::int64_t x, std::int64_t y, std::int64_t z) {
-    const auto bits = [](std::int64_t v) { return static_cast<std::uint64_t>(v) & ((1u << 21) - 1); };
-    return bits(x) | bits(y) << 21 | bits(z) << 42;
-  };
-  std::unordered_map<std::uint64_t, std::uint32_t> head;  // cell -> last kept point in it, +1
-  std::vector<std::uint32_t> next(points.size(), 0), kept;
-  for (const std::uint32_t i : order) {
-    const Vec3& p = points[i];
-    std::array<std::int64_t, 3> lo, hi;
-    for (int a = 0; a < 3; ++a) {
-      lo[a] = static_cast<std::int64_t>(std::floor((p[a] - radius) / cell));
-      hi[a] = static_cast<std::int64_t>(std::floor((p[a] + radius) / cell));
-    }
-    bool near = false;
-    for (std::int64_t x = lo[0]; x <= hi[0] && !near; ++x)
-      for (std::int64_t y = lo[1]; y <= hi[1] && !near; ++y)
-        for (std::int64_t z = lo[2]; z <= hi[2] && !near; ++z) {
-          const auto found = head.find(key(x, y, z));
-          for (std::uint32_t j = found == head.end() ? 0 : found->second; j != 0 && !near; j = next[j - 1]) {
-            const Vec3& q = points[j - 1];
-            const double dx = p[0] - q[0], dy = p[1] - q[1], dz = p[2] - q[2];
-            near = dx * dx + dy * dy + dz * dz <= r2;
-          }
-        }
-    if (near) continue;
-    kept.push_back(i);
-    const auto c = [&](int a) { return static_cast<std::int64_t>(std::floor(p[a] / cell)); };
-    std::uint32_t& first = head[key(c(0), c(1), c(2))];
-    next[i] = first;
-    first = i + 1;
+// A k-d tree over points that outlive it (none built over no points).
+struct PointTree {
+  explicit PointTree(const std::vector<Vec3>& points)
+      : adaptor{points}, tree(3, adaptor, {10, nanoflann::KDTreeSingleIndexAdaptorFlags::SkipInitialBuildIndex}) {
+    if (!points.empty()) tree.buildIndex();
   }
-  return kept;
-}
+  PointsAdaptor adaptor;
+  KdTree tree;
+};
 
-// The mean of the nearest distances from `from` to `to` below max_dist, and how many were.
-std::pair<double, std::size_t> mean_nearest(const std::vector<Vec3>& from, const std::vector<Vec3>& to,
-                                            double max_dist) {
-  if (to.empty() || from.empty()) return {std::numeric_limits<double>::quiet_NaN(), 0};
-  const PointsAdaptor adaptor{to};
-  const KdTree tree(3, adaptor, {10});
+// The mean of the nearest distances from `from` to the tree's points below max_dist, and how many were.
+std::pair<double, std::size_t> mean_nearest(const std::vector<Vec3>& from, const PointTree& to, double max_dist) {
+  if (to.adaptor.points.empty() || from.empty()) return {std::numeric_limits<double>::quiet_NaN(), 0};
   std::vector<double> distance(from.size());
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, from.size(), 4096), [&](const auto& range) {
     for (std::size_t i = range.begin(); i < range.end(); ++i) {
       std::uint32_t index = 0;
       double squared = 0;
-      tree.knnSearch(from[i].data(), 1, &index, &squared);
+      to.tree.knnSearch(from[i].data(), 1, &index, &squared);
       distance[i] = std::sqrt(squared);
     }
   });
@@ -116,6 +90,55 @@ std::pair<double, std::size_t> mean_nearest(const std::vector<Vec3>& from, const
   return {counted ? sum / counted : std::numeric_limits<double>::quiet_NaN(), counted};
 }
 
+// One axis of the script's box in single precision, as NumPy computes it: BB.astype(np.float32),
+// then BB - patch and BB + 2 patch in float32; the grid's origin is the rounded BB too.
+struct SingleBox {
+  double low, high, origin;
+};
+
+// Out of line on purpose: inlined in dtu_figures' loop, GCC 12's vectorizer stored the origin
+// without its rounding to float (one point of 6 M left the mask on a 10^7-point scene).
+[[gnu::noinline]] SingleBox single_box(double min, double max, double patch) {
+  const float low = static_cast<float>(min), high = static_cast<float>(max);
+  return {static_cast<float>(low - static_cast<float>(patch)), static_cast<float>(high + static_cast<float>(patch * 2)),
+          low};
+}
+
+// The script's grid on one face: n1 x n2 steps along its edges from the first corner (0 x 0 for a
+// face of zero area, which gets no point).
+struct FaceGrid {
+  double n1 = 0, n2 = 0;
+};
+
+FaceGrid face_grid(const Vec3& a, const Vec3& b, const Vec3& c, double density) {
+  const Vec3 v1 = b - a, v2 = c - a;
+  const double l1 = std::sqrt(v1[0] * v1[0] + v1[1] * v1[1] + v1[2] * v1[2]);
+  const double l2 = std::sqrt(v2[0] * v2[0] + v2[1] * v2[1] + v2[2] * v2[2]);
+  const Vec3 n(v1[1] * v2[2] - v1[2] * v2[1], v1[2] * v2[0] - v1[0] * v2[2], v1[0] * v2[1] - v1[1] * v2[0]);
+  const double area2 = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+  if (!(area2 > 0)) return {};
+  const double step = density * std::sqrt(l1 * l2 / area2);
+  return {std::floor(l1 / step), std::floor(l2 / step)};
+}
+
+// The grid's points strictly inside the face, (k1, k2) = ((i + 0.5) / n1, (j + 0.5) / n2) with
+// k1 + k2 < 1, in the script's order (i, then j), each given to `emit`; returns how many.
+template <typename Emit>
+std::size_t for_each_grid_point(const FaceGrid& grid, Emit&& emit) {
+  if (grid.n1 == 0 || grid.n2 == 0) return 0;  // the script's 1e-7 puts every point outside the face
+  std::size_t count = 0;
+  for (double i = 0; i <= grid.n1; ++i) {
+    const double k1 = (i + 0.5) / grid.n1;
+    for (double j = 0; j <= grid.n2; ++j) {
+      const double k2 = (j + 0.5) / grid.n2;
+      if (!(k1 + k2 < 1)) break;  // k2 grows with j
+      emit(k1, k2);
+      ++count;
+    }
+  }
+  return count;
+}
+
 void require_positive(double value, const char* what) {
   if (!(std::isfinite(value) && value > 0)) {
     throw Error(fmt::format("the DTU protocol's {} must be finite and > 0; found {}", what, value));
@@ -128,54 +151,39 @@ std::vector<Vec3> dtu_mesh_points(const TriangleMesh& mesh, const std::string& n
                                   std::size_t* samples) {
   require_positive(density, "density");
   const std::vector<Vec3>& v = mesh.positions();
-  struct Grid {
-    double n1, n2;
+  const std::vector<Triangle>& faces = mesh.triangles();
+  const auto too_many = [&] {
+    return Error(fmt::format("{}: sampling it every {} (the DTU protocol's density) would make over {} points; "
+                             "is it in millimetres, as DTU's models are?",
+                             name, density, kMaxPoints));
   };
-  // The grid of each face first, so that the count is known (and bounded) before any point is made.
-  std::vector<Grid> grids(mesh.triangles().size());
-  std::size_t total = v.size();
-  for (std::size_t f = 0; f < grids.size(); ++f) {
-    const Triangle& t = mesh.triangles()[f];
-    const Vec3 v1 = v[t[1]] - v[t[0]], v2 = v[t[2]] - v[t[0]];
-    const double l1 = std::sqrt(v1[0] * v1[0] + v1[1] * v1[1] + v1[2] * v1[2]);
-    const double l2 = std::sqrt(v2[0] * v2[0] + v2[1] * v2[1] + v2[2] * v2[2]);
-    const Vec3 c(v1[1] * v2[2] - v1[2] * v2[1], v1[2] * v2[0] - v1[0] * v2[2], v1[0] * v2[1] - v1[1] * v2[0]);
-    const double area2 = std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
-    if (!(area2 > 0)) {
-      grids[f] = {0, 0};
-      continue;
+  // Each face's grid and its count first (in parallel), so that every point has its place before
+  // any is made, and an absurd count is refused before it is allocated.
+  std::vector<FaceGrid> grids(faces.size());
+  std::vector<std::size_t> offsets(faces.size() + 1, 0);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, faces.size(), 1024), [&](const auto& range) {
+    for (std::size_t f = range.begin(); f < range.end(); ++f) {
+      grids[f] = face_grid(v[faces[f][0]], v[faces[f][1]], v[faces[f][2]], density);
+      if (!((grids[f].n1 + 1) * (grids[f].n2 + 1) < double(kMaxPoints))) throw too_many();
+      offsets[f + 1] = for_each_grid_point(grids[f], [](double, double) {});
     }
-    const double step = density * std::sqrt(l1 * l2 / area2);
-    grids[f] = {std::floor(l1 / step), std::floor(l2 / step)};
-    // Grid points with (i + 0.5) / n1 + (j + 0.5) / n2 < 1: at most (n1 + 1) (n2 + 1) / 2 + n.
-    const double most = (grids[f].n1 + 1) * (grids[f].n2 + 1);
-    if (!(most < double(kMaxPoints)) || (total += static_cast<std::size_t>(most)) > 2 * kMaxPoints) {
-      throw Error(fmt::format("{}: sampling it every {} (the DTU protocol's density) would make over {} points; "
-                              "is it in millimetres, as DTU's models are?",
-                              name, density, kMaxPoints));
-    }
+  });
+  offsets[0] = v.size();
+  for (std::size_t f = 0; f < faces.size(); ++f) {
+    offsets[f + 1] += offsets[f];
+    if (offsets[f + 1] > kMaxPoints) throw too_many();
   }
-  std::vector<Vec3> points(v.begin(), v.end());
-  for (std::size_t f = 0; f < grids.size(); ++f) {
-    const auto [n1, n2] = grids[f];
-    if (n1 == 0 || n2 == 0) continue;  // the script's 1e-7 puts every point outside the face
-    const Triangle& t = mesh.triangles()[f];
-    const Vec3 &a = v[t[0]], v1 = v[t[1]] - a, v2 = v[t[2]] - a;
-    for (double i = 0; i <= n1; ++i) {
-      const double k1 = (i + 0.5) / n1;
-      for (double j = 0; j <= n2; ++j) {
-        const double k2 = (j + 0.5) / n2;
-        if (!(k1 + k2 < 1)) continue;
-        points.emplace_back(v1[0] * k1 + v2[0] * k2 + a[0], v1[1] * k1 + v2[1] * k2 + a[1],
-                            v1[2] * k1 + v2[2] * k2 + a[2]);
-      }
+  std::vector<Vec3> points(offsets.back());
+  std::copy(v.begin(), v.end(), points.begin());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, faces.size(), 1024), [&](const auto& range) {
+    for (std::size_t f = range.begin(); f < range.end(); ++f) {
+      const Vec3 &a = v[faces[f][0]], v1 = v[faces[f][1]] - a, v2 = v[faces[f][2]] - a;
+      Vec3* out = &points[offsets[f]];
+      for_each_grid_point(grids[f], [&](double k1, double k2) {
+        *out++ = Vec3(v1[0] * k1 + v2[0] * k2 + a[0], v1[1] * k1 + v2[1] * k2 + a[1], v1[2] * k1 + v2[2] * k2 + a[2]);
+      });
     }
-    if (points.size() > kMaxPoints) {
-      throw Error(fmt::format("{}: sampling it every {} (the DTU protocol's density) makes over {} points; "
-                              "is it in millimetres, as DTU's models are?",
-                              name, density, kMaxPoints));
-    }
-  }
+  });
   if (samples) *samples = points.size() - v.size();
   return points;
 }
@@ -205,26 +213,29 @@ DtuFigures dtu_figures(const std::vector<Vec3>& reconstruction, const std::vecto
     if (plane[0] * p[0] + plane[1] * p[1] + plane[2] * p[2] + plane[3] > 0) above.push_back(p);
   }
   figures.ground_truth_above = above.size();
-  // The box in single precision, as the script makes it (BB.astype(np.float32), then float32 sums).
-  std::array<double, 3> low, high, origin;
-  for (int a = 0; a < 3; ++a) {
-    const float min = static_cast<float>(mask.box_min[a]), max = static_cast<float>(mask.box_max[a]);
-    low[a] = static_cast<float>(min - static_cast<float>(options.patch));
-    high[a] = static_cast<float>(max + static_cast<float>(options.patch * 2));
-    origin[a] = min;
-  }
+  std::array<SingleBox, 3> box;
+  for (int a = 0; a < 3; ++a) box[a] = single_box(mask.box_min[a], mask.box_max[a], options.patch);
   const int runs = options.first_seed ? std::max(options.runs, 1) : 1;
+  // The ground truth's tree is built on the other core while the first run thins.
+  std::future<std::unique_ptr<PointTree>> building =
+      std::async(std::launch::async, [&] { return std::make_unique<PointTree>(ground_truth); });
+  std::unique_ptr<PointTree> truth_tree;
   for (int run = 0; run < runs; ++run) {
     DtuRun r;
     if (options.first_seed) r.seed = *options.first_seed + static_cast<std::uint64_t>(run);
-    const std::vector<std::uint32_t> kept = thinned(reconstruction, visiting_order(reconstruction.size(), r.seed),
-                                                    options.density);
-    r.thinned = kept.size();
+    const std::vector<std::uint8_t> keep =
+        greedy_thinning(reconstruction, visiting_rank(reconstruction.size(), r.seed), options.density);
+    r.thinned = static_cast<std::size_t>(std::count(keep.begin(), keep.end(), 1));
+    // The kept points in their own order, not the visiting order: the queries below then walk the
+    // trees coherently (the figures are sums, the same in any order but for rounding).
     std::vector<Vec3> in_box, observed;
-    for (const std::uint32_t i : kept) {
+    in_box.reserve(r.thinned);
+    observed.reserve(r.thinned);
+    for (std::size_t i = 0; i < keep.size(); ++i) {
+      if (!keep[i]) continue;
       const Vec3& p = reconstruction[i];
-      if (!(p[0] >= low[0] && p[1] >= low[1] && p[2] >= low[2] && p[0] < high[0] && p[1] < high[1] &&
-            p[2] < high[2])) {
+      if (!(p[0] >= box[0].low && p[1] >= box[1].low && p[2] >= box[2].low && p[0] < box[0].high &&
+            p[1] < box[1].high && p[2] < box[2].high)) {
         continue;
       }
       in_box.push_back(p);
@@ -232,7 +243,7 @@ DtuFigures dtu_figures(const std::vector<Vec3>& reconstruction, const std::vecto
       bool inside = true;
       for (int a = 0; a < 3; ++a) {
         // np.around: halves to even, as nearbyint in the default rounding mode.
-        const double g = std::nearbyint((p[a] - origin[a]) / mask.resolution);
+        const double g = std::nearbyint((p[a] - box[a].origin) / mask.resolution);
         inside = inside && g >= 0 && g < double(mask.dims[a]);
         cell[a] = inside ? static_cast<std::size_t>(g) : 0;
       }
@@ -240,8 +251,13 @@ DtuFigures dtu_figures(const std::vector<Vec3>& reconstruction, const std::vecto
     }
     r.in_box = in_box.size();
     r.observed = observed.size();
-    std::tie(r.accuracy, r.accuracy_counted) = mean_nearest(observed, ground_truth, options.max_dist);
-    std::tie(r.completeness, r.completeness_counted) = mean_nearest(above, in_box, options.max_dist);
+    if (!truth_tree) truth_tree = building.get();
+    // Accuracy's queries on the ground truth while the tree of the points in the box is built.
+    std::unique_ptr<PointTree> box_tree;
+    tbb::parallel_invoke(
+        [&] { std::tie(r.accuracy, r.accuracy_counted) = mean_nearest(observed, *truth_tree, options.max_dist); },
+        [&] { box_tree = std::make_unique<PointTree>(in_box); });
+    std::tie(r.completeness, r.completeness_counted) = mean_nearest(above, *box_tree, options.max_dist);
     r.overall = (r.accuracy + r.completeness) / 2;
     figures.runs.push_back(r);
   }

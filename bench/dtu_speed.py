@@ -1,0 +1,158 @@
+#!/usr/bin/env python3
+"""The DTU protocol, end to end: `roving measure --protocol dtu` against DTUeval-python's own eval.py.
+
+Each runs in its own process from the files to the figures (wall time, CPU time and peak resident
+memory from os.wait4), on the same machine, one after the other: eval.py with its multiprocessing
+pool and scikit-learn on every core, roving on every core. Checked before timed: the three figures
+must agree to 1e-9 relative. For that both visit the points in their own order: eval.py's one line
+of randomness (its unseeded shuffle) is removed in a copy, as tests/data/dtu/record_dtu.sh does;
+a shuffle costs either side the same few seconds.
+
+The scene is made here, DTU-sized (millimetres): the ground truth, M points on a sphere; the
+reconstruction, a rippled sphere meshed so that eval.py's sampling makes about N points (mesh
+mode) or those points themselves (--mode pcd); the mask (observed where x < 0.65 R) and the
+ground plane, as .mat files. eval.py is not part of roving:
+https://github.com/jzhangbs/DTUeval-python (Debian's python3-open3d, -sklearn, -scipy, -tqdm).
+
+    /usr/bin/python3 bench/dtu_speed.py --roving build/roving/roving --dtueval /path/to/DTUeval-python \\
+        --points 1000000 10000000 30000000 --out results
+"""
+import argparse
+import json
+import os
+import platform
+import subprocess
+import sys
+import tempfile
+import time
+
+import numpy as np
+import scipy.io
+
+
+def run(command):
+    """One process: (wall s, CPU s, peak RSS MiB, output). Raises on failure."""
+    start = time.monotonic()
+    process = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.STDOUT)
+    output = b""
+    while chunk := process.stdout.read(65536):
+        output += chunk
+    _, status, usage = os.wait4(process.pid, 0)
+    wall = time.monotonic() - start
+    text = output.decode(errors="replace")
+    if os.waitstatus_to_exitcode(status) != 0:
+        raise RuntimeError(f"{' '.join(command)} failed:\n{text[-2000:]}")
+    return wall, usage.ru_utime + usage.ru_stime, usage.ru_maxrss / 1024, text
+
+
+def write_ply(path, vertices, faces=None):
+    with open(path, "wb") as f:
+        header = f"ply\nformat binary_little_endian 1.0\nelement vertex {len(vertices)}\n"
+        header += "property float x\nproperty float y\nproperty float z\n"
+        if faces is not None:
+            header += f"element face {len(faces)}\nproperty list uchar int vertex_indices\n"
+        f.write((header + "end_header\n").encode())
+        f.write(np.ascontiguousarray(vertices, dtype="<f4").tobytes())
+        if faces is not None:
+            rows = np.zeros(len(faces), dtype=[("n", "u1"), ("i", "<i4", 3)])
+            rows["n"], rows["i"] = 3, faces
+            f.write(rows.tobytes())
+
+
+def make_scene(folder, points, truth, density):
+    """Files laid out as DTU's data set (scan 1), and the reconstruction; returns its path."""
+    # eval.py makes about one point per density^2 of area: a sphere of that area.
+    radius = float(np.sqrt(points * density * density / (4 * np.pi)))
+    i = np.arange(truth) + 0.5
+    z = 1 - 2 * i / truth
+    phi = np.pi * (3 - np.sqrt(5)) * i
+    r = np.sqrt(1 - z * z)
+    os.makedirs(f"{folder}/Points/stl", exist_ok=True)
+    os.makedirs(f"{folder}/ObsMask", exist_ok=True)
+    write_ply(f"{folder}/Points/stl/stl001_total.ply", radius * np.stack([r * np.cos(phi), r * np.sin(phi), z], 1))
+    # Faces about 10 density steps across: 50 samples each.
+    rings = max(8, int(np.pi * radius / (10 * density)))
+    segments = 2 * rings
+    t, p = np.meshgrid(np.linspace(0, np.pi, rings + 1)[1:-1], np.linspace(0, 2 * np.pi, segments, endpoint=False),
+                       indexing="ij")
+    rr = radius + 0.5 * np.sin(7 * t) * np.sin(5 * p)
+    vertices = np.stack([rr * np.sin(t) * np.cos(p), rr * np.sin(t) * np.sin(p), rr * np.cos(t)], -1).reshape(-1, 3)
+    a = (np.arange(rings - 2)[:, None] * segments + np.arange(segments)[None, :]).ravel()
+    b = (np.arange(rings - 2)[:, None] * segments + (np.arange(segments)[None, :] + 1) % segments).ravel()
+    faces = np.concatenate([np.stack([a, a + segments, b], 1), np.stack([b, a + segments, b + segments], 1)])
+    write_ply(f"{folder}/recon_mesh.ply", vertices, faces)
+    side = 1.1 * radius
+    res = side / 64
+    n = int(np.ceil(2 * side / res)) + 1
+    x = np.arange(n) * res - side
+    observed = np.broadcast_to((x < 0.65 * radius)[:, None, None], (n, n, n)).copy()
+    scipy.io.savemat(f"{folder}/ObsMask/ObsMask1_10.mat",
+                     {"ObsMask": observed, "BB": np.array([[-side] * 3, [side] * 3]), "Res": res}, do_compression=True)
+    scipy.io.savemat(f"{folder}/ObsMask/Plane1.mat", {"P": np.array([[0.0], [0], [1], [0.9 * radius]])})
+    return f"{folder}/recon_mesh.ply", len(faces)
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--roving", required=True)
+    parser.add_argument("--dtueval", help="a DTUeval-python checkout; without it roving alone is timed")
+    parser.add_argument("--points", type=int, nargs="+", default=[3000000],
+                        help="the reconstruction's points before thinning, one scene per number")
+    parser.add_argument("--truth-ratio", type=float, default=10, help="reconstruction points per ground-truth point")
+    parser.add_argument("--out", help="a folder for dtu-speed.md; else stdout")
+    args = parser.parse_args()
+    density = 0.2
+    lines = [
+        "# The DTU protocol: roving against DTUeval-python",
+        "",
+        f"Written by `bench/dtu_speed.py --points {' '.join(map(str, args.points))}` on {platform.node()} "
+        f"({os.cpu_count()} cores), {time.strftime('%Y-%m-%d')}. Each scene: a reconstruction mesh that eval.py samples "
+        f"into about N points, against a ground truth of N / {args.truth_ratio:g} points. One run each, in the points' "
+        "own order; the figures agree to 1e-9 relative before anything is timed.",
+        "",
+        "| points sampled | ground truth | tool | wall s | CPU s | peak RSS MiB | accuracy | completeness | overall |",
+        "| ---: | ---: | --- | ---: | ---: | ---: | ---: | ---: | ---: |",
+    ]
+    ratios = []
+    for points in args.points:
+        truth = int(points / args.truth_ratio)
+        with tempfile.TemporaryDirectory() as folder:
+            recon, triangles = make_scene(folder, points, truth, density)
+            mask, plane = f"{folder}/ObsMask/ObsMask1_10.mat", f"{folder}/ObsMask/Plane1.mat"
+            rows = []
+            wall, cpu, rss, out = run([args.roving, "measure", f"{folder}/Points/stl/stl001_total.ply", recon,
+                                       "--protocol", "dtu", "--dtu-obs-mask", mask, "--dtu-plane", plane,
+                                       "--protocol-seed", "none", "--json", f"{folder}/report.json", "--quiet"])
+            report = json.load(open(f"{folder}/report.json"))["dtu_protocol"]
+            ours = [report["accuracy"], report["completeness"], report["overall"]]
+            rows.append(("roving measure --protocol dtu", wall, cpu, rss, ours))
+            if args.dtueval:
+                script = f"{folder}/eval_in_order.py"
+                source = open(os.path.join(args.dtueval, "eval.py")).read()
+                assert "shuffle_rng.shuffle(data_pcd, axis=0)" in source
+                open(script, "w").write(source.replace("shuffle_rng.shuffle(data_pcd, axis=0)", "pass"))
+                wall, cpu, rss, out = run([sys.executable, script, "--data", recon, "--scan", "1", "--mode", "mesh",
+                                           "--dataset_dir", folder, "--vis_out_dir", folder])
+                theirs = [float(v) for v in out.strip().splitlines()[-1].split()]
+                for name, a, b in zip(("accuracy", "completeness", "overall"), ours, theirs):
+                    if abs(a - b) > 1e-9 * abs(b):
+                        raise SystemExit(f"{name}: roving {a!r}, eval.py {b!r}: not the same figure; nothing timed")
+                rows.append(("DTUeval-python eval.py", wall, cpu, rss, theirs))
+                ratios.append((report["reconstruction_points"], rows[1][1] / rows[0][1], rows[1][3] / rows[0][3]))
+        for name, wall, cpu, rss, figures in rows:
+            lines.append(f"| {report['reconstruction_points']:,} | {report['ground_truth_points']:,} | {name} | {wall:.1f} | "
+                         f"{cpu:.1f} | {rss:,.0f} | " + " | ".join(f"{v:.9g}" for v in figures) + " |")
+        print(lines[-1], flush=True)
+    if ratios:
+        lines.append("")
+        for points, speed, memory in ratios:
+            lines.append(f"- {points:,} points: roving {speed:.1f}x faster, in {memory:.1f}x less memory.")
+    text = "\n".join(lines) + "\n"
+    if args.out:
+        os.makedirs(args.out, exist_ok=True)
+        open(os.path.join(args.out, "dtu-speed.md"), "w").write(text)
+    print(text)
+
+
+if __name__ == "__main__":
+    main()
