@@ -660,7 +660,7 @@ MeasureRun measure_run(const MeasureArguments& args, std::string& stage, Progres
   const auto run_protocol = [&] {
     stage = fmt::format("running the DTU protocol on {} (ground truth) and {}", a.path(), b.path());
     progress.stage("DTU protocol");
-    report.dtu = dtu_report(a, b, *plan.dtu, *dtu_files);
+    report.dtu = dtu_report(a, b, *plan.dtu, *dtu_files, progress.callback());
     progress.clear();
   };
   if (plan.protocol_only) {

@@ -67,7 +67,7 @@ std::array<double, 4> read_dtu_plane(const std::string& path) {
 DtuFiles read_dtu_files(const DtuPlan& plan) { return {read_dtu_mask(plan.obs_mask), read_dtu_plane(plan.plane)}; }
 
 DtuReport dtu_report(const Model& ground_truth, const Model& reconstruction, const DtuPlan& plan,
-                     const DtuFiles& files) {
+                     const DtuFiles& files, const ProgressFn& progress) {
   const Stopwatch watch;
   DtuReport report;
   report.obs_mask = plan.obs_mask;
@@ -88,9 +88,9 @@ DtuReport dtu_report(const Model& ground_truth, const Model& reconstruction, con
   if (reconstruction.type == ModelType::Mesh) {
     const std::vector<Vec3> points =
         dtu_mesh_points(reconstruction.mesh.mesh, reconstruction.path(), plan.options.density, &samples);
-    report.figures = dtu_figures(points, *truth, files.mask, files.plane, plan.options);
+    report.figures = dtu_figures(points, *truth, files.mask, files.plane, plan.options, progress);
   } else if (reconstruction.type == ModelType::Points) {
-    report.figures = dtu_figures(reconstruction.points.positions, *truth, files.mask, files.plane, plan.options);
+    report.figures = dtu_figures(reconstruction.points.positions, *truth, files.mask, files.plane, plan.options, progress);
   } else {
     throw refuse(reconstruction, "TEST (the reconstruction)");
   }

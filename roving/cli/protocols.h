@@ -32,8 +32,9 @@ DtuFiles read_dtu_files(const DtuPlan& plan);
 
 // The protocol with `ground_truth` (REF: DTU's STL points, or a mesh's vertices) and
 // `reconstruction` (TEST: a mesh, sampled as the script samples it, or a point cloud). Throws
-// roving::Error naming a model that is neither a mesh nor a point cloud.
+// roving::Error naming a model that is neither a mesh nor a point cloud. `progress` hears the runs'
+// steps.
 DtuReport dtu_report(const Model& ground_truth, const Model& reconstruction, const DtuPlan& plan,
-                     const DtuFiles& files);
+                     const DtuFiles& files, const ProgressFn& progress = {});
 
 }  // namespace roving

@@ -189,7 +189,8 @@ std::vector<Vec3> dtu_mesh_points(const TriangleMesh& mesh, const std::string& n
 }
 
 DtuFigures dtu_figures(const std::vector<Vec3>& reconstruction, const std::vector<Vec3>& ground_truth,
-                       const DtuObservationMask& mask, const std::array<double, 4>& plane, const DtuOptions& options) {
+                       const DtuObservationMask& mask, const std::array<double, 4>& plane, const DtuOptions& options,
+                       const ProgressFn& progress) {
   require_positive(options.density, "density");
   require_positive(options.max_dist, "max_dist");
   if (!(std::isfinite(options.patch) && options.patch >= 0)) {
@@ -221,6 +222,11 @@ DtuFigures dtu_figures(const std::vector<Vec3>& reconstruction, const std::vecto
       std::async(std::launch::async, [&] { return std::make_unique<PointTree>(ground_truth); });
   std::unique_ptr<PointTree> truth_tree;
   for (int run = 0; run < runs; ++run) {
+    // Three steps a run: thinning, masking and the accuracy queries, the completeness queries.
+    const auto step = [&](int done) {
+      if (progress) progress("protocol steps", static_cast<std::size_t>(3 * run + done), static_cast<std::size_t>(3 * runs));
+    };
+    step(0);
     DtuRun r;
     if (options.first_seed) r.seed = *options.first_seed + static_cast<std::uint64_t>(run);
     const std::vector<std::uint8_t> keep =
@@ -251,12 +257,14 @@ DtuFigures dtu_figures(const std::vector<Vec3>& reconstruction, const std::vecto
     }
     r.in_box = in_box.size();
     r.observed = observed.size();
+    step(1);
     if (!truth_tree) truth_tree = building.get();
     // Accuracy's queries on the ground truth while the tree of the points in the box is built.
     std::unique_ptr<PointTree> box_tree;
     tbb::parallel_invoke(
         [&] { std::tie(r.accuracy, r.accuracy_counted) = mean_nearest(observed, *truth_tree, options.max_dist); },
         [&] { box_tree = std::make_unique<PointTree>(in_box); });
+    step(2);
     std::tie(r.completeness, r.completeness_counted) = mean_nearest(above, *box_tree, options.max_dist);
     r.overall = (r.accuracy + r.completeness) / 2;
     figures.runs.push_back(r);

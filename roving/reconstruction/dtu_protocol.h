@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "roving/core/distance_method.h"
 #include "roving/core/triangle_mesh.h"
 
 namespace roving {
@@ -63,8 +64,11 @@ std::vector<Vec3> dtu_mesh_points(const TriangleMesh& mesh, const std::string& n
 
 // The protocol on `reconstruction` (its points, as dtu_mesh_points gives them or as read) against
 // `ground_truth`, with the mask and the ground plane `plane` (P . (x, y, z, 1) > 0 is kept).
-// Throws roving::Error for options that are not finite and > 0, or a mask whose size is not its dims'.
+// `progress`, where given, hears each run's steps as done of total ("protocol runs"); what it
+// throws stops the protocol. Throws roving::Error for options that are not finite and > 0, or a
+// mask whose size is not its dims'.
 DtuFigures dtu_figures(const std::vector<Vec3>& reconstruction, const std::vector<Vec3>& ground_truth,
-                       const DtuObservationMask& mask, const std::array<double, 4>& plane, const DtuOptions& options);
+                       const DtuObservationMask& mask, const std::array<double, 4>& plane, const DtuOptions& options,
+                       const ProgressFn& progress = {});
 
 }  // namespace roving
