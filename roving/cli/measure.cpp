@@ -1,8 +1,6 @@
 // `roving measure`: the run from options to report.
 #include "measure.h"
 
-#include <charconv>
-#include <fstream>
 #include <fmt/format.h>
 #include <tbb/parallel_invoke.h>
 
@@ -140,7 +138,7 @@ std::vector<MetricValue> gate_values(const MeasureReport& report) {
 
 namespace {
 
-// --protocol and its options; the data set's files are read when the models are, but must exist now.
+// --protocol and its options; the data set's files must exist now (they are read before the models).
 void plan_protocol(const MeasureArguments& args, MeasurePlan& plan) {
   if (args.protocol.empty()) {
     for (const auto& [option, given] : {std::pair{"--dtu-obs-mask", args.dtu_obs_mask}, {"--dtu-plane", args.dtu_plane}}) {
