@@ -116,6 +116,35 @@ TEST(CliBatch, ImageBasedFiguresInTheSummaryAndTheKey) {
   EXPECT_NE(page.str().find("ibsm_depth_psnr"), std::string::npos);
 }
 
+TEST(CliBatch, ReconstructionFiguresInTheSummary) {
+  const Dataset data;
+  const CliRun run =
+      run_cli("batch " + data.manifest + " --symmetric --threshold 0.015 --html --out " + data.out("results"));
+  EXPECT_EQ(run.exit_code, 4) << run.err;
+  const auto rows = read_csv(data.out("results") + "/summary.csv");
+  const auto column = [&](const std::string& name) {
+    const auto found = std::find(rows[0].begin(), rows[0].end(), name);
+    EXPECT_NE(found, rows[0].end()) << name;
+    return found - rows[0].begin();
+  };
+  ASSERT_EQ(rows.size(), 6u);
+  for (int k = 1; k <= 4; ++k) {
+    // TEST a cube 0.01 k larger about the same centre: every point of REF is 0.01 k from TEST (its
+    // face straight out), TEST's corners and edges are farther from REF; so recall is 1 at tau
+    // 0.015 for k = 1 and 0 beyond, and the Chamfer mean at least 0.01 k.
+    const double chamfer = std::stod(rows[k][column("chamfer_mean")]);
+    EXPECT_GE(chamfer, 0.01 * k * (1 - 1e-12)) << k;
+    EXPECT_LE(chamfer, 0.01 * k * 1.2) << k;
+    EXPECT_EQ(std::stod(rows[k][column("tau")]), 0.015);
+    EXPECT_EQ(std::stod(rows[k][column("recall")]), k == 1 ? 1.0 : 0.0) << k;
+    EXPECT_GT(std::stod(rows[k][column("normal_consistency")]), 0.9) << k;
+  }
+  std::ifstream index(data.out("results") + "/index.html");
+  std::stringstream page;
+  page << index.rdbuf();
+  EXPECT_NE(page.str().find("f_score"), std::string::npos);
+}
+
 TEST(CliBatch, TwoShardsTogetherEqualOneRun) {
   const Dataset data;
   EXPECT_EQ(run_cli("batch " + data.manifest + " --out " + data.out("whole")).exit_code, 4);

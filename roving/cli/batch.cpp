@@ -283,6 +283,16 @@ std::vector<std::string> summary_row(const nlohmann::json& report) {
   const nlohmann::json mpeg =
       ok && report.contains("mpeg_pcc") ? report["mpeg_pcc"]["symmetric"] : nlohmann::json();
   for (const char* key : {"d1_psnr", "d2_psnr", "y_psnr"}) row.push_back(field(mpeg, key));
+  // The reconstruction figures (--symmetric): Chamfer, normal consistency, and at the first
+  // --threshold tau, precision / recall / F (an area-sample figure's estimate).
+  const nlohmann::json recon = ok && report.contains("reconstruction") ? report["reconstruction"] : nlohmann::json();
+  for (const char* key : {"chamfer_mean", "normal_consistency"}) row.push_back(field(recon, key));
+  const nlohmann::json at_tau =
+      recon.is_object() && !recon["thresholds"].empty() ? recon["thresholds"][0] : nlohmann::json();
+  for (const char* key : {"tau", "precision", "recall", "f_score"}) {
+    const bool interval = at_tau.is_object() && at_tau.contains(key) && at_tau[key].is_object();
+    row.push_back(interval ? number(at_tau[key]["estimate"]) : field(at_tau, key));
+  }
   row.push_back(ok ? number(report["seconds"]["total"]) : "");
   std::string warnings;
   if (ok) {
@@ -315,6 +325,8 @@ void write_index(const std::string& folder, const std::vector<std::string>& head
   }
   if (std::any_of(reports.begin(), reports.end(), [](const nlohmann::json& r) { return r.contains("mpeg_pcc"); }))
     shown.insert(shown.end(), {"mpeg_d1_psnr", "mpeg_d2_psnr", "mpeg_y_psnr"});
+  if (std::any_of(reports.begin(), reports.end(), [](const nlohmann::json& r) { return r.contains("reconstruction"); }))
+    shown.insert(shown.end(), {"chamfer_mean", "normal_consistency", "tau", "precision", "recall", "f_score"});
   shown.insert(shown.end(), {"seconds", "warnings"});
   HtmlIndex page;
   page.title = fmt::format("surface roving batch: {} pairs", reports.size());
@@ -382,7 +394,8 @@ std::pair<std::size_t, std::size_t> merge(const std::string& folder, bool html) 
   for (const auto& item : statistics.items()) header.push_back(item.key());
   header.insert(header.end(), {"hausdorff", "mean_both", "rms_both", "ibsm_psnr_rgb", "ibsm_psnr_ycbcr_611",
                                "ibsm_depth_psnr", "ibsm_unmatched_percent", "mpeg_d1_psnr", "mpeg_d2_psnr",
-                               "mpeg_y_psnr", "seconds", "warnings"});
+                               "mpeg_y_psnr", "chamfer_mean", "normal_consistency", "tau", "precision", "recall",
+                               "f_score", "seconds", "warnings"});
   AtomicFile summary((fs::path(folder) / "summary.csv").string());
   fmt::print(summary.stream(), "{}\n", fmt::join(header, ","));
   std::size_t ok = 0;
