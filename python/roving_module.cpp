@@ -211,6 +211,10 @@ py::dict per_sample(DirectionReport& d) {
   }
   if (!d.result.hit_face.empty())
     out["hit_face"] = adopt<std::uint32_t>(std::move(d.result.hit_face), {rows});
+  if (d.correspondences) {
+    out["test_point"] = adopt<double>(std::move(d.correspondences->points), {rows, 3});
+    out["barycentric"] = adopt<double>(std::move(d.correspondences->barycentric), {rows, 3});
+  }
   out["positions"] = adopt<double>(std::move(d.samples.positions), {rows, 3});
   out["normals"] = adopt<double>(std::move(d.samples.normals), {rows, 3});
   out["d"] = adopt<double>(std::move(d.result.signed_distance), {rows});
@@ -307,6 +311,7 @@ py::dict measure(const py::object& reference, const py::object& test, const py::
   }
   if (!error.empty()) throw Error(error);
   MeasureArguments& args = line->args;
+  args.correspondences = true;  // per_sample's test_point and barycentric
   args.command_line = "roving.measure(" + reference_path + ", " + test_path;
   for (std::size_t i = 3; i < arguments.size(); ++i) args.command_line += " " + arguments[i];
   args.command_line += ")";
@@ -388,9 +393,11 @@ Returns the JSON report (`roving measure --json`) as a dict, every number equal 
 plus 'breached_gates' (the --fail-above gates breached: the command's exit status 3) and the
 per-sample columns of --samples-out as NumPy arrays owning the library's buffers (no copy): under
 'per_sample', or each direction's under --symmetric: positions and normals (K x 3), d (signed; 0 where
-hit is False), hit (bool), element (REF's face or vertex), weight (area), and where they apply
-hit_face, resolved_by (codes in roving.resolved_by), reference_colour, test_colour (K x 3, 8-bit code
-values) and delta_e (CIEDE2000).
+hit is False), hit (bool), element (REF's face or vertex), weight (area), test_point (K x 3: the
+point on TEST the distance was measured to; NaN for a no-hit, or a closest point whose face the
+method does not name), barycentric (K x 3: test_point's weights of hit_face's corners; NaN where
+there is no face), and where they apply hit_face (TEST's face at the hit), resolved_by (codes in
+roving.resolved_by), reference_colour, test_colour (K x 3, 8-bit code values) and delta_e (CIEDE2000).
 
 progress: a function progress(stage, what, done, total) called as the measurement goes (each stage,
   then at most ten times a second: e.g. 'measuring', 'cameras', 40960, 69451); what it raises stops

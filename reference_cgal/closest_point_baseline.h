@@ -18,7 +18,7 @@ class ClosestPointBaseline : public DistanceMethod {
 
   // Colour: where the nearest element is a face, that face (the colour rule then takes TEST's
   // colour at its nearest point, which is the one found); where it is a vertex, that vertex's
-  // colour by the rule (colour.h).
+  // colour by the rule (colour.h). Faces (hit_face) only where the nearest element is a face.
   DistanceResult measure(const SampleSet& samples, const DistanceOptions& options) override {
     if (!built_) throw Error(name() + ": measure() called before build()");
     validate_options(*this, options);
@@ -37,7 +37,7 @@ class ClosestPointBaseline : public DistanceMethod {
           if (by_vertex) vertex[k] = n.element;
           return std::optional<FaceHit>(FaceHit{signed_offset(x, samples.normals[k], n.point), n.element});
         },
-        progress_, options.colour && !by_vertex);
+        progress_, (options.colour || options.faces) && !nearest_is_a_vertex());
     if (by_vertex) {
       const std::vector<Colour> colours = vertex_colours_by_rule(*test_);
       result.hit_colour.resize(samples.size());

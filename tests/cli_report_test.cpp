@@ -25,6 +25,24 @@ struct Cubes {
   std::string pair = small + " " + large;
 };
 
+// The field of a CSV row under the header's column `name` (no quoting: the samples table has none).
+std::string csv_field(const std::string& header, const std::string& row, const std::string& name) {
+  const auto fields = [](const std::string& line) {
+    std::vector<std::string> out(1);
+    for (const char c : line) {
+      if (c == ',')
+        out.emplace_back();
+      else
+        out.back().push_back(c);
+    }
+    return out;
+  };
+  const std::vector<std::string> names = fields(header), values = fields(row);
+  const auto at = std::find(names.begin(), names.end(), name);
+  if (at == names.end() || names.size() != values.size()) return "(no column " + name + ")";
+  return values[at - names.begin()];
+}
+
 // Embree's closest point is computed in float: 0.05 to about 1e-7.
 constexpr double kFloatTolerance = 1e-6;
 
@@ -256,10 +274,24 @@ TEST(CliReport, SamplesTableNamesElementWeightAndResolution) {
   std::ifstream file(csv);
   std::string line;
   std::getline(file, line);
-  EXPECT_EQ(line, "x,y,z,nx,ny,nz,d,hit,element,weight,resolved_by");
+  EXPECT_EQ(line,
+            "x,y,z,nx,ny,nz,d,hit,element,weight,resolved_by,test_face,test_x,test_y,test_z,bary_0,bary_1,bary_2");
   std::getline(file, line);
   // Face 0 of the unit cube: a right triangle of legs 1, area 0.5; Embree resolves no "how".
-  EXPECT_NE(line.find(",1,0,0.5,"), std::string::npos) << line;
+  EXPECT_NE(line.find(",1,0,0.5,,"), std::string::npos) << line;
+  // Its centroid at z = -0.5, 0.05 out along its normal -z: the larger cube's face 0 at z = -0.55.
+  const std::string header = "x,y,z,nx,ny,nz,d,hit,element,weight,resolved_by,test_face,test_x,test_y,test_z,"
+                             "bary_0,bary_1,bary_2";
+  EXPECT_EQ(csv_field(header, line, "test_face"), "0");
+  EXPECT_NEAR(std::stod(csv_field(header, line, "test_x")), -1.0 / 6, 1e-15);
+  EXPECT_NEAR(std::stod(csv_field(header, line, "test_y")), -1.0 / 6, 1e-15);
+  EXPECT_NEAR(std::stod(csv_field(header, line, "test_z")), -0.55, 1e-15);
+  double weights = 0;
+  for (const char* w : {"bary_0", "bary_1", "bary_2"}) {
+    EXPECT_GE(std::stod(csv_field(header, line, w)), 0) << line;
+    weights += std::stod(csv_field(header, line, w));
+  }
+  EXPECT_NEAR(weights, 1, 1e-15);
 
   const std::string gl = cubes.folder.file("gl.csv");
   ASSERT_EQ(run_cli("measure " + cubes.pair + " --method roving --max-error 0.03 --samples-out " + gl).exit_code, 0);
@@ -541,7 +573,7 @@ TEST(CliReport, ColourHeatMapShowsEachSamplesDeltaE) {
     std::string header, row;
     std::getline(table, header);
     std::getline(table, row);
-    const double delta_e = std::stod(row.substr(row.rfind(',') + 1));
+    const double delta_e = std::stod(csv_field(header, row, "delta_e"));
     EXPECT_GT(delta_e, 1);
     const auto c = roving::sequential_colour(delta_e / 20);
     std::istringstream lines(text.substr(text.find("end_header\n") + 11));

@@ -288,7 +288,8 @@ MeasurePlan plan_measurement(const MeasureArguments& args) {
   if (!plan.thresholds.empty() && !plan.symmetric) {
     throw Error("--threshold: precision, recall and F-score need both directions; add --symmetric");
   }
-  plan.options.faces = plan.symmetric;
+  plan.correspondences = args.correspondences || !args.samples_csv_path.empty();
+  plan.options.faces = plan.symmetric || plan.correspondences;
   if (args.pcc_resolution &&
       !(*args.pcc_resolution > 0 && *args.pcc_resolution <= std::numeric_limits<float>::max())) {
     throw Error(fmt::format("--pcc-resolution: expected a peak > 0 (e.g. 1023 for 10-bit voxels), found {}",
@@ -521,6 +522,8 @@ void measure_models(const Model& a, const Model& b, MeasurePlan& plan, MeasureRe
       progress.stage(fmt::format("{}certified Hausdorff", d.label.empty() ? "" : d.label + ": "));
       d.hausdorff = certified_hausdorff(test_surface(*reference), test_mesh, report.hausdorff_bound);
     }
+    if (plan.correspondences)
+      d.correspondences = correspondences(d.samples, test_mesh, d.result, plan.options.semantics);
     if (plan.options.colour && d.result.hit_face.empty() && d.result.hit_colour.empty()) {
       if (&d == &report.directions.front())
         warn({fmt::format(
@@ -690,7 +693,8 @@ void write_measure_outputs(const MeasureArguments& args, const MeasureRun& run, 
     outputs.push_back(std::make_unique<AtomicFile>(args.samples_csv_path));
     for (const DirectionReport& d : report.directions) {
       write_samples_csv(outputs.back()->stream(), d.samples, d.result, d.label,
-                        &d == &report.directions.front(), d.colour_pairs ? &*d.colour_pairs : nullptr);
+                        &d == &report.directions.front(), d.colour_pairs ? &*d.colour_pairs : nullptr,
+                        d.correspondences ? &*d.correspondences : nullptr);
     }
     outputs.back()->close_stream();
   }

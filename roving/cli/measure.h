@@ -51,6 +51,9 @@ struct MeasureArguments {
   double dtu_density = 0.2, dtu_patch = 60, dtu_max_dist = 20;
   std::string protocol_seed = "1";  // or "none": the points' own order
   int protocol_runs = 5;
+  // Keep each sample's point on TEST and its barycentric coordinates (correspondence.h): Python's
+  // per_sample asks for them; --samples-out always writes them. No option of its own.
+  bool correspondences = false;
   std::string command_line;
 };
 
@@ -78,6 +81,7 @@ struct MeasurePlan {
   std::optional<double> pcc_resolution;          // --pcc-resolution
   std::optional<DtuPlan> dtu;                    // --protocol dtu
   bool protocol_only = false;                    // --protocol without --symmetric: its figures alone
+  bool correspondences = false;                  // each direction's Correspondences kept
 };
 
 // A bad option value or combination on the command line: the tool exits 2, as for a parse error.

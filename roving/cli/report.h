@@ -11,6 +11,7 @@
 #include "protocols.h"
 #include "roving/core/colour_statistics.h"
 #include "roving/core/confidence.h"
+#include "roving/core/correspondence.h"
 #include "roving/core/distance_method.h"
 #include "roving/core/statistics.h"
 #include "roving/gl_methods/image_based.h"
@@ -53,6 +54,8 @@ struct DirectionReport {
   // method reports the faces its hits lie on (README "Colour").
   std::optional<ColourPairs> colour_pairs;
   std::optional<ColourStatistics> colour;
+  // Each sample's point on TEST and its barycentric coordinates, where asked (per-sample outputs).
+  std::optional<Correspondences> correspondences;
 };
 
 // Metro's two-sided summary, over both directions' samples (closest-point semantics make the

@@ -12,12 +12,19 @@
 namespace roving {
 
 void write_samples_csv(std::FILE* out, const SampleSet& samples, const DistanceResult& result,
-                       const std::string& direction, bool header, const ColourPairs* colours) {
+                       const std::string& direction, bool header, const ColourPairs* colours,
+                       const Correspondences* correspondences) {
   if (header) {
-    fmt::print(out, "x,y,z,nx,ny,nz,d,hit,element,weight,resolved_by{}{}\n",
+    fmt::print(out, "x,y,z,nx,ny,nz,d,hit,element,weight,resolved_by{}{}{}\n",
                colours ? ",ref_r,ref_g,ref_b,test_r,test_g,test_b,delta_e" : "",
+               correspondences ? ",test_face,test_x,test_y,test_z,bary_0,bary_1,bary_2" : "",
                direction.empty() ? "" : ",direction");
   }
+  const bool faces = result.hit_face.size() == samples.size();
+  // A NaN coordinate (unknown) as an empty field.
+  const auto triple = [](const Vec3& v) {
+    return v.allFinite() ? fmt::format(",{},{},{}", v.x(), v.y(), v.z()) : std::string(",,,");
+  };
   const std::string last = direction.empty() ? "" : "," + direction;
   const auto resolved_by = [&](std::size_t k) -> const char* {
     if (!result.gl) return "";
@@ -44,8 +51,13 @@ void write_samples_csv(std::FILE* out, const SampleSet& samples, const DistanceR
                             ciede2000(srgb_to_lab(ref.cast<double>()), srgb_to_lab(test.cast<double>())))
               : ",,,,";
     }
-    fmt::print(out, "{},{},{},{},{},{},{},{},{},{},{}{}{}\n", p.x(), p.y(), p.z(), n.x(), n.y(), n.z(), d,
-               result.hit[k] ? 1 : 0, element, samples.weights[k], resolved_by(k), colour, last);
+    std::string on_test;
+    if (correspondences) {
+      on_test = faces && result.hit[k] ? fmt::format(",{}", result.hit_face[k]) : ",";
+      on_test += triple(correspondences->points[k]) + triple(correspondences->barycentric[k]);
+    }
+    fmt::print(out, "{},{},{},{},{},{},{},{},{},{},{}{}{}{}\n", p.x(), p.y(), p.z(), n.x(), n.y(), n.z(), d,
+               result.hit[k] ? 1 : 0, element, samples.weights[k], resolved_by(k), colour, on_test, last);
   }
 }
 

@@ -106,9 +106,40 @@ def test_per_sample_arrays_without_a_copy(tmp_path):
             assert float(row["d"]) == columns["d"][k]
         assert float(row["x"]) == columns["positions"][k, 0] and float(row["nz"]) == columns["normals"][k, 2]
         assert int(row["element"]) == columns["element"][k]
+        for axis, name in enumerate(("test_x", "test_y", "test_z")):
+            assert (float(row[name]) if row[name] else np.nan) == columns["test_point"][k, axis] or \
+                not columns["hit"][k]
+        if columns["hit"][k]:
+            assert int(row["test_face"]) == columns["hit_face"][k]
+            assert float(row["bary_1"]) == columns["barycentric"][k, 1]
     d = columns["d"]
     del result, columns
     assert d.sum() == d.sum()  # still valid once the result is gone
+
+
+def test_correspondences_lie_on_the_named_face():
+    lines = [line.split() for line in open(BUNNY) if line.startswith(("v ", "f "))]
+    vertices = np.array([[float(x) for x in l[1:4]] for l in lines if l[0] == "v"])
+    faces = np.array([[int(x.split("/")[0]) - 1 for x in l[1:4]] for l in lines if l[0] == "f"])
+    size = np.linalg.norm(vertices.max(axis=0) - vertices.min(axis=0))
+    noisy = vertices + np.random.default_rng(7).normal(scale=0.001 * size, size=vertices.shape)
+    for semantics in ("first-hit", "closest"):
+        result = roving.measure(BUNNY, (noisy, faces), samples="area:2000", semantics=semantics)
+        columns = result["per_sample"]
+        hit, point = columns["hit"], columns["test_point"]
+        # test_point at its barycentric coordinates of hit_face's corners.
+        on_face = np.einsum("kc,kcx->kx", columns["barycentric"], noisy[faces[columns["hit_face"]]])
+        assert np.abs(point - on_face)[hit].max() < 1e-12 * size
+        assert np.isnan(point[~hit]).all() and np.isnan(columns["barycentric"][~hit]).all()
+        if semantics == "first-hit":
+            # Where the normal line meets TEST: x + d n, to the rule's 1e-6 of the diagonal
+            # (normal_line.h), across the line and along it.
+            on_line = columns["positions"] + columns["d"][:, None] * columns["normals"]
+            assert np.linalg.norm(point - on_line, axis=1)[hit].max() <= 2e-6 * result["diagonal"]
+        else:
+            # The closest point: |d| from the sample.
+            gap = np.linalg.norm(point - columns["positions"], axis=1) - np.abs(columns["d"])
+            assert np.abs(gap).max() < 1e-12 * size
 
 
 def test_colour_and_gl_columns():
@@ -120,6 +151,9 @@ def test_colour_and_gl_columns():
     assert not np.isnan(columns["test_colour"][hit]).any() and np.isnan(columns["test_colour"][~hit]).all()
     assert set(np.unique(columns["resolved_by"])) <= {roving.resolved_by["camera"], roving.resolved_by["no-hit"]}
     assert (columns["delta_e"][hit] >= 0).all()
+    # A GL method knows where the line met TEST, x + d n, but not the face: no barycentrics.
+    on_line = columns["positions"] + columns["d"][:, None] * columns["normals"]
+    assert (columns["test_point"][hit] == on_line[hit]).all() and np.isnan(columns["barycentric"]).all()
 
 
 class MeshLike:
