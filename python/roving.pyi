@@ -102,4 +102,5 @@ def batch(
     protocol_seed: Optional[Union[int, str]] = ...,
     protocol_runs: Optional[int] = ...,
     quiet: bool = ...,
+    progress: Optional[Progress] = ...,
 ) -> int: ...

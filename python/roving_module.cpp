@@ -345,7 +345,9 @@ py::dict measure(const py::object& reference, const py::object& test, const py::
   return result;
 }
 
-int batch(const py::args& pairs, const py::kwargs& options) {
+int batch(const py::args& pairs, const py::kwargs& all_options) {
+  py::object callback = py::none();
+  const py::kwargs options = without_progress(all_options, callback);
   const std::unique_ptr<CommandLine> line = make_command_line();
   std::vector<std::string> arguments = {"batch"};
   for (const py::handle pair : pairs)
@@ -357,8 +359,9 @@ int batch(const py::args& pairs, const py::kwargs& options) {
   line->batch_args.defaults.command_line = "roving.batch";
   references_may_leave_folder(line->trust_references);
   std::string stage = "starting";
+  const InterruptScope interrupt;
   py::gil_scoped_release release;
-  return run_batch(line->batch_args, stage);
+  return run_batch(line->batch_args, stage, listener(callback));
 }
 
 }  // namespace
@@ -416,6 +419,11 @@ Example:
 the command as a keyword argument (out='results', shard='0/4', html=True, merge=True, and the options of
 roving.measure). Writes the per-pair reports and out/summary.csv as the command does and returns its
 exit status: 0, or 4 when some pair failed (recorded in the summary with its error).
+
+progress: as roving.measure's, with a stage per pair ('pair 2/40: a.ply vs b.ply, about 30 s
+  left') before that pair's own. What it raises, and Ctrl-C (KeyboardInterrupt), stops the batch
+  at once and is raised: the pairs done keep their reports, the pair under way leaves nothing, and
+  running the same batch again measures only what is left.
 
 Example:
     >>> roving.batch("pairs.csv", out="batch-results", method="embree")

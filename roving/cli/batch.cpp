@@ -434,7 +434,7 @@ const Model& cached_model(LoadedModel& cache, const std::string& path, const std
 
 }  // namespace
 
-int run_batch(const BatchArguments& args, std::string& stage) {
+int run_batch(const BatchArguments& args, std::string& stage, const Progress::Listener& listener) {
   if (args.merge_only) {
     const auto [ok, failed] = merge(args.out, args.html);
     std::printf("batch: %s/summary.csv: %zu pairs measured, %zu failed\n", args.out.c_str(), ok, failed);
@@ -472,6 +472,7 @@ int run_batch(const BatchArguments& args, std::string& stage) {
   }
 
   Progress progress(args.defaults.quiet);
+  if (listener) progress.listen(listener);
   const Stopwatch watch;
   std::map<std::string, std::string> hashes;  // path -> sha256
   const auto sha256 = [&](const std::string& path) {
@@ -558,6 +559,7 @@ int run_batch(const BatchArguments& args, std::string& stage) {
       fs::remove(failed_path);
       ++measured;
     } catch (const std::exception& e) {
+      if (progress.stopped()) throw;  // the caller stopped the batch (Python: Ctrl-C, its callback)
       // Recorded, and tried again by the next run; the batch goes on.
       batch["status"] = "failed";
       batch["error"] = e.what();

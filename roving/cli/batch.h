@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "measure.h"
+#include "progress.h"
 
 namespace roving {
 
@@ -28,6 +29,9 @@ struct BatchArguments {
   MeasureArguments defaults;  // options for every pair, overridden by the manifest's columns
 };
 
-int run_batch(const BatchArguments& args, std::string& stage);
+// Measures every pair (or the shard's) into args.out; returns the exit code. `listener` hears the
+// progress (the Python module's callback and Ctrl-C); where it throws, the batch stops there and
+// rethrows, the pairs done kept and the one under way leaving nothing.
+int run_batch(const BatchArguments& args, std::string& stage, const Progress::Listener& listener = {});
 
 }  // namespace roving

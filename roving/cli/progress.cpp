@@ -16,7 +16,7 @@ void Progress::stage(const std::string& text) {
   const std::lock_guard<std::mutex> lock(mutex_);
   stage_ = text;
   if (enabled_) draw(stage_ + " ...");
-  if (listener_) listener_(stage_, "", 0, 0);
+  if (listener_) hear("", 0, 0);
 }
 
 void Progress::update(const char* what, std::size_t done, std::size_t total) {
@@ -32,7 +32,16 @@ void Progress::update(const char* what, std::size_t done, std::size_t total) {
     const double percent = total ? 100.0 * done / total : 100.0;
     draw(fmt::format("{}: {} {}/{} ({:.0f}%)", stage_, what, done, total, percent));
   }
-  if (listener_ && due(last_heard_)) listener_(stage_, what, done, total);
+  if (listener_ && due(last_heard_)) hear(what, done, total);
+}
+
+void Progress::hear(const char* what, std::size_t done, std::size_t total) {
+  try {
+    listener_(stage_, what, done, total);
+  } catch (...) {
+    stopped_ = true;
+    throw;
+  }
 }
 
 ProgressFn Progress::callback() {

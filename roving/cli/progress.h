@@ -4,6 +4,7 @@
 // it either way.
 #pragma once
 
+#include <atomic>
 #include <chrono>
 #include <cstddef>
 #include <functional>
@@ -34,6 +35,9 @@ class Progress {
   using Listener =
       std::function<void(const std::string& stage, const char* what, std::size_t done, std::size_t total)>;
   void listen(Listener listener) { listener_ = std::move(listener); }
+  // Whether the listener has thrown: the run is being stopped, not one of its parts failing (a
+  // batch goes on past a failed pair, never past this).
+  bool stopped() const { return stopped_; }
 
  private:
   void draw(const std::string& line);
@@ -44,6 +48,9 @@ class Progress {
   std::size_t drawn_width_ = 0;
   std::chrono::steady_clock::time_point last_draw_{}, last_heard_{};
   Listener listener_;
+  std::atomic<bool> stopped_{false};
+
+  void hear(const char* what, std::size_t done, std::size_t total);
 };
 
 }  // namespace roving

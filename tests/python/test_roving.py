@@ -290,6 +290,48 @@ def test_ctrl_c_stops_a_long_measurement_and_writes_nothing(tmp_path):
     assert not list(tmp_path.iterdir())
 
 
+def test_batch_stops_at_once_and_resumes(tmp_path):
+    manifest = tmp_path / "pairs.csv"
+    manifest.write_text(f"reference,test\n{BUNNY},{FANDISK}\n{FANDISK},{BUNNY}\n{BUNNY},{BUNNY}\n")
+    out = tmp_path / "out"
+    heard = []
+
+    class Stop(Exception):
+        pass
+
+    def stop_in_the_second_pair(stage, what, done, total):
+        heard.append(stage)
+        if stage == "measuring" and any(s.startswith("pair 2/3") for s in heard):
+            raise Stop(stage)  # in the middle of the second pair
+
+    with pytest.raises(Stop):
+        roving.batch(str(manifest), out=str(out), samples="area:500", progress=stop_in_the_second_pair)
+    assert heard[0].startswith("pair 1/3: stanford-bunny.obj vs fandisk.obj")
+    reports = sorted(p.name for p in out.iterdir())
+    assert len(reports) == 1 and reports[0].startswith("000000-") and reports[0].endswith(".json"), reports
+    # Run again: the first pair is kept, the others measured.
+    assert roving.batch(str(manifest), out=str(out), samples="area:500") == 0
+    rows = list(csv.DictReader(open(out / "summary.csv")))
+    assert [row["status"] for row in rows] == ["ok"] * 3
+
+    # Ctrl-C in a child process: stops within seconds, KeyboardInterrupt, the pair under way
+    # leaving nothing.
+    slow = tmp_path / "slow.csv"
+    slow.write_text(f"reference,test\n{BUNNY},{BUNNY}\n")
+    script = (f"import roving\nprint('started', flush=True)\n"
+              f"roving.batch({str(slow)!r}, out={str(tmp_path / 'slow')!r}, method='roving', samples='area:3000000')\n")
+    child = subprocess.Popen([sys.executable, "-c", script], stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                             text=True, env=dict(os.environ))
+    assert child.stdout.readline().strip() == "started"
+    time.sleep(2)
+    sent = time.monotonic()
+    child.send_signal(signal.SIGINT)
+    _, stderr = child.communicate(timeout=60)
+    assert child.returncode != 0 and "KeyboardInterrupt" in stderr, stderr
+    assert time.monotonic() - sent < 5
+    assert not [p for p in (tmp_path / "slow").iterdir() if p.name != "summary.csv"]
+
+
 def test_type_stubs_name_exactly_the_commands_options():
     import ast
     stub = ast.parse(open(os.path.join(SOURCE, "python", "roving.pyi")).read())
@@ -301,7 +343,7 @@ def test_type_stubs_name_exactly_the_commands_options():
         return {o[2:].replace("-", "_") for o in re.findall(r"^\s+(--[a-z][a-z-]*)", text, re.M)} - {"help"}
 
     assert keywords["measure"] == options("measure") | {"progress"}
-    assert keywords["batch"] == options("batch")
+    assert keywords["batch"] == options("batch") | {"progress"}
 
 
 def square(x1, z=0.0, cells=20):
