@@ -49,19 +49,23 @@ std::string interval_text(const std::optional<Interval>& squared) {
                      psnr_text(geometry_psnr(squared->lower, kPeak)));
 }
 
-// D1 of A's surface against B's: area samples, closest points by Embree, the certified Hausdorff.
-SurfaceD1 surface_figure(const TriangleMesh& from, const TriangleMesh& to, std::size_t samples, double h,
+// D1 and D2 of A's surface against B's: area samples, closest points by Embree, the certified
+// Hausdorff.
+SurfaceFigures surface_figure(const TriangleMesh& from, const TriangleMesh& to, std::size_t samples, double h,
                          double hausdorff_gap) {
   SampleSpec spec;
   spec.kind = SampleSpec::Kind::Area;
   spec.count = samples;
   const SampleSet set = make_samples(from, spec);
   auto embree = make_method("embree");
-  const DistanceResult d = measure_distances(*embree, to, set, {Semantics::Closest, h});
+  DistanceOptions options{Semantics::Closest, h};
+  options.faces = true;
+  const DistanceResult d = measure_distances(*embree, to, set, options);
   const Statistics statistics = compute_statistics(d.signed_distance, d.hit, set.weights, h);
   const SamplingIntervals intervals = sampling_intervals(d.signed_distance, d.hit, h);
   const HausdorffInterval hausdorff = certified_hausdorff(from, to, hausdorff_gap);
-  return surface_d1(statistics, &intervals, Interval{hausdorff.lower, hausdorff.upper});
+  return surface_figures(set, d, correspondences(set, to, d, Semantics::Closest), to, statistics, &intervals,
+                         Interval{hausdorff.lower, hausdorff.upper}, h);
 }
 
 }  // namespace
@@ -80,7 +84,8 @@ MpegStudy mpeg_study(const std::vector<std::pair<std::string, TriangleMesh>>& mo
       "certified Hausdorff PSNR interval.",
       samples);
   table.header = {"model",           "copy",        "triangles A / B",       "samples A / B", "sampled D1 PSNR",
-                  "sampled D2 PSNR", "surfaces' D1 PSNR [95%]", "sampled - surfaces' D1, dB", "sampled Hausdorff PSNR",
+                  "sampled D2 PSNR", "surfaces' D1 PSNR [95%]", "sampled - surfaces' D1, dB", "surfaces' D2 PSNR [95%]",
+                  "sampled Hausdorff PSNR",
                   "certified Hausdorff PSNR", "sampled, s", "surfaces, s"};
   for (const auto& [name, mesh] : models) {
     const Normalisation grid = normalisation_of(mesh, 1023.0);
@@ -105,22 +110,25 @@ MpegStudy mpeg_study(const std::vector<std::pair<std::string, TriangleMesh>>& mo
       both.extend(b.bounding_box().min);
       both.extend(b.bounding_box().max);
       const double h = 0.05 * both.diagonal(), gap = 1e-4 * both.diagonal();
-      const SurfaceD1 surfaces = worse(surface_figure(a, b, samples, h, gap), surface_figure(b, a, samples, h, gap));
+      const SurfaceFigures surfaces = worse(surface_figure(a, b, samples, h, gap), surface_figure(b, a, samples, h, gap));
       const double surface_seconds = watch.seconds();
 
       const MpegDirection w = sampled.symmetric();
-      const double sampled_d1 = geometry_psnr(w.d1_mse, kPeak), surface_d1_psnr = geometry_psnr(surfaces.mse, kPeak);
+      const double sampled_d1 = geometry_psnr(w.d1_mse, kPeak), surface_d1_psnr = geometry_psnr(surfaces.d1_mse, kPeak);
       table.rows.push_back({name, copy, fmt::format("{} / {}", a.triangle_count(), b.triangle_count()),
                             fmt::format("{} / {}", a_points.size(), b_points.size()), psnr_text(sampled_d1),
                             psnr_text(geometry_psnr(w.d2_mse, kPeak)),
-                            psnr_text(surface_d1_psnr) + " " + interval_text(surfaces.mse_interval),
+                            psnr_text(surface_d1_psnr) + " " + interval_text(surfaces.d1_mse_interval),
                             fmt::format("{:+.2f}", sampled_d1 - surface_d1_psnr),
+                            psnr_text(geometry_psnr(surfaces.d2_mse, kPeak)) + " " +
+                                interval_text(surfaces.d2_mse_interval),
                             psnr_text(geometry_psnr(w.d1_hausdorff, kPeak)), interval_text(surfaces.hausdorff),
                             fmt::format("{:.2f}", sampled_seconds), fmt::format("{:.2f}", surface_seconds)});
       const std::string key = fmt::format("mpeg/{}/{}/embree/", name, copy);
       study.figures[key + "sampled_d1_psnr"] = sampled_d1;
       study.figures[key + "sampled_d2_psnr"] = geometry_psnr(w.d2_mse, kPeak);
       study.figures[key + "surface_d1_psnr"] = surface_d1_psnr;
+      study.figures[key + "surface_d2_psnr"] = geometry_psnr(surfaces.d2_mse, kPeak);
     }
   }
   study.notes =
@@ -131,8 +139,9 @@ MpegStudy mpeg_study(const std::vector<std::pair<std::string, TriangleMesh>>& mo
       "copy's triangles are large, because mmetric samples each triangle at most two subdivisions deep: a "
       "decimated copy (what a base mesh is) is sampled coarsely, and its sampled D1 says "
       "more about its triangles' size than about how far it lies from the original. D2 measures along the other "
-      "sample's normal, which removes most of the spacing on flat and smooth parts; it comes closer to the "
-      "surfaces' D1 but is a different quantity. The sampled Hausdorff PSNR is the farthest sample from the "
+      "sample's normal, which removes most of the spacing on flat and smooth parts: read it beside the surfaces' "
+      "own D2 (the closest distance's component along the other surface's normal there; equal to the surfaces' "
+      "D1 wherever the closest point lies inside a face, smaller where it lies on an edge or a corner). The sampled Hausdorff PSNR is the farthest sample from the "
       "other's samples: it can lie above the certified interval (the samples missed the farthest point of the "
       "surface) or below it (spacing added to it). Figures of two codecs at one sampling compare; figures across "
       "sampling densities, or against a figure computed another way, do not. The surfaces' D1, with its "

@@ -162,18 +162,19 @@ TEST(MmetricGolden, MeshesSampledAsMmetricSamplesThem) {
   EXPECT_EQ(ours["computed_as"].get<std::string>().rfind("mmetric", 0), 0u);
 }
 
-// Beside mmetric's sampled figures, D1 of the surfaces themselves. Two parallel squares t apart,
+// Beside mmetric's sampled figures, D1 and D2 of the surfaces themselves. Two parallel squares t apart,
 // side 100 in 10 x 10 cells: every point of each has its closest point straight across, so the
 // surfaces' D1 MSE is t^2 exactly (area samples give it with a zero-width interval), and the
 // certified Hausdorff interval holds t^2. The sampled figure is no smaller (a point's nearest
 // sample is never nearer than the surface it lies on).
-TEST(MmetricGolden, SurfacesOwnD1BesideTheSampledOne) {
+TEST(MmetricGolden, SurfacesOwnD1AndD2BesideTheSampledOnes) {
   const testing::cli::fs::path folder = testing::cli::fs::temp_directory_path() / "roving-mpeg-planes";
   testing::cli::fs::create_directories(folder);
-  const auto square = [&](const std::string& name, double z) {
+  // A rectangle [0, width] x [0, 100] at height z in 10 x 10 cells.
+  const auto square = [&](const std::string& name, double z, double width = 100) {
     std::ofstream obj(folder / name);
     for (int j = 0; j <= 10; ++j)
-      for (int i = 0; i <= 10; ++i) obj << "v " << 10 * i << " " << 10 * j << " " << z << "\n";
+      for (int i = 0; i <= 10; ++i) obj << "v " << width / 10 * i << " " << 10 * j << " " << z << "\n";
     for (int j = 0; j < 10; ++j) {
       for (int i = 0; i < 10; ++i) {
         const int a = j * 11 + i + 1;
@@ -195,6 +196,34 @@ TEST(MmetricGolden, SurfacesOwnD1BesideTheSampledOne) {
   EXPECT_GE(exact["d1_hausdorff_certified"][1].get<double>(), t * t - 1e-9);
   EXPECT_GE(mpeg["symmetric"]["d1_mse"].get<double>(), t * t - 1e-9);
   EXPECT_EQ(exact["no_hits"], 0);
+  // Straight across, the distance is all along the normal: D2 = D1.
+  EXPECT_NEAR(exact["d2_mse"].get<double>(), t * t, 1e-9);
+  EXPECT_NEAR(exact["d2_mse_interval"][1].get<double>(), t * t, 1e-9);
+
+  // B half as wide: A's points beyond x = 50 have their closest point on B's edge, at squared
+  // distance t^2 + (x - 50)^2, but only t of it lies along B's normal. So A -> B's D2 is t^2 at
+  // every sample (a zero-width interval) while its D1 is t^2 + the mean of (x - 50)^2 over half
+  // of A, 50^2 / 3 / 2 = 416.67 (its 95% interval must hold that); B -> A is t^2 both ways.
+  const std::string half = square("half.obj", t, 50);
+  const CliRun edge = run_cli("measure " + a + " " + half + " --pcc --samples area:20000 --json -");
+  ASSERT_EQ(edge.exit_code, 0) << edge.err;
+  const nlohmann::json surfaces = nlohmann::json::parse(edge.out)["mpeg_pcc"]["exact_surface"];
+  const nlohmann::json ab = surfaces["a_to_b"], ba = surfaces["b_to_a"];
+  EXPECT_NEAR(ab["d2_mse"].get<double>(), t * t, 1e-9);
+  EXPECT_NEAR(ab["d2_mse_interval"][0].get<double>(), t * t, 1e-9);
+  EXPECT_NEAR(ab["d2_mse_interval"][1].get<double>(), t * t, 1e-9);
+  const double d1 = t * t + 2500.0 / 6;
+  EXPECT_LE(ab["d1_mse_interval"][0].get<double>(), d1);
+  EXPECT_GE(ab["d1_mse_interval"][1].get<double>(), d1);
+  EXPECT_NEAR(ba["d1_mse"].get<double>(), t * t, 1e-9);
+  EXPECT_NEAR(ba["d2_mse"].get<double>(), t * t, 1e-9);
+  EXPECT_NEAR(surfaces["symmetric"]["d2_mse"].get<double>(), t * t, 1e-9);
+  EXPECT_EQ(surfaces["symmetric"]["d1_mse"], ab["d1_mse"]);
+  // A floor on it: its zero-width interval decides the same either way.
+  const double d2_psnr = surfaces["symmetric"]["d2_psnr"].get<double>();
+  const std::string gate = "measure " + a + " " + half + " --pcc --samples area:20000 --gate-on upper --fail-below ";
+  EXPECT_EQ(run_cli(gate + fmt::format("mpeg_surface_d2_psnr={}", d2_psnr - 0.01)).exit_code, 0);
+  EXPECT_EQ(run_cli(gate + fmt::format("mpeg_surface_d2_psnr={}", d2_psnr + 0.01)).exit_code, 3);
   testing::cli::fs::remove_all(folder);
 }
 

@@ -24,7 +24,7 @@ std::vector<std::string> gate_metrics(bool symmetric) {
 }
 
 std::vector<std::string> floor_metrics() {
-  return {"mpeg_d1_psnr", "mpeg_d2_psnr", "mpeg_y_psnr", "mpeg_surface_d1_psnr"};
+  return {"mpeg_d1_psnr", "mpeg_d2_psnr", "mpeg_y_psnr", "mpeg_surface_d1_psnr", "mpeg_surface_d2_psnr"};
 }
 
 Gate parse_gate(const std::string& text, bool symmetric, bool floor) {
@@ -77,7 +77,7 @@ void require_gate_values(const std::vector<Gate>& gates, const std::vector<Metri
       throw Error(fmt::format(
           "{} {}: nothing measured gives '{}' ({})", gate.option(), gate.text, gate.metric,
           gate.floor ? "MPEG's figures need two point clouds, or --pcc; D2 normals on A; Y colour on both; the "
-                       "surfaces' D1 two meshes under --pcc"
+                       "surfaces' D1 and D2 two meshes under --pcc"
                      : "colour figures need vertex colours on both meshes and --method embree or cgal"));
     }
   }

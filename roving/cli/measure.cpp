@@ -116,13 +116,18 @@ std::vector<MetricValue> gate_values(const MeasureReport& report) {
     if (f.d2) values.push_back({"mpeg_d2_psnr", "", geometry_psnr(worse_direction.d2_mse, f.peak), 0});
     if (f.colour) values.push_back({"mpeg_y_psnr", "", colour_psnr(worse_direction.ycbcr_mse[0], 1), 0});
     if (report.mpeg->surface) {
-      const SurfaceD1 both = worse((*report.mpeg->surface)[0], (*report.mpeg->surface)[1]);
-      MetricValue v{"mpeg_surface_d1_psnr", "", geometry_psnr(both.mse, f.peak), 0};
-      if (both.mse_interval) {
-        v.low = geometry_psnr(both.mse_interval->upper, f.peak);
-        v.high = geometry_psnr(both.mse_interval->lower, f.peak);
-      }
-      values.push_back(v);
+      const SurfaceFigures both = worse((*report.mpeg->surface)[0], (*report.mpeg->surface)[1]);
+      const auto psnr = [&](const char* name, double mse, const std::optional<Interval>& interval) {
+        if (std::isnan(mse)) return;  // D2 without faces (a nearest-vertex method)
+        MetricValue v{name, "", geometry_psnr(mse, f.peak), 0};
+        if (interval) {
+          v.low = geometry_psnr(interval->upper, f.peak);
+          v.high = geometry_psnr(interval->lower, f.peak);
+        }
+        values.push_back(v);
+      };
+      psnr("mpeg_surface_d1_psnr", both.d1_mse, both.d1_mse_interval);
+      psnr("mpeg_surface_d2_psnr", both.d2_mse, both.d2_mse_interval);
     }
   }
   if (report.symmetric()) {
@@ -288,7 +293,8 @@ MeasurePlan plan_measurement(const MeasureArguments& args) {
   if (!plan.thresholds.empty() && !plan.symmetric) {
     throw Error("--threshold: precision, recall and F-score need both directions; add --symmetric");
   }
-  plan.correspondences = args.correspondences || !args.samples_csv_path.empty();
+  // Python's per_sample and --samples-out show them; --pcc's surface D2 is computed from them.
+  plan.correspondences = args.correspondences || !args.samples_csv_path.empty() || args.pcc;
   plan.options.faces = plan.symmetric || plan.correspondences;
   if (args.pcc_resolution &&
       !(*args.pcc_resolution > 0 && *args.pcc_resolution <= std::numeric_limits<float>::max())) {
@@ -556,12 +562,13 @@ void measure_models(const Model& a, const Model& b, MeasurePlan& plan, MeasureRe
     report.mpeg = mpeg_report(a, b, plan.pcc_resolution);
     // Two meshes measured both ways with closest semantics: D1 of the surfaces themselves.
     if (plan.pcc_only && report.symmetric()) {
-      std::array<SurfaceD1, 2> exact;
+      std::array<SurfaceFigures, 2> exact;
       for (int i = 0; i < 2; ++i) {
         const DirectionReport& d = report.directions[i];
         std::optional<Interval> hausdorff;
         if (d.hausdorff) hausdorff = Interval{d.hausdorff->lower, d.hausdorff->upper};
-        exact[i] = surface_d1(d.statistics, d.intervals ? &*d.intervals : nullptr, hausdorff);
+        exact[i] = surface_figures(d.samples, d.result, *d.correspondences, test_surface(*d.test), d.statistics,
+                                   d.intervals ? &*d.intervals : nullptr, hausdorff, report.max_error);
       }
       report.mpeg->surface = exact;
     }

@@ -590,9 +590,9 @@ nlohmann::json mpeg_direction_json(const MpegDirection& d, const MpegFigures& f)
   return json;
 }
 
-// The surfaces' own D1 in one direction (or the worse), its PSNRs at `peak`; an interval is
-// [lower, upper], null where there is none.
-nlohmann::json surface_d1_json(const SurfaceD1& d, double peak) {
+// The surfaces' own D1 and D2 in one direction (or the worse), their PSNRs at `peak`; an interval
+// is [lower, upper], null where there is none.
+nlohmann::json surface_json(const SurfaceFigures& d, double peak) {
   const auto interval = [](const std::optional<Interval>& i) {
     return i ? nlohmann::json::array({i->lower, i->upper}) : nlohmann::json(nullptr);
   };
@@ -602,10 +602,14 @@ nlohmann::json surface_d1_json(const SurfaceD1& d, double peak) {
   };
   return {{"samples", d.samples},
           {"no_hits", d.no_hits},
-          {"d1_mse", d.mse},
-          {"d1_mse_interval", interval(d.mse_interval)},
-          {"d1_psnr", psnr_json(geometry_psnr(d.mse, peak))},
-          {"d1_psnr_interval", psnr_interval(d.mse_interval)},
+          {"d1_mse", d.d1_mse},
+          {"d1_mse_interval", interval(d.d1_mse_interval)},
+          {"d1_psnr", psnr_json(geometry_psnr(d.d1_mse, peak))},
+          {"d1_psnr_interval", psnr_interval(d.d1_mse_interval)},
+          {"d2_mse", std::isnan(d.d2_mse) ? nlohmann::json(nullptr) : nlohmann::json(d.d2_mse)},
+          {"d2_mse_interval", interval(d.d2_mse_interval)},
+          {"d2_psnr", psnr_json(geometry_psnr(d.d2_mse, peak))},
+          {"d2_psnr_interval", psnr_interval(d.d2_mse_interval)},
           {"d1_hausdorff_certified", interval(d.hausdorff)},
           {"d1_hausdorff_psnr_interval", psnr_interval(d.hausdorff)}};
 }
@@ -637,13 +641,14 @@ nlohmann::json mpeg_json(const MpegReport& m) {
     const auto& [ab, ba] = *m.surface;
     json["exact_surface"] = {
         {"definition",
-         "D1 of the surfaces themselves: every point of one surface against the other surface, the "
+         "D1 and D2 of the surfaces themselves: every point of one surface against the other surface; D1 the "
          "area-weighted mean squared closest distance (the directions' closest-point measurement; a no-hit "
-         "counts at h), with its 95% interval for area:N samples, and the certified Hausdorff interval "
-         "squared; PSNRs at the same peak"},
-        {"a_to_b", surface_d1_json(ab, f.peak)},
-        {"b_to_a", surface_d1_json(ba, f.peak)},
-        {"symmetric", surface_d1_json(worse(ab, ba), f.peak)}};
+         "counts at h), D2 the same of its component along the other surface's normal at the closest point "
+         "(null where the method names no face), each with its 95% interval for area:N samples, and the "
+         "certified Hausdorff interval squared (bounding D2's largest value too); PSNRs at the same peak"},
+        {"a_to_b", surface_json(ab, f.peak)},
+        {"b_to_a", surface_json(ba, f.peak)},
+        {"symmetric", surface_json(worse(ab, ba), f.peak)}};
   }
   return json;
 }
@@ -687,23 +692,29 @@ std::string mpeg_lines(const MpegReport& m) {
   if (!f.d2) out += "  no D2: A has no normals in its file (pc_error takes D2's normals from A alone)\n";
   if (m.surface) {
     const auto& [ab, ba] = *m.surface;
-    const SurfaceD1 both = worse(ab, ba);
+    const SurfaceFigures both = worse(ab, ba);
     const auto psnr = [&](double mse) {
       const double v = geometry_psnr(mse, f.peak);
       return std::isfinite(v) ? fmt::format("{:.4f}", v) : std::string("inf");
     };
-    const auto cell = [&](const SurfaceD1& d, bool hausdorff) {
-      if (hausdorff) return d.hausdorff ? fmt::format("[{}, {}]", psnr(d.hausdorff->upper), psnr(d.hausdorff->lower))
-                                        : std::string("-");
-      return psnr(d.mse) + (d.mse_interval ? fmt::format(" [{}, {}]", psnr(d.mse_interval->upper),
-                                                         psnr(d.mse_interval->lower))
-                                           : std::string());
+    const auto cell = [&](double mse, const std::optional<Interval>& interval) {
+      if (std::isnan(mse)) return std::string("-");
+      return psnr(mse) + (interval ? fmt::format(" [{}, {}]", psnr(interval->upper), psnr(interval->lower))
+                                   : std::string());
+    };
+    const auto certified = [&](const SurfaceFigures& d) {
+      return d.hausdorff ? fmt::format("[{}, {}]", psnr(d.hausdorff->upper), psnr(d.hausdorff->lower))
+                         : std::string("-");
     };
     out += fmt::format("  {:<28} {:>28} {:>28} {:>28}\n", "the surfaces themselves", "A -> B", "B -> A", "symmetric");
-    out += fmt::format("  {:<28} {:>28} {:>28} {:>28}\n", "D1 PSNR, dB (95% interval)", cell(ab, false),
-                       cell(ba, false), cell(both, false));
-    out += fmt::format("  {:<28} {:>28} {:>28} {:>28}\n", "D1 Hausdorff PSNR, certified", cell(ab, true),
-                       cell(ba, true), cell(both, true));
+    out += fmt::format("  {:<28} {:>28} {:>28} {:>28}\n", "D1 PSNR, dB (95% interval)",
+                       cell(ab.d1_mse, ab.d1_mse_interval), cell(ba.d1_mse, ba.d1_mse_interval),
+                       cell(both.d1_mse, both.d1_mse_interval));
+    out += fmt::format("  {:<28} {:>28} {:>28} {:>28}\n", "D2 PSNR, dB (95% interval)",
+                       cell(ab.d2_mse, ab.d2_mse_interval), cell(ba.d2_mse, ba.d2_mse_interval),
+                       cell(both.d2_mse, both.d2_mse_interval));
+    out += fmt::format("  {:<28} {:>28} {:>28} {:>28}\n", "D1 Hausdorff PSNR, certified", certified(ab),
+                       certified(ba), certified(both));
     out += "  (every point of each surface against the other, closest point, area-weighted; the sampled figures "
            "above\n   measure samples against samples)\n";
   }

@@ -76,7 +76,7 @@ struct MpegReport {
   std::size_t points[2] = {0, 0};       // after pc_error's merging of points at one position
   double seconds = 0;
   // Two meshes under --pcc: D1 of the surfaces themselves, A -> B and B -> A (surface_psnr.h).
-  std::optional<std::array<SurfaceD1, 2>> surface;
+  std::optional<std::array<SurfaceFigures, 2>> surface;
 };
 
 struct MeasureReport {
