@@ -324,7 +324,7 @@ py::dict measure(const py::object& reference, const py::object& test, const py::
   {
     const InterruptScope interrupt;
     py::gil_scoped_release release;
-    Progress progress(args.quiet);
+    Progress progress(args.quiet, /*log_lines=*/false);
     progress.listen(listener(callback));
     run = measure_run(args, stage, progress, {}, std::move(a), std::move(b));
     write_measure_outputs(args, run, stage);

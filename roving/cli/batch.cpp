@@ -471,7 +471,7 @@ int run_batch(const BatchArguments& args, std::string& stage, const Progress::Li
     std::fprintf(stderr, "roving: removed %zu temporary file(s) an interrupted run left in %s\n", swept, args.out.c_str());
   }
 
-  Progress progress(args.defaults.quiet);
+  Progress progress(args.defaults.quiet, /*log_lines=*/!listener);  // Python hears it through its callback
   if (listener) progress.listen(listener);
   const Stopwatch watch;
   std::map<std::string, std::string> hashes;  // path -> sha256
