@@ -1,5 +1,6 @@
-// MATLAB .mat files (level 5 and 7.3, as Debian's libmatio reads them): one real numeric or
-// logical array by name, as the DTU data set stores its observation masks and ground planes.
+// MATLAB .mat files (level 5: MATLAB's -v7 and -v6, read by Debian's libmatio once their structure is
+// checked here): one real numeric or logical array by name, as the DTU data set stores its observation
+// masks and ground planes. MATLAB 4 and 7.3 (HDF5) files are refused with a message.
 #pragma once
 
 #include <cstddef>
