@@ -79,9 +79,9 @@ MpegStudy mpeg_study(const std::vector<std::pair<std::string, TriangleMesh>>& mo
   table.settings = fmt::format(
       "Each model on a 10-bit grid (longest side 1023, coordinates rounded) against a codec-like copy; peak 1023 "
       "for every PSNR; the worse direction's figure. Sampled: mmetric 1.1.7 `compare --mode pcc` as roving "
-      "reproduces it (tests/mpeg_test.cpp holds it to mmetric's output). Surfaces: D1 of every point of one "
-      "surface against the other (Embree, closest point, {} area samples a direction, 95% interval) and the "
-      "certified Hausdorff PSNR interval.",
+      "reproduces it (tests/mpeg_test.cpp holds it to mmetric's output). Surfaces: D1 and D2 of every point of "
+      "one surface against the other (Embree, closest point, {} area samples a direction, 95% interval; D2 "
+      "along the other surface's normal at the closest point) and the certified Hausdorff PSNR interval.",
       samples);
   table.header = {"model",           "copy",        "triangles A / B",       "samples A / B", "sampled D1 PSNR",
                   "sampled D2 PSNR", "surfaces' D1 PSNR [95%]", "sampled - surfaces' D1, dB", "surfaces' D2 PSNR [95%]",

@@ -43,6 +43,13 @@ std::vector<std::vector<std::string>> read_csv(const std::string& path) {
   return rows;
 }
 
+// The index of the column `name` in a table's header row (a failure where there is none).
+std::size_t column_of(const std::vector<std::vector<std::string>>& rows, const std::string& name) {
+  const auto found = std::find(rows.at(0).begin(), rows[0].end(), name);
+  EXPECT_NE(found, rows[0].end()) << name;
+  return static_cast<std::size_t>(found - rows[0].begin());
+}
+
 // The summary without its timing column, which differs between runs.
 std::vector<std::vector<std::string>> summary_without_seconds(const std::string& folder) {
   auto rows = read_csv(folder + "/summary.csv");
@@ -62,9 +69,7 @@ TEST(CliBatch, EveryPairGetsAReportAndAFailureDoesNotStopTheOthers) {
   EXPECT_NE(run.out.find("4 measured, 0 already done, 1 failed"), std::string::npos) << run.out;
   const auto rows = read_csv(data.out("results") + "/summary.csv");
   ASSERT_EQ(rows.size(), 6u);  // header + 5 pairs in manifest order
-  const auto column = [&](const std::string& name) {
-    return std::find(rows[0].begin(), rows[0].end(), name) - rows[0].begin();
-  };
+  const auto column = [&](const std::string& name) { return column_of(rows, name); };
   for (int k = 1; k <= 4; ++k) {
     EXPECT_EQ(rows[k][column("index")], std::to_string(k - 1));
     EXPECT_EQ(rows[k][column("status")], "ok");
@@ -98,11 +103,7 @@ TEST(CliBatch, ImageBasedFiguresInTheSummaryAndTheKey) {
   EXPECT_EQ(run.exit_code, 4) << run.err;
   EXPECT_NE(run.out.find("4 measured, 0 already done"), std::string::npos) << run.out;
   const auto rows = read_csv(data.out("results") + "/summary.csv");
-  const auto column = [&](const std::string& name) {
-    const auto found = std::find(rows[0].begin(), rows[0].end(), name);
-    EXPECT_NE(found, rows[0].end()) << name;
-    return found - rows[0].begin();
-  };
+  const auto column = [&](const std::string& name) { return column_of(rows, name); };
   ASSERT_EQ(rows.size(), 6u);
   for (int k = 1; k <= 4; ++k) {
     // TEST a cube 0.01 k larger about the same centre: a depth difference, pixels only it covers.
@@ -122,11 +123,7 @@ TEST(CliBatch, ReconstructionFiguresInTheSummary) {
       run_cli("batch " + data.manifest + " --symmetric --threshold 0.015 --html --out " + data.out("results"));
   EXPECT_EQ(run.exit_code, 4) << run.err;
   const auto rows = read_csv(data.out("results") + "/summary.csv");
-  const auto column = [&](const std::string& name) {
-    const auto found = std::find(rows[0].begin(), rows[0].end(), name);
-    EXPECT_NE(found, rows[0].end()) << name;
-    return found - rows[0].begin();
-  };
+  const auto column = [&](const std::string& name) { return column_of(rows, name); };
   ASSERT_EQ(rows.size(), 6u);
   for (int k = 1; k <= 4; ++k) {
     // TEST a cube 0.01 k larger about the same centre: every point of REF is 0.01 k from TEST (its

@@ -22,8 +22,9 @@ struct Correspondences {
 
 // The correspondence of every sample by the colour rule (colour.h): with a face known, the point of
 // that face nearest correspondence_point(x, n, d), which is the closest point itself under closest
-// semantics and the normal line's crossing otherwise (to rounding: |point - (x + d n)| is a few ulps
-// of the coordinates). `test` is the mesh the distances were measured against.
+// semantics and the normal line's crossing otherwise (within the line rule's widening of the
+// triangles, 1e-6 of TEST's diagonal: normal_line.h). `test` is the mesh the distances were
+// measured against.
 Correspondences correspondences(const SampleSet& samples, const TriangleMesh& test, const DistanceResult& result,
                                 Semantics semantics);
 

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-
 #include <limits>
 
 namespace roving {
