@@ -12,7 +12,7 @@ colours and no normals (B) - a geometry codec's output, duplicates and ties incl
 not part of roving: build it from https://github.com/MPEGGroup/mpeg-pcc-dmetric (release-v0.14.2).
 
     python3 bench/pc_error_speed.py --roving build/roving/roving --pc-error /path/to/pc_error \\
-        --points 1000000 --runs 3 --out results
+        --points 1000000 10000000 --runs 3 --out results
 """
 import argparse
 import json
@@ -91,11 +91,54 @@ def pc_error_figures(output):
     return found
 
 
+def timed_section(args, count, folder):
+    """The answers checked, then the interleaved timings of one pair: a Markdown section."""
+    if not args.pair:
+        subprocess.run([sys.executable, __file__, "--make-pair", folder, "--points", str(count),
+                        "--roving", args.roving, "--pc-error", args.pc_error], check=True)
+    a, b = args.pair or (os.path.join(folder, f"torus-{count}-{x}.ply") for x in "ab")
+    report = os.path.join(folder, "report.json")
+    tools = {
+        "pc_error, 1 thread (its default)": [args.pc_error, f"--fileA={a}", f"--fileB={b}", "--color=1",
+                                             "--hausdorff=1", f"--resolution={args.resolution}"],
+        "pc_error --nbThreads=2": [args.pc_error, f"--fileA={a}", f"--fileB={b}", "--color=1", "--hausdorff=1",
+                                   f"--resolution={args.resolution}", "--nbThreads=2"],
+        "roving measure --pcc": [args.roving, "measure", a, b, "--pcc", "--pcc-resolution", args.resolution,
+                                 "--quiet", "--json", report],
+    }
+    # The answers first.
+    theirs = pc_error_figures(run(tools["pc_error, 1 thread (its default)"])[3])
+    run(tools["roving measure --pcc"])
+    ours = json.load(open(report))["mpeg_pcc"]
+    for key, value in theirs.items():
+        if abs(ours["symmetric"][key] - value) > 1e-6:
+            sys.exit(f"{key}: roving {ours['symmetric'][key]}, pc_error {value}")
+    times = {name: [] for name in tools}
+    for _ in range(args.runs):
+        for name, command in tools.items():
+            times[name].append(run(command)[:3])
+    points = ours["points_read"]
+    base = statistics.median(t[0] for t in times["pc_error, 1 thread (its default)"])
+    lines = [
+        f"## A {points[0]:,} points, B {points[1]:,}\n",
+        f"Every figure agreed within 1e-6 dB before timing (D1 {theirs.get('d1_psnr')}, D2 "
+        f"{theirs.get('d2_psnr')}, Y {theirs.get('y_psnr')} dB). Median of {args.runs} interleaved runs, from the "
+        "files to the figures.\n",
+        "| tool | wall, s | CPU, s | peak RSS, MiB | speed-up on pc_error's default |",
+        "|---|---|---|---|---|"]
+    for name, rows in times.items():
+        wall = statistics.median(r[0] for r in rows)
+        lines.append(f"| {name} | {wall:.2f} | {statistics.median(r[1] for r in rows):.2f} | "
+                     f"{statistics.median(r[2] for r in rows):.0f} | {base / wall:.2f}x |")
+    return "\n".join(lines) + "\n"
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--roving", required=True, help="the roving executable")
     parser.add_argument("--pc-error", required=True, help="MPEG's pc_error executable (mpeg-pcc-dmetric)")
-    parser.add_argument("--points", type=int, default=1000000, help="points of the generated pair")
+    parser.add_argument("--points", type=int, nargs="+", default=[1000000],
+                        help="points of each generated pair (one table per size)")
     parser.add_argument("--pair", nargs=2, help="A.ply B.ply instead of the generated pair")
     parser.add_argument("--resolution", default="2047", help="the PSNR peak given to both")
     parser.add_argument("--runs", type=int, default=3, help="timed runs of each (the median is reported)")
@@ -103,52 +146,20 @@ def main():
     parser.add_argument("--make-pair", help=argparse.SUPPRESS)  # FOLDER: make the pair there (a child process)
     args = parser.parse_args()
     if args.make_pair:
-        make_pair(args.points, args.make_pair)
+        make_pair(args.points[0], args.make_pair)
         return
-    with tempfile.TemporaryDirectory() as folder:
+    sections = []
+    for count in ([None] if args.pair else args.points):
         # Made in a child process: a child forked from a process holding the arrays would count
         # them in its peak RSS.
-        if not args.pair:
-            subprocess.run([sys.executable, __file__, "--make-pair", folder, "--points", str(args.points),
-                            "--roving", args.roving, "--pc-error", args.pc_error], check=True)
-        a, b = args.pair or (os.path.join(folder, f"torus-{args.points}-{x}.ply") for x in "ab")
-        report = os.path.join(folder, "report.json")
-        tools = {
-            "pc_error, 1 thread (its default)": [args.pc_error, f"--fileA={a}", f"--fileB={b}", "--color=1",
-                                                 "--hausdorff=1", f"--resolution={args.resolution}"],
-            "pc_error --nbThreads=2": [args.pc_error, f"--fileA={a}", f"--fileB={b}", "--color=1", "--hausdorff=1",
-                                       f"--resolution={args.resolution}", "--nbThreads=2"],
-            "roving measure --pcc": [args.roving, "measure", a, b, "--pcc", "--pcc-resolution", args.resolution,
-                                     "--quiet", "--json", report],
-        }
-        # The answers first.
-        theirs = pc_error_figures(run(tools["pc_error, 1 thread (its default)"])[3])
-        run(tools["roving measure --pcc"])
-        ours = json.load(open(report))["mpeg_pcc"]
-        for key, value in theirs.items():
-            if abs(ours["symmetric"][key] - value) > 1e-6:
-                sys.exit(f"{key}: roving {ours['symmetric'][key]}, pc_error {value}")
-        times = {name: [] for name in tools}
-        for _ in range(args.runs):
-            for name, command in tools.items():
-                times[name].append(run(command)[:3])
-        points = ours["points_read"]
-    base = statistics.median(t[0] for t in times["pc_error, 1 thread (its default)"])
-    lines = [
+        with tempfile.TemporaryDirectory() as folder:
+            sections.append(timed_section(args, count, folder))
+    pair = ("the given pair" if args.pair else
+            "a torus voxelised at 11 bits and its requantised copy; normals on A, colour on both")
+    text = "\n".join([
         "# MPEG's point-cloud figures: roving against pc_error\n",
         f"Written by `bench/pc_error_speed.py` on {platform.node()} ({os.cpu_count()} cores), "
-        f"{time.strftime('%Y-%m-%d')}: A {points[0]:,} points, B {points[1]:,} (a torus voxelised at 11 bits "
-        "and its requantised copy; normals on A, colour on both), peak "
-        f"{args.resolution}. Every figure agreed within 1e-6 dB before timing "
-        f"(D1 {theirs.get('d1_psnr')}, D2 {theirs.get('d2_psnr')}, Y {theirs.get('y_psnr')} dB). "
-        f"Median of {args.runs} interleaved runs, from the files to the figures.\n",
-        "| tool | wall, s | CPU, s | peak RSS, MiB | speed-up on pc_error's default |",
-        "|---|---|---|---|---|"]
-    for name, rows in times.items():
-        wall = statistics.median(r[0] for r in rows)
-        lines.append(f"| {name} | {wall:.2f} | {statistics.median(r[1] for r in rows):.2f} | "
-                     f"{statistics.median(r[2] for r in rows):.0f} | {base / wall:.2f}x |")
-    text = "\n".join(lines) + "\n"
+        f"{time.strftime('%Y-%m-%d')}: {pair}; peak {args.resolution}.\n"] + sections)
     print(text)
     if args.out:
         with open(os.path.join(args.out, "pc-error-speed.md"), "w") as f:
