@@ -1,5 +1,5 @@
 # Type stubs for the `roving` extension module (roving_module.cpp), for editors and type checkers.
-# Each keyword is an option of `roving measure` / `roving batch` (the option with _ for -); None
+# Each keyword is an option of `roving measure` / `roving merge` / `roving batch` (the option with _ for -); None
 # leaves it at the command's default. tests/python/test_roving.py checks that these keywords are
 # exactly the commands' options.
 from os import PathLike
@@ -55,6 +55,8 @@ def measure(
     fail_below: Optional[Union[str, Sequence[str]]] = ...,
     gate_on: Optional[str] = ...,
     json: Optional[str] = ...,
+    shard: Optional[str] = ...,
+    shard_out: Optional[str] = ...,
     samples_out: Optional[str] = ...,
     heatmap: Optional[str] = ...,
     heatmap_png: Optional[str] = ...,
@@ -62,6 +64,12 @@ def measure(
     heatmap_of: Optional[str] = ...,
     heatmap_range: Optional[str] = ...,
     progress: Optional[Progress] = ...,
+) -> Dict[str, Any]: ...
+
+def merge(
+    *parts: Union[str, "PathLike[str]"],
+    json: Optional[str] = ...,
+    quiet: bool = ...,
 ) -> Dict[str, Any]: ...
 
 def batch(

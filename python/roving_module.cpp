@@ -20,6 +20,7 @@
 #include "roving/cli/measure.h"
 #include "roving/core/colour_statistics.h"
 #include "roving/core/error.h"
+#include "roving/formats/atomic_file.h"
 #include "roving/formats/file_bytes.h"
 #include "roving/registry/method_registry.h"
 #include "roving/representations/model.h"
@@ -315,6 +316,9 @@ py::dict measure(const py::object& reference, const py::object& test, const py::
   args.command_line = "roving.measure(" + reference_path + ", " + test_path;
   for (std::size_t i = 3; i < arguments.size(); ++i) args.command_line += " " + arguments[i];
   args.command_line += ")";
+  if (!args.shard.empty() && !(reference_is_path && test_is_path)) {  // before converting the arrays
+    throw Error("--shard: the models must be files (a shard's part names them by path and hash for the merge)");
+  }
   std::unique_ptr<Model> a = reference_is_path ? nullptr : model_of(reference, "reference");
   std::unique_ptr<Model> b = test_is_path ? nullptr : model_of(test, "test");
   references_may_leave_folder(line->trust_references);
@@ -342,6 +346,36 @@ py::dict measure(const py::object& reference, const py::object& test, const py::
   } else if (!run.report.directions.empty()) {  // none with pcc=True: MPEG's figures alone
     result["per_sample"] = per_sample(run.report.directions.front());
   }
+  return result;
+}
+
+py::dict merge(const py::args& parts, const py::kwargs& options) {
+  const std::unique_ptr<CommandLine> line = make_command_line();
+  std::vector<std::string> arguments = {"merge"};
+  for (const py::handle part : parts)
+    arguments.push_back(py::str(py::module_::import("os").attr("fspath")(part)));
+  const std::vector<std::string> given = arguments_of(*line->merge, options, "roving.merge");
+  arguments.insert(arguments.end(), given.begin(), given.end());
+  const std::string error = parse_command_line(*line, arguments);
+  if (!error.empty()) throw Error(error);
+  const MergeArguments& args = line->merge_args;
+  std::string json, printed;
+  std::vector<std::string> breached;
+  {
+    py::gil_scoped_release release;
+    const MergedReport merged = merge_parts(args.parts, "roving.merge");
+    json = to_json(merged.report).dump();
+    if (!args.json_path.empty() && args.json_path != "-") {
+      AtomicFile file(args.json_path);
+      std::fputs((to_json(merged.report).dump(2) + "\n").c_str(), file.stream());
+      file.commit();
+    }
+    if (args.json_path == "-") printed = to_json(merged.report).dump(2);
+    breached = breached_gates(merged.plan.gates, gate_values(merged.report), merged.plan.gate_on);
+  }
+  if (!printed.empty()) py::print(printed);
+  py::dict result = parse_json(json);
+  result["breached_gates"] = breached;
   return result;
 }
 
@@ -413,6 +447,19 @@ Example:
     >>> r = roving.measure("ref.ply", "test.ply", method="cooperative", max_error="2%")
     >>> r["statistics"]["usiad"], r["per_sample"]["d"][r["per_sample"]["hit"]].max())doc");
 
+  m.def("merge", &merge, R"doc(merge(*parts, json=None, quiet=False) -> dict
+
+`roving merge PART...` from Python: the report one process gives, as a dict (as roving.measure's,
+with `breached_gates` for the gates the shards were given, and no per_sample arrays), from the parts
+of one pair's shards, each written by roving.measure(..., shard='I/N', shard_out='PART') or the
+command. json writes it to a file as the command's --json does.
+
+Example:
+    >>> for i in range(4):
+    ...     roving.measure("ref.ply", "test.ply", samples="area:1000000", shard=f"{i}/4", shard_out=f"p{i}.part")
+    >>> report = roving.merge(*[f"p{i}.part" for i in range(4)])
+    >>> report["statistics"]["usiad"]
+)doc");
   m.def("batch", &batch, R"doc(batch(*pairs, **options) -> int
 
 `roving batch PAIRS...` from Python: a manifest (.csv or .jsonl) or two folders, with every option of

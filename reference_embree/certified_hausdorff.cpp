@@ -135,28 +135,46 @@ void add_candidate(Piece& piece, std::uint32_t t) {
 }  // namespace
 
 HausdorffInterval certified_hausdorff(const TriangleMesh& a, const TriangleMesh& b, double max_gap) {
+  return certified_hausdorff(a, b, max_gap, 0, a.triangle_count());
+}
+
+HausdorffInterval certified_hausdorff(const TriangleMesh& a, const TriangleMesh& b, double max_gap,
+                                      std::size_t first, std::size_t last) {
   if (a.triangle_count() == 0 || b.triangle_count() == 0) {
     throw Error("certified Hausdorff distance: expected two meshes with triangles, found an empty one");
   }
   if (!(max_gap > 0) || !std::isfinite(max_gap)) {
     throw Error(fmt::format("--hausdorff-bound: expected a positive finite gap, found {}", max_gap));
   }
+  if (first > last || last > a.triangle_count()) {
+    throw Error(fmt::format("certified Hausdorff distance: triangles [{}, {}) are not within A's {}", first, last,
+                            a.triangle_count()));
+  }
   const Stopwatch watch;
   HausdorffInterval result;
   const ClosestPoints closest(b);
 
-  // Every vertex of A: its distance to B (a lower bound), its closest triangle (a candidate).
+  // Every vertex of A's triangles: its distance to B (a lower bound), its closest triangle (a candidate).
   const auto& positions = a.positions();
+  const auto& triangles = a.triangles();
+  std::vector<bool> used = a.vertex_referenced();
+  const bool whole = first == 0 && last == a.triangle_count();
+  if (!whole) {
+    used.assign(positions.size(), false);
+    for (std::size_t t = first; t < last; ++t) {
+      for (const int v : triangles[t]) used[v] = true;
+    }
+  }
   std::vector<ClosestPoints::Found> at_vertex(positions.size());
   tbb::parallel_for(std::size_t{0}, positions.size(), [&](std::size_t v) {
-    if (a.vertex_referenced()[v]) at_vertex[v] = closest.query(positions[v]);
+    if (used[v]) at_vertex[v] = closest.query(positions[v]);
   });
-  result.distance_queries = positions.size();
+  result.distance_queries = whole ? positions.size() : static_cast<std::size_t>(std::count(used.begin(), used.end(), true));
   const auto raise_lower = [&](const Vec3& x, const ClosestPoints::Found& f) {
     if (f.distance > result.lower) result.lower = f.distance, result.lower_point = x, result.lower_closest = f.point;
   };
   for (std::size_t v = 0; v < positions.size(); ++v) {
-    if (a.vertex_referenced()[v]) raise_lower(positions[v], at_vertex[v]);
+    if (used[v]) raise_lower(positions[v], at_vertex[v]);
   }
 
   std::vector<Piece> heap;
@@ -169,7 +187,8 @@ HausdorffInterval certified_hausdorff(const TriangleMesh& a, const TriangleMesh&
       std::push_heap(heap.begin(), heap.end());
     }
   };
-  for (const Triangle& t : a.triangles()) {
+  for (std::size_t k = first; k < last; ++k) {
+    const Triangle& t = triangles[k];
     Piece piece;
     for (int i = 0; i < 3; ++i) {
       piece.corner[i] = positions[t[i]];

@@ -3,7 +3,8 @@
 # munge) started as processes this script owns, configured for this machine's cores and memory, its
 # state in a temporary folder. Its shards.sh and merge.sh are submitted as written over a manifest
 # of 24 pairs with 4 array tasks and a dependent merge; then a task is cancelled mid-run with
-# scancel and submitted again; then GNU parallel's line. Each time: every pair's report present
+# scancel and submitted again; then GNU parallel's line; then one pair's samples in 4 shards
+# (pair-shards.sh, pair-merge.sh), merged to one process's report, also with a shard cancelled. Each time: every pair's report present
 # once, every task's exit code 0, and summary.csv equal to a one-process `roving batch` of the same
 # manifest (timings aside). Every daemon is stopped by pid and the state removed, also on failure.
 # As root; needs the build (scripts/build.sh).
@@ -186,3 +187,60 @@ cd "$work/run3"
 step "GNU parallel's line" bash -c "$(block sh 1)" >/dev/null
 check_folder "$work/run3/results" "$work/single" 24
 echo "test-slurm: GNU parallel's 8 shards + merge: summary.csv equal to one process's"
+
+# 4. One pair in 4 shards and the merge (pair-shards.sh, pair-merge.sh), equal to one process's
+# report; then again with task 1 cancelled mid-run: no part from it, a merge naming it missing,
+# and once it is resubmitted alone, the same report.
+# $1, $2: reports equal but for times and how they ran; their certified Hausdorff intervals (each
+# shard bounds its own triangles) overlap, each no wider than asked.
+same_report() {
+  /usr/bin/python3 - "$1" "$2" <<'PY' || fail "$2 differs from the one-process report $1"
+import json, sys
+incidental = {"seconds", "command_line", "tool", "merged_from", "hausdorff_certified"}
+def strip(x):
+    if isinstance(x, dict): return {k: strip(v) for k, v in x.items() if k not in incidental}
+    if isinstance(x, list): return [strip(v) for v in x]
+    return x
+reports = [json.load(open(p)) for p in sys.argv[1:]]
+one, merged = (strip(r) for r in reports)
+assert one == merged, [k for k in one if one[k] != merged.get(k)]
+a, b = (r["hausdorff_certified"] for r in reports)
+assert a["lower"] <= b["upper"] and b["lower"] <= a["upper"], (a, b)
+assert max(h["upper"] - h["lower"] for h in (a, b)) <= a["bound"], (a, b)
+PY
+}
+mkdir -p "$work/run4" && cd "$work/run4"
+ln -s "$work/models/bunny.ply" ref.ply
+ln -s "$work/models/${tests[0]}" test.ply
+block bash 2 > pair-shards.sh
+block bash 3 > pair-merge.sh
+export SAMPLES=area:20000000
+step "one pair in one process ($SAMPLES)" sh -c \
+  "roving measure ref.ply test.ply --samples $SAMPLES --semantics closest --json one.json --quiet >/dev/null"
+jobid=$(sbatch --parsable --array=0-3 pair-shards.sh)
+merge_id=$(sbatch --parsable --mem=1G --dependency=afterok:$jobid pair-merge.sh)
+step "one pair in 4 shards and the merge (jobs $jobid, $merge_id)" wait_jobs "$jobid,$merge_id" 300
+check_exit_codes "$jobid" 4
+check_exit_codes "$merge_id" 1
+same_report one.json report.json
+echo "test-slurm: one pair in 4 shards + merge: the one-process report"
+rm -rf parts report.json
+jobid=$(sbatch --parsable --array=0-3 pair-shards.sh)
+for i in $(seq 240); do
+  [ -n "$(squeue -h -t R -j "${jobid}_1" 2>/dev/null)" ] && break
+  sleep 0.5
+done
+sleep 1
+scancel "${jobid}_1"
+step "the pair's shards with task 1 cancelled (job $jobid)" wait_jobs "$jobid" 300
+[ ! -e parts/1.part ] || fail "the cancelled shard 1 left a part"
+[ -z "$(ls -A parts | grep '^\.')" ] || fail "temporary files left in parts/: $(ls -A parts)"
+roving merge parts/*.part --json report.json 2> merge.err && fail "the merge of 3 parts of 4 succeeded"
+grep -q "shard 1/4 missing" merge.err || fail "the merge did not name the missing shard: $(cat merge.err)"
+[ ! -e report.json ] || fail "a failed merge wrote report.json"
+again=$(sbatch --parsable --array=1 --export=ALL,SHARDS=4 pair-shards.sh)
+merge_id=$(sbatch --parsable --mem=1G --dependency=afterok:$again pair-merge.sh)
+step "shard 1 again and the merge (jobs $again, $merge_id)" wait_jobs "$again,$merge_id" 300
+check_exit_codes "$merge_id" 1
+same_report one.json report.json
+echo "test-slurm: shard 1 cancelled, resubmitted alone, merged: the one-process report"

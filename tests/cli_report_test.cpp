@@ -613,15 +613,7 @@ TEST(CliReport, JsonLayoutIsTheDocumentedOne) {
                                    "--dtu-obs-mask " + dtu + "ObsMask/ObsMask1_10.mat --dtu-plane " + dtu +
                                    "ObsMask/Plane1.mat --protocol-runs 2";
   std::set<std::string> written;
-  for (const std::string& arguments :
-       {coloured + " --symmetric", coloured + " --ibsm --ibsm-resolution 64", cubes.pair,
-        cubes.pair + " --symmetric", cubes.pair + " --semantics closest", cubes.pair + " --samples area:auto",
-        cubes.pair + " --symmetric --threshold 1%", cubes.pair + " --symmetric --threshold 1% --samples area:200",
-        cubes.pair + " --method cooperative --views 4x2 --resolution 64",
-        teapot + " " + teapot + " --samples area:100", points + " " + cubes.small,
-        cubes.small + " " + grid, grid + " " + grid + " --samples vertices", points + " " + grid + " --pcc",
-        coloured + " --pcc --samples area:500", dtu_protocol, dtu_protocol + " --symmetric"}) {
-    const CliRun run = run_cli("measure " + arguments + " --json -");
+  const auto check_layout = [&](const std::string& arguments, const CliRun& run) {
     ASSERT_EQ(run.exit_code, 0) << arguments << ": " << run.err;
     const auto json = nlohmann::json::parse(run.out);
     EXPECT_EQ(json["schema_version"], 2);
@@ -635,6 +627,25 @@ TEST(CliReport, JsonLayoutIsTheDocumentedOne) {
       EXPECT_TRUE(documented(one_sided, docs)) << arguments << ": '" << path << "' is not in docs/report-json.md";
       written.insert(one_sided);
     }
+  };
+  // A shard's report, and the merge of two.
+  std::string parts;
+  for (const char* shard : {"0/2", "1/2"}) {
+    const std::string part = cubes.folder.file(std::string("shard") + shard[0] + ".part");
+    const std::string arguments = "measure " + cubes.pair + " --shard " + shard + " --shard-out " + part + " --json -";
+    check_layout(arguments, run_cli(arguments));
+    parts += " " + part;
+  }
+  check_layout("merge" + parts, run_cli("merge" + parts + " --json -"));
+  for (const std::string& arguments :
+       {coloured + " --symmetric", coloured + " --ibsm --ibsm-resolution 64", cubes.pair,
+        cubes.pair + " --symmetric", cubes.pair + " --semantics closest", cubes.pair + " --samples area:auto",
+        cubes.pair + " --symmetric --threshold 1%", cubes.pair + " --symmetric --threshold 1% --samples area:200",
+        cubes.pair + " --method cooperative --views 4x2 --resolution 64",
+        teapot + " " + teapot + " --samples area:100", points + " " + cubes.small,
+        cubes.small + " " + grid, grid + " " + grid + " --samples vertices", points + " " + grid + " --pcc",
+        coloured + " --pcc --samples area:500", dtu_protocol, dtu_protocol + " --symmetric"}) {
+    check_layout(arguments, run_cli("measure " + arguments + " --json -"));
   }
   // And the document names nothing the tool no longer writes (voxels need a .binvox: not run here).
   for (const std::string& path : docs) {

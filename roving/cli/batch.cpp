@@ -17,6 +17,7 @@
 
 #include "html_output.h"
 #include "provenance.h"
+#include "shard.h"
 #include "roving/core/error.h"
 #include "roving/core/stopwatch.h"
 #include "roving/formats/atomic_file.h"
@@ -176,20 +177,6 @@ std::vector<Pair> pair_folders(const std::string& references, const std::string&
     pairs.push_back({pairs.size(), (fs::path(references) / name).string(), (fs::path(tests) / name).string(), {}});
   }
   return pairs;
-}
-
-// [first, last) of the I-th of N contiguous slices.
-std::pair<std::size_t, std::size_t> shard_range(const std::string& shard, std::size_t count) {
-  if (shard.empty()) return {0, count};
-  long long i = -1, n = 0;
-  const std::size_t slash = shard.find('/');
-  if (slash == std::string::npos || !parse_number(std::string_view(shard).substr(0, slash), i) ||
-      !parse_number(std::string_view(shard).substr(slash + 1), n) || n < 1 || i < 0 || i >= n) {
-    throw UsageError(fmt::format("--shard: expected I/N with 0 <= I < N (e.g. 0/4, as Slurm's "
-                            "$SLURM_ARRAY_TASK_ID/$SLURM_ARRAY_TASK_COUNT), found '{}'",
-                            shard));
-  }
-  return {count * i / n, count * (i + 1) / n};
 }
 
 MeasureArguments arguments_for(const Pair& pair, const MeasureArguments& defaults) {
@@ -454,7 +441,14 @@ int run_batch(const BatchArguments& args, std::string& stage, const Progress::Li
     throw UsageError("--protocol: not in batch (each scan has its own mask and plane files); run roving measure "
                      "per scan");
   }
-  const auto [first, last] = shard_range(args.shard, pairs.size());
+  const auto [first, last] = [&] {
+    try {
+      return args.shard.empty() ? std::pair<std::size_t, std::size_t>{0, pairs.size()}
+                                : parse_shard("--shard", args.shard).range(pairs.size());
+    } catch (const Error& e) {
+      throw UsageError(e.what());
+    }
+  }();
   plan_command_line(args.defaults);  // the command line's own options: a usage error (exit 2) if bad
   // Every pair's options are checked before any is measured: a typo fails the batch at once.
   std::vector<MeasureArguments> arguments;

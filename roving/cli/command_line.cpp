@@ -170,6 +170,28 @@ void add_measurement_options(CLI::App& app, MeasureArguments& args, bool& trust_
       "the report and the JSON); errors are always printed");
 }
 
+// The words of measure's command line that decide its figures: REF, TEST and each option given,
+// in the order declared, but those that only name outputs (or the shard).
+std::vector<std::string> figure_arguments(const CLI::App& measure) {
+  const std::vector<std::string> outputs = {"json", "samples-out", "heatmap", "heatmap-png",
+                                            "html", "quiet",       "shard",   "shard-out"};
+  std::vector<std::string> words;
+  for (const CLI::Option* option : measure.get_options()) {
+    if (option->count() == 0) continue;
+    if (option->get_lnames().empty()) {  // REF, TEST
+      words.insert(words.end(), option->results().begin(), option->results().end());
+      continue;
+    }
+    const std::string& name = option->get_lnames().front();
+    if (std::find(outputs.begin(), outputs.end(), name) != outputs.end()) continue;
+    for (const std::string& value : option->results()) {
+      words.push_back("--" + name);
+      if (option->get_type_size() != 0) words.push_back(value);
+    }
+  }
+  return words;
+}
+
 }  // namespace
 
 std::string nearest_name(const std::string& given, const std::vector<std::string>& candidates) {
@@ -229,6 +251,13 @@ std::unique_ptr<CommandLine> make_command_line() {
           "(area:N means, the certified Hausdorff distance): the figure, or its interval's upper end")
       ->capture_default_str();
   measure->add_option("--json", args.json_path, "write the report as JSON to FILE, or - for stdout");
+  measure->add_option(
+      "--shard", args.shard,
+      "I/N: measure only the I-th (0-based) of N contiguous slices of REF's samples (the same samples whatever "
+      "N), e.g. $SLURM_ARRAY_TASK_ID/$SLURM_ARRAY_TASK_COUNT, into --shard-out; roving merge gives the report "
+      "one process gives");
+  measure->add_option("--shard-out", args.shard_out,
+                      "with --shard: the part to write (17 bytes per sample and the models' description)");
   measure->add_option("--samples-out", args.samples_csv_path, "write one CSV row per sample");
   measure->add_option(
       "--heatmap", args.heatmap_path,
@@ -280,6 +309,15 @@ std::unique_ptr<CommandLine> make_command_line() {
       "(without it, a file with no partner of the same name is an error)");
   add_measurement_options(*batch, batch_args.defaults, trust_references);
 
+  MergeArguments& merge_args = line->merge_args;
+  CLI::App* merge = line->merge = app.add_subcommand(
+      "merge",
+      "merge the parts of one pair's shards (measure --shard I/N --shard-out PART) into the report one process "
+      "gives, with the shards' gates (exit as measure)");
+  merge->add_option("PARTS", merge_args.parts, "every part of the N shards, in any order")->required();
+  merge->add_option("--json", merge_args.json_path, "write the report as JSON to FILE, or - for stdout");
+  merge->add_flag("--quiet", merge_args.quiet, "no warnings on stderr");
+
   return line;
 }
 
@@ -287,6 +325,7 @@ std::string parse_command_line(CommandLine& line, std::vector<std::string> argum
   std::vector<std::string> reversed(arguments.rbegin(), arguments.rend());  // CLI11 takes them reversed
   try {
     line.app.parse(reversed);
+    if (line.measure->parsed()) line.args.figure_arguments = figure_arguments(*line.measure);
     return "";
   } catch (const CLI::CallForHelp&) {
     throw;

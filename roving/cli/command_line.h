@@ -10,6 +10,8 @@
 
 #include "batch.h"
 #include "measure.h"
+#include "merge.h"
+#include "merge.h"
 
 namespace roving {
 
@@ -17,8 +19,10 @@ struct CommandLine {
   CLI::App app;
   CLI::App* measure = nullptr;
   CLI::App* batch = nullptr;
+  CLI::App* merge = nullptr;
   MeasureArguments args;      // measure's
   BatchArguments batch_args;  // batch's
+  MergeArguments merge_args;  // merge's
   bool trust_references = false;
   bool version = false;
 };
@@ -27,7 +31,7 @@ struct CommandLine {
 // it was made).
 std::unique_ptr<CommandLine> make_command_line();
 
-// Parses `arguments` (argv without the program's name). Returns the one-line message of a parse
+// Parses `arguments` (argv without the program's name); for measure, fills args.figure_arguments. Returns the one-line message of a parse
 // error, naming the first unknown subcommand or option with the nearest known one ("did you
 // mean"), or CLI11's own message; empty on success. Lets CLI::CallForHelp and
 // CLI::CallForAllHelp through.

@@ -13,7 +13,9 @@ int main(int argc, char** argv) {
   roving::CommandLine& line = *made;
   const CLI::App* measure = line.measure;
   const CLI::App* batch = line.batch;
-  line.args.command_line = line.batch_args.defaults.command_line = roving::command_line(argc, argv);
+  const CLI::App* merge = line.merge;
+  line.args.command_line = line.batch_args.defaults.command_line = line.merge_args.command_line =
+      roving::command_line(argc, argv);
   std::string error;
   try {
     error = roving::parse_command_line(line, std::vector<std::string>(argv + 1, argv + argc));
@@ -21,8 +23,8 @@ int main(int argc, char** argv) {
       std::printf("%s\n", roving::version_line().c_str());
       return 0;
     }
-    if (error.empty() && !measure->parsed() && !batch->parsed())
-      error = "a subcommand (measure or batch) is required";
+    if (error.empty() && !measure->parsed() && !batch->parsed() && !merge->parsed())
+      error = "a subcommand (measure, batch or merge) is required";
   } catch (const CLI::CallForHelp& e) {
     return line.app.exit(e);
   } catch (const CLI::CallForAllHelp& e) {
@@ -30,7 +32,8 @@ int main(int argc, char** argv) {
   }
   if (!error.empty()) {
     const bool subcommand =
-        argc > 1 && (std::string(argv[1]) == "measure" || std::string(argv[1]) == "batch");
+        argc > 1 && (std::string(argv[1]) == "measure" || std::string(argv[1]) == "batch" ||
+                     std::string(argv[1]) == "merge");
     std::fprintf(stderr, "roving: error: %s (see roving %s--help)\n", error.c_str(),
                  subcommand ? (std::string(argv[1]) + " ").c_str() : "");
     return 2;
@@ -39,11 +42,12 @@ int main(int argc, char** argv) {
   roving::remove_temporaries_on_signals();  // SIGINT, SIGTERM: no temporary file left, exit 130 / 143
   std::string stage = "starting";           // what the run is doing, for the message when memory runs out
   try {
+    if (merge->parsed()) return roving::run_merge(line.merge_args, stage);
     return batch->parsed() ? roving::run_batch(line.batch_args, stage)
                            : roving::run_measure(line.args, stage);
   } catch (const roving::UsageError& e) {
     std::fprintf(stderr, "roving: error: %s (see roving %s --help)\n", e.what(),
-                 batch->parsed() ? "batch" : "measure");
+                 batch->parsed() ? "batch" : merge->parsed() ? "merge" : "measure");
     return 2;
   } catch (const std::bad_alloc&) {
     std::fprintf(stderr, "roving: error: out of memory while %s (available: %.3g GiB)\n", stage.c_str(),

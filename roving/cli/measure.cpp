@@ -12,10 +12,12 @@
 #include <future>
 #include <limits>
 #include <memory>
+#include <tuple>
 
 #include "checks.h"
 #include "gates.h"
 #include "html_output.h"
+#include "merge.h"
 #include "progress.h"
 #include "provenance.h"
 #include "report.h"
@@ -202,6 +204,40 @@ void plan_protocol(const MeasureArguments& args, MeasurePlan& plan) {
   }
 }
 
+// --shard and --shard-out: one slice of one direction's samples, by a method whose answer at a
+// sample is the sample's alone, with the figures a merge can rebuild from d, hit and the weights.
+void plan_shard(const MeasureArguments& args, MeasurePlan& plan) {
+  if (args.shard.empty()) {
+    if (!args.shard_out.empty()) throw Error("--shard-out: only with --shard I/N");
+    return;
+  }
+  plan.shard = parse_shard("--shard", args.shard);
+  if (args.shard_out.empty()) throw Error("--shard: needs --shard-out FILE, where the shard's part is written");
+  const std::pair<const char*, bool> refused[] = {
+      {"--symmetric", args.symmetric},
+      {"--pcc", args.pcc},
+      {"--protocol", !args.protocol.empty()},
+      {"--ibsm", args.ibsm},
+      {"--samples area:auto", plan.sample_spec.automatic},
+      {"--samples-out", !args.samples_csv_path.empty()},
+      {"--heatmap", !args.heatmap_path.empty()},
+      {"--heatmap-png", !args.heatmap_png_path.empty()},
+      {"--html", !args.html_path.empty()},
+  };
+  for (const auto& [option, given] : refused) {
+    if (given) {
+      throw Error(fmt::format("{}: not with --shard, whose part holds one direction's distance figures; measure "
+                              "without --shard for it (roving merge reports the shards' figures)",
+                              option));
+    }
+  }
+  if (is_gl_method(args.method)) {
+    throw Error(fmt::format("--shard: the GL method {} renders views of the whole pair; shard embree, cgal or a "
+                            "vertex baseline",
+                            args.method));
+  }
+}
+
 }  // namespace
 
 MeasurePlan plan_measurement(const MeasureArguments& args) {
@@ -323,6 +359,7 @@ MeasurePlan plan_measurement(const MeasureArguments& args) {
     }
   }
   plan_protocol(args, plan);
+  plan_shard(args, plan);
   return plan;
 }
 
@@ -376,6 +413,11 @@ void describe_pair(const Model& a, const Model& b, MeasurePlan& plan, MeasureRep
   report.method = plan.method->name();
   report.semantics = plan.options.semantics;
   plan.options.colour = has_colour(a) && has_colour(b);
+  if (plan.shard && plan.options.colour) {
+    throw Error(fmt::format("--shard: {} and {} have colour, whose figures a merge cannot rebuild yet; measure "
+                            "them without --shard",
+                            a.path(), b.path()));
+  }
   if (plan.heatmap_of == HeatmapQuantity::DeltaE && !plan.options.colour) {
     throw Error(fmt::format("--heatmap-of delta-e: needs colour on both models; {} has none",
                             has_colour(a) ? b.path() : a.path()));
@@ -482,6 +524,8 @@ void measure_models(const Model& a, const Model& b, MeasurePlan& plan, MeasureRe
     DirectionReport& d = report.directions.emplace_back();
     d.reference = reference;
     d.test = test;
+    d.reference_json = model_json(*reference);
+    d.test_json = model_json(*test);
     if (plan.symmetric) d.label = reference == &a ? "A -> B" : "B -> A";
     stage = fmt::format("sampling {} ({})", reference->path(), plan.sample_spec.to_string());
     progress.stage(fmt::format("{}sampling", d.label.empty() ? "" : d.label + ": "));
@@ -491,6 +535,9 @@ void measure_models(const Model& a, const Model& b, MeasurePlan& plan, MeasureRe
       spec.count = kAutoFirstSamples;
       d.auto_sampling.emplace();
     }
+    if (plan.shard && spec.kind == SampleSpec::Kind::Area) {  // a mesh draws only its slice
+      std::tie(spec.first, spec.last) = plan.shard->range(spec.count);
+    }
     // area:auto measures again with more samples until USiAD's interval is as narrow as asked.
     for (int round = 1;; ++round) {
       if (reference == &a && samples_of_a && !spec.automatic) {
@@ -499,6 +546,19 @@ void measure_models(const Model& a, const Model& b, MeasurePlan& plan, MeasureRe
         d.samples = reference_samples_releasing(*releasable_a, spec);
       } else {
         d.samples = reference_samples(*reference, spec);
+      }
+      if (plan.shard) {  // this shard's slice of the pair's samples: the same samples whatever N
+        const std::size_t total = spec.kind == SampleSpec::Kind::Area ? spec.count : d.samples.size();
+        const auto [first, last] = plan.shard->range(total);
+        const std::size_t triangles = test_surface(*reference).triangle_count();
+        const auto [hausdorff_first, hausdorff_last] = plan.shard->range(triangles);
+        report.shard = ShardSlice{*plan.shard, first, total, hausdorff_first, hausdorff_last, report.warnings};
+        if (first == last) {
+          throw Error(fmt::format("--shard {}/{}: this slice of {}'s {} samples is empty; use at most {} shards",
+                                  plan.shard->index, plan.shard->count, reference->path(), total, total));
+        }
+        // A mesh's area samples come drawn as the slice already; all others are sliced here.
+        if (d.samples.size() != last - first) d.samples = d.samples.slice(first, last);
       }
       stage = fmt::format("measuring {} samples against {} triangles with {}", d.samples.size(),
                           test_mesh.triangle_count(), plan.method->name());
@@ -526,7 +586,10 @@ void measure_models(const Model& a, const Model& b, MeasurePlan& plan, MeasureRe
     if (plan.hausdorff_bound && reference->type != ModelType::Points) {
       stage = fmt::format("bounding the Hausdorff distance from {} to {}", reference->path(), test->path());
       progress.stage(fmt::format("{}certified Hausdorff", d.label.empty() ? "" : d.label + ": "));
-      d.hausdorff = certified_hausdorff(test_surface(*reference), test_mesh, report.hausdorff_bound);
+      const TriangleMesh& surface = test_surface(*reference);
+      d.hausdorff = report.shard ? certified_hausdorff(surface, test_mesh, report.hausdorff_bound,
+                                                       report.shard->hausdorff_first, report.shard->hausdorff_last)
+                                 : certified_hausdorff(surface, test_mesh, report.hausdorff_bound);
     }
     if (plan.correspondences)
       d.correspondences = correspondences(d.samples, test_mesh, d.result, plan.options.semantics);
@@ -619,6 +682,9 @@ MeasureRun measure_run(const MeasureArguments& args, std::string& stage, Progres
     dtu_files = read_dtu_files(*plan.dtu);
   }
   // The inputs' hashes on another core while they load.
+  if (plan.shard && (given_a || given_b)) {
+    throw UsageError("--shard: the models must be files (a shard's part names them by path and hash for the merge)");
+  }
   auto reference_hash = hash(given_a != nullptr, args.reference_path);
   auto test_hash = hash(given_b != nullptr, args.test_path);
   Stopwatch watch;
@@ -754,6 +820,11 @@ void write_measure_outputs(const MeasureArguments& args, const MeasureRun& run, 
       outputs.back()->close_stream();
     }
   }
+  if (!args.shard_out.empty()) {
+    outputs.push_back(std::make_unique<AtomicFile>(args.shard_out));
+    write_shard_part(outputs.back()->stream(), args, run);
+    outputs.back()->close_stream();
+  }
   if (!args.json_path.empty() && args.json_path != "-") {
     const std::string json = to_json(report).dump(2) + "\n";
     outputs.push_back(std::make_unique<AtomicFile>(args.json_path));
@@ -781,6 +852,19 @@ int run_measure(const MeasureArguments& args, std::string& stage) {
   });
   write_measure_outputs(args, run, stage);
   const MeasureReport& report = run.report;
+  if (report.shard) {  // a slice's figures are not the pair's: roving merge reports them, and gates them
+    const ShardSlice& slice = *report.shard;
+    if (!text_to_stdout) {
+      write_stdout(to_json(report).dump(2) + "\n");
+      return 0;
+    }
+    write_stdout(fmt::format("shard {}/{}: samples {} to {} of {} measured in {:.3g} s; part written to {} (roving "
+                             "merge gives the figures)\n",
+                             slice.shard.index, slice.shard.count, slice.first,
+                             slice.first + report.directions.front().statistics.sample_count - 1, slice.total,
+                             report.total_seconds, args.shard_out));
+    return 0;
+  }
   write_stdout(text_to_stdout ? format_body(report) : to_json(report).dump(2) + "\n");
 
   const std::vector<MetricValue> values = gate_values(report);

@@ -12,6 +12,7 @@
 #include "progress.h"
 #include "protocols.h"
 #include "report.h"
+#include "shard.h"
 #include "roving/core/error.h"
 #include "roving/formats/heatmap.h"
 #include "roving/gl_methods/gl_methods.h"
@@ -54,6 +55,12 @@ struct MeasureArguments {
   // Keep each sample's point on TEST and its barycentric coordinates (correspondence.h): Python's
   // per_sample asks for them; --samples-out always writes them. No option of its own.
   bool correspondences = false;
+  // --shard I/N: only the I-th of N slices of the samples, written as a part to --shard-out for
+  // `roving merge` (merge.h).
+  std::string shard, shard_out;
+  // The words of the command line that decide the figures (REF, TEST and every option given but
+  // the outputs'): a shard's part records them, and a merge plans from them. Set by the parse.
+  std::vector<std::string> figure_arguments;
   std::string command_line;
 };
 
@@ -82,6 +89,7 @@ struct MeasurePlan {
   std::optional<DtuPlan> dtu;                    // --protocol dtu
   bool protocol_only = false;                    // --protocol without --symmetric: its figures alone
   bool correspondences = false;                  // each direction's Correspondences kept
+  std::optional<Shard> shard;                    // --shard: one slice of the samples
 };
 
 // A bad option value or combination on the command line: the tool exits 2, as for a parse error.

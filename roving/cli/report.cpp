@@ -38,6 +38,8 @@ std::string colour_source(const TriangleMesh& m) {
   return fmt::format("; colour: {}", fmt::join(parts, ", "));
 }
 
+}  // namespace
+
 nlohmann::json model_json(const Model& model) {
   const LoadedMesh& loaded = model.mesh;
   const TriangleMesh& m = loaded.mesh;
@@ -91,6 +93,8 @@ nlohmann::json model_json(const Model& model) {
   }
   return json;
 }
+
+namespace {
 
 std::size_t count(const GlReport& gl, Resolution how) {
   return static_cast<std::size_t>(std::count(gl.resolved_by.begin(), gl.resolved_by.end(), how));
@@ -257,10 +261,10 @@ nlohmann::json gl_json(const GlReport& g) {
           {"view_draw_seconds", g.view_draw_seconds}};
 }
 
-std::string samples_line(const SampleSet& samples, std::uint64_t seed) {
+std::string samples_line(const SampleSet& samples, std::size_t count, std::uint64_t seed) {
   std::string out = fmt::format("{}{}", samples.kind,
                                 samples.kind.rfind("area:", 0) == 0 ? fmt::format(" (seed {})", seed) : "");
-  out += fmt::format(": {}", samples.size());
+  out += fmt::format(": {}", count);
   if (samples.skipped_degenerate_faces)
     out += fmt::format(", {} zero-area faces skipped", samples.skipped_degenerate_faces);
   if (samples.skipped_unreferenced_vertices)
@@ -280,11 +284,11 @@ nlohmann::json direction_json(const DirectionReport& d, const MeasureReport& r) 
   const Statistics& s = d.statistics;
   const nlohmann::json stats = statistics_json(s);
   nlohmann::json json = {
-      {"reference", model_json(*d.reference)},
-      {"test", model_json(*d.test)},
+      {"reference", d.reference_json},
+      {"test", d.test_json},
       {"samples",
        {{"kind", d.samples.kind},
-        {"count", d.samples.size()},
+        {"count", d.statistics.sample_count},
         {"skipped_degenerate_faces", d.samples.skipped_degenerate_faces},
         {"skipped_unreferenced_vertices", d.samples.skipped_unreferenced_vertices},
         {"skipped_zero_normal_vertices", d.samples.skipped_zero_normal_vertices}}},
@@ -846,7 +850,7 @@ std::string format_body(const MeasureReport& r) {
   std::string out;
   for (const DirectionReport& d : r.directions) {
     out += fmt::format("{:<10} {}{}\n", "samples", d.label.empty() ? "" : d.label + ": ",
-                       samples_line(d.samples, r.seed));
+                       samples_line(d.samples, d.statistics.sample_count, r.seed));
   }
   out += "\n";
   // A column pair per direction: model units and / diagonal.
@@ -906,7 +910,7 @@ std::string format_body(const MeasureReport& r) {
   for (const DirectionReport& d : r.directions) {
     out += fmt::format("        {}build {:.3f} s, query {:.3f} s ({:.3g} samples/s)\n",
                        d.label.empty() ? "" : d.label + ": ", d.result.build_seconds, d.result.query_seconds,
-                       d.result.query_seconds > 0 ? d.samples.size() / d.result.query_seconds : 0.0);
+                       d.result.query_seconds > 0 ? d.statistics.sample_count / d.result.query_seconds : 0.0);
   }
   for (const DirectionReport& d : r.directions) {
     const std::string label = d.label.empty() ? "" : d.label + ": ";
@@ -917,12 +921,12 @@ std::string format_body(const MeasureReport& r) {
       out += fmt::format(
           "  {}95% intervals of the surface means (eq. 1) from {} random samples (normal approximation): {}, "
           "{}, {}\n",
-          label, d.samples.size(), text("SiAD", d.intervals->siad), text("USiAD", d.intervals->usiad),
+          label, d.statistics.sample_count, text("SiAD", d.intervals->siad), text("USiAD", d.intervals->usiad),
           text("RMS", d.intervals->rms));
       if (d.auto_sampling) {
         out += fmt::format(
             "  {}area:auto: {} samples in {} round(s) {} a half-width of {:.3g} for USiAD (asked {:.3g}){}\n",
-            label, d.samples.size(), d.auto_sampling->rounds,
+            label, d.statistics.sample_count, d.auto_sampling->rounds,
             d.auto_sampling->met ? "reached" : "did not reach, stopping at", d.auto_sampling->reached,
             d.auto_sampling->target,
             d.auto_sampling->met ? "" : ": the sample cap or round limit came first");
@@ -1012,6 +1016,14 @@ nlohmann::json to_json(const MeasureReport& r) {
     if (r.reconstruction) json["reconstruction"] = reconstruction_json(*r.reconstruction);
   } else {
     json.update(direction_json(r.directions.front(), r));
+  }
+  if (r.shard) {
+    const ShardSlice& s = *r.shard;
+    json["shard"] = {{"index", s.shard.index},
+                     {"count", s.shard.count},
+                     {"first_sample", s.first},
+                     {"total_samples", s.total},
+                     {"note", "this run's slice of the samples alone; roving merge gives the pair's figures"}};
   }
   if (r.mpeg) json["mpeg_pcc"] = mpeg_json(*r.mpeg);
   if (r.dtu) json["dtu_protocol"] = dtu_json(*r.dtu);

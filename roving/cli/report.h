@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "protocols.h"
+#include "shard.h"
 #include "roving/core/colour_statistics.h"
 #include "roving/core/confidence.h"
 #include "roving/core/correspondence.h"
@@ -56,6 +57,17 @@ struct DirectionReport {
   std::optional<ColourStatistics> colour;
   // Each sample's point on TEST and its barycentric coordinates, where asked (per-sample outputs).
   std::optional<Correspondences> correspondences;
+  // The reference and the test as the report describes them (model_json), taken before sampling
+  // (which may release the reference's geometry); a merge of shards reports them without models.
+  nlohmann::json reference_json, test_json;
+};
+
+// measure --shard: the slice of the samples one run measured, for `roving merge` (merge.h).
+struct ShardSlice {
+  Shard shard;
+  std::size_t first = 0, total = 0;  // the slice's first sample, and the samples of the whole pair
+  std::size_t hausdorff_first = 0, hausdorff_last = 0;  // the reference's triangles bounded here
+  std::vector<std::string> model_warnings;  // the warnings about the models, before any figure's
 };
 
 // Metro's two-sided summary, over both directions' samples (closest-point semantics make the
@@ -100,12 +112,16 @@ struct MeasureReport {
   // --protocol dtu: the benchmark's own figures; with protocol_only nothing else is measured.
   std::optional<DtuReport> dtu;
   bool protocol_only = false;
+  std::optional<ShardSlice> shard;  // a shard's run: its figures are its slice's alone
   double load_seconds[2] = {0, 0};  // A (the reference), B (the test)
   double total_seconds = 0;
 
   bool symmetric() const { return directions.size() == 2; }
   TwoSided two_sided() const;
 };
+
+// A model as the report's JSON describes it (paths, counts, area, box, colour, representation).
+nlohmann::json model_json(const Model& model);
 
 // The models, the sampling and the method: known before the long work, printed at once.
 std::string format_header(const Model& a, const Model& b, const MeasureReport& report);

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <charconv>
 #include <random>
+#include <type_traits>
 
 #include "roving/core/error.h"
 #include "roving/core/memory_budget.h"
@@ -51,13 +52,24 @@ SampleSpec parse_sample_spec(const std::string& text) {
                   text));
 }
 
-SampleSet SampleSet::head(std::size_t n) const {
-  SampleSet subset = *this;
-  n = std::min(n, size());
-  subset.positions.resize(n);
-  subset.normals.resize(n);
-  subset.weights.resize(n);
-  subset.elements.resize(n);
+SampleSet SampleSet::head(std::size_t n) const { return slice(0, n); }
+
+SampleSet SampleSet::slice(std::size_t first, std::size_t last) const {
+  last = std::min(last, size());
+  first = std::min(first, last);
+  const auto part = [&](const auto& all) {  // an array not filled per sample stays empty
+    using Array = std::decay_t<decltype(all)>;
+    return all.size() < last ? Array() : Array(all.begin() + first, all.begin() + last);
+  };
+  SampleSet subset;
+  subset.positions = part(positions);
+  subset.normals = part(normals);
+  subset.weights = part(weights);
+  subset.elements = part(elements);
+  subset.kind = kind;
+  subset.skipped_degenerate_faces = skipped_degenerate_faces;
+  subset.skipped_unreferenced_vertices = skipped_unreferenced_vertices;
+  subset.skipped_zero_normal_vertices = skipped_zero_normal_vertices;
   return subset;
 }
 
@@ -111,7 +123,7 @@ void sample_vertices(const TriangleMesh& mesh, std::vector<Vec3> positions, std:
   samples.weights = std::move(vertex_area);  // each vertex stands for a third of its faces' area
 }
 
-void sample_area(const TriangleMesh& mesh, std::size_t count, std::uint64_t seed, SampleSet& samples) {
+void sample_area(const TriangleMesh& mesh, const SampleSpec& spec, SampleSet& samples) {
   // Inverse-CDF over cumulative face areas, then uniform barycentrics (Turk 1990's square-root
   // map). std::mt19937_64 and our own uniform mapping keep it reproducible across libstdc++s.
   std::vector<double> cumulative(mesh.triangle_count());
@@ -120,11 +132,13 @@ void sample_area(const TriangleMesh& mesh, std::size_t count, std::uint64_t seed
     total += mesh.face_normal(f).isZero() ? 0.0 : mesh.face_area(f);
     cumulative[f] = total;
   }
-  std::mt19937_64 random(seed);
+  std::mt19937_64 random(spec.seed);
   const auto uniform = [&random] { return (random() >> 11) * 0x1.0p-53; };
-  const double weight = total / static_cast<double>(count);
-  reserve(samples, count);
-  for (std::size_t i = 0; i < count; ++i) {
+  const double weight = total / static_cast<double>(spec.count);
+  const std::size_t last = std::min(spec.last, spec.count), first = std::min(spec.first, last);
+  random.discard(3 * first);  // each sample takes three draws: those before the slice's
+  reserve(samples, last - first);
+  for (std::size_t i = first; i < last; ++i) {
     const double target = uniform() * total;
     std::size_t f = std::upper_bound(cumulative.begin(), cumulative.end(), target) - cumulative.begin();
     f = std::min(f, cumulative.size() - 1);
@@ -163,8 +177,9 @@ SampleSet make_samples(const TriangleMesh& reference, const SampleSpec& spec) {
     }
     case SampleSpec::Kind::Area:
       // Positions, normals, weights, elements, then a distance, a flag and a magnitude per sample.
-      require_memory("sampling", 85.0 * spec.count, fmt::format("{} samples", spec.count));
-      sample_area(reference, spec.count, spec.seed, samples);
+      const std::size_t kept = std::min(spec.last, spec.count) - std::min(spec.first, std::min(spec.last, spec.count));
+      require_memory("sampling", 85.0 * kept, fmt::format("{} samples", kept));
+      sample_area(reference, spec, samples);
       break;
   }
   require_samples(samples, reference);

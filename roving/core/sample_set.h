@@ -18,6 +18,9 @@ struct SampleSpec {
   std::size_t count = 0;       // Area only
   std::uint64_t seed = 12345;  // Area only
   bool automatic = false;      // area:auto: the caller chooses count for a precision, then samples
+  // Area only: keep samples [first, last) of the `count` drawn (a shard's slice), drawn exactly as
+  // the whole set draws them; the rest are never made.
+  std::size_t first = 0, last = static_cast<std::size_t>(-1);
 
   std::string to_string() const;
 };
@@ -43,6 +46,8 @@ struct SampleSet {
   std::size_t size() const { return positions.size(); }
   // The first `n` samples (or all, if fewer), for fast subsets in tests.
   SampleSet head(std::size_t n) const;
+  // Samples [first, last) (clamped to the set), with the set's kind and skipped counts: a shard's.
+  SampleSet slice(std::size_t first, std::size_t last) const;
 };
 
 // Builds samples on `reference`; throws roving::Error if none can be made.

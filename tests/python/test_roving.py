@@ -344,6 +344,26 @@ def test_type_stubs_name_exactly_the_commands_options():
 
     assert keywords["measure"] == options("measure") | {"progress"}
     assert keywords["batch"] == options("batch") | {"progress"}
+    assert keywords["merge"] == options("merge")
+
+
+def test_shards_merge_to_the_one_process_report(tmp_path):
+    # The same pair in one call and in three shards merged: every figure equal, but times and how it ran.
+    options = {"samples": "area:4000", "seed": 5, "semantics": "closest", "hausdorff_bound": "none"}
+    one = roving.measure(BUNNY, FANDISK, **options)
+    parts = [str(tmp_path / f"p{i}.part") for i in range(3)]
+    for i, part in enumerate(parts):
+        shard = roving.measure(BUNNY, FANDISK, shard=f"{i}/3", shard_out=part, **options)
+        assert shard["shard"]["index"] == i and shard["shard"]["total_samples"] == 4000
+    merged = roving.merge(*reversed(parts), json=str(tmp_path / "merged.json"))
+    incidental = {"seconds", "command_line", "tool", "merged_from", "per_sample", "breached_gates"}
+    assert {k: v for k, v in one.items() if k not in incidental} == \
+        {k: v for k, v in merged.items() if k not in incidental}
+    assert json.load(open(tmp_path / "merged.json"))["statistics"] == one["statistics"]
+    with pytest.raises(roving.Error, match="shard 1/3 missing"):
+        roving.merge(parts[0], parts[2])
+    with pytest.raises(roving.Error, match="models must be files"):
+        roving.measure(np.eye(3), FANDISK, shard="0/2", shard_out=str(tmp_path / "x.part"))
 
 
 def square(x1, z=0.0, cells=20):

@@ -29,4 +29,11 @@ struct HausdorffInterval {
 // float rounding), distances in double; both cores (TBB). Throws roving::Error on an empty mesh.
 HausdorffInterval certified_hausdorff(const TriangleMesh& a, const TriangleMesh& b, double max_gap);
 
+// The same over A's triangles [first, last) alone (a shard's share): the largest lower and upper
+// ends over shards covering A make an interval of the whole A with the same guarantee and width,
+// though its ends may differ from the whole run's within that width (the best lower bound a
+// shard prunes with is its own).
+HausdorffInterval certified_hausdorff(const TriangleMesh& a, const TriangleMesh& b, double max_gap,
+                                      std::size_t first, std::size_t last);
+
 }  // namespace roving

@@ -1,0 +1,369 @@
+// Shards' parts of one pair, and their merge (merge.h).
+#include "merge.h"
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <algorithm>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+
+#include "checks.h"
+#include "command_line.h"
+#include "gates.h"
+#include "provenance.h"
+#include "roving/core/confidence.h"
+#include "roving/core/error.h"
+#include "roving/core/stopwatch.h"
+#include "roving/formats/atomic_file.h"
+#include "roving/formats/heatmap.h"
+
+namespace roving {
+namespace {
+
+constexpr const char* kPartMagic = "roving shard part 1";
+constexpr std::size_t kBytesPerSample = 17;       // d (float64), hit (uint8), weight (float64)
+constexpr std::size_t kMaxHeaderBytes = 1 << 24;  // the JSON line: models' descriptions and warnings
+
+static_assert(sizeof(double) == 8);
+
+bool little_endian() {
+  const std::uint16_t one = 1;
+  unsigned char first = 0;
+  std::memcpy(&first, &one, 1);
+  return first == 1;
+}
+
+void write_array(std::FILE* out, const void* data, std::size_t bytes) {
+  if (bytes && std::fwrite(data, 1, bytes, out) != bytes) throw Error("writing the shard's part failed");
+}
+
+nlohmann::json hausdorff_json(const HausdorffInterval& h) {
+  const auto point = [](const Vec3& p) { return nlohmann::json{p.x(), p.y(), p.z()}; };
+  return {{"lower", h.lower},
+          {"upper", h.upper},
+          {"lower_point", point(h.lower_point)},
+          {"lower_closest", point(h.lower_closest)},
+          {"distance_queries", h.distance_queries},
+          {"triangles_split", h.triangles_split},
+          {"seconds", h.seconds}};
+}
+
+HausdorffInterval hausdorff_of(const nlohmann::json& json) {
+  const auto point = [](const nlohmann::json& p) {
+    return Vec3(p.at(0).get<double>(), p.at(1).get<double>(), p.at(2).get<double>());
+  };
+  HausdorffInterval h;
+  h.lower = json.at("lower").get<double>();
+  h.upper = json.at("upper").get<double>();
+  h.lower_point = point(json.at("lower_point"));
+  h.lower_closest = point(json.at("lower_closest"));
+  h.distance_queries = json.at("distance_queries").get<std::size_t>();
+  h.triangles_split = json.at("triangles_split").get<std::size_t>();
+  h.seconds = json.at("seconds").get<double>();
+  return h;
+}
+
+// One part as read: its JSON line, and where its arrays start in the file.
+struct Part {
+  std::string path;
+  nlohmann::json header;
+  std::size_t count = 0;  // samples in it
+  std::streamoff arrays_at = 0;
+};
+
+Part read_part_header(const std::string& path) {
+  Part part;
+  part.path = path;
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw Error(fmt::format("{}: cannot read the file", path));
+  std::string magic;
+  char c = 0;
+  while (magic.size() <= 64 && in.get(c) && c != '\n') magic.push_back(c);
+  if (magic != kPartMagic) {
+    throw Error(fmt::format("{}: expected a shard's part (written by roving measure --shard-out, first line '{}'), "
+                            "found something else",
+                            path, kPartMagic));
+  }
+  std::string line;
+  while (line.size() <= kMaxHeaderBytes && in.get(c) && c != '\n') line.push_back(c);
+  if (c != '\n' || line.size() > kMaxHeaderBytes) {
+    throw Error(fmt::format("{}: the part's description line is truncated or longer than {} bytes", path,
+                            kMaxHeaderBytes));
+  }
+  part.arrays_at = in.tellg();
+  try {
+    part.header = nlohmann::json::parse(line);
+    part.count = part.header.at("samples").at("count").get<std::size_t>();
+    if (part.header.at("byte_order").get<std::string>() != "little" || !little_endian()) {
+      throw Error("its arrays' byte order is not this machine's");
+    }
+  } catch (const nlohmann::json::exception& e) {
+    throw Error(fmt::format("{}: the part's description is not what roving measure --shard-out writes: {}", path,
+                            e.what()));
+  } catch (const Error& e) {
+    throw Error(fmt::format("{}: {}", path, e.what()));
+  }
+  std::error_code error;
+  const std::uintmax_t size = std::filesystem::file_size(path, error);
+  const std::uintmax_t expected = static_cast<std::uintmax_t>(part.arrays_at) + kBytesPerSample * part.count;
+  if (error || part.count > size / kBytesPerSample || size != expected) {
+    throw Error(fmt::format("{}: expected {} bytes ({} samples of {} bytes after the description), found {}; the "
+                            "part is truncated or damaged: run its shard again",
+                            path, expected, part.count, kBytesPerSample, size));
+  }
+  return part;
+}
+
+// Appends the part's d, hit and weights to the direction's arrays.
+void read_arrays(const Part& part, DirectionReport& d) {
+  std::ifstream in(part.path, std::ios::binary);
+  in.seekg(part.arrays_at);
+  const auto read = [&](auto& values) {
+    const std::size_t at = values.size();
+    values.resize(at + part.count);
+    const std::size_t bytes = part.count * sizeof(values[0]);
+    if (!in.read(reinterpret_cast<char*>(values.data() + at), static_cast<std::streamsize>(bytes))) {
+      throw Error(fmt::format("{}: the part ended before its {} samples", part.path, part.count));
+    }
+  };
+  read(d.result.signed_distance);
+  read(d.result.hit);
+  read(d.samples.weights);
+}
+
+// The fields every part of one measurement has alike.
+constexpr const char* kAlike[] = {"format", "tool", "arguments", "inputs", "method", "semantics", "diagonal"};
+
+void check_alike(const Part& first, const Part& part) {
+  for (const char* key : kAlike) {
+    if (part.header.at(key) != first.header.at(key)) {
+      throw Error(fmt::format("{} and {}: parts of different measurements (their {} differ); merge the parts of "
+                              "one roving measure command",
+                              first.path, part.path, key));
+    }
+  }
+  for (const char* key : {"count"}) {
+    if (part.header.at("shard").at(key) != first.header.at("shard").at(key)) {
+      throw Error(fmt::format("{} and {}: parts of different shardings ({}/{} and {}/{})", first.path, part.path,
+                              first.header["shard"]["index"].dump(), first.header["shard"]["count"].dump(),
+                              part.header["shard"]["index"].dump(), part.header["shard"]["count"].dump()));
+    }
+  }
+  if (part.header.at("samples").at("total") != first.header.at("samples").at("total")) {
+    throw Error(fmt::format("{} and {}: parts of different sample sets", first.path, part.path));
+  }
+}
+
+// The parts in shard order, each once, all there, each the slice its index names.
+std::vector<Part> ordered_parts(const std::vector<std::string>& paths) {
+  if (paths.empty()) throw Error("merge: expected the parts of one measurement's shards, found none");
+  std::vector<Part> parts;
+  for (const std::string& path : paths) parts.push_back(read_part_header(path));
+  std::size_t count = 0, total = 0;
+  try {
+    count = parts[0].header.at("shard").at("count").get<std::size_t>();
+    total = parts[0].header.at("samples").at("total").get<std::size_t>();
+    for (const Part& part : parts) check_alike(parts[0], part);
+  } catch (const nlohmann::json::exception& e) {
+    throw Error(fmt::format("merge: a part's description is incomplete: {}", e.what()));
+  }
+  std::vector<const Part*> by_index(count, nullptr);
+  for (const Part& part : parts) {
+    const std::size_t index = part.header["shard"]["index"].get<std::size_t>();
+    if (index >= count) throw Error(fmt::format("{}: shard {} of {} is out of range", part.path, index, count));
+    if (by_index[index]) {
+      throw Error(fmt::format("{} and {}: both are shard {}/{}", by_index[index]->path, part.path, index, count));
+    }
+    by_index[index] = &part;
+  }
+  std::vector<std::string> missing;
+  for (std::size_t i = 0; i < count; ++i) {
+    if (!by_index[i]) missing.push_back(fmt::format("{}/{}", i, count));
+  }
+  if (!missing.empty()) {
+    throw Error(fmt::format("merge: shard{} {} missing (run {} again, then merge all {} parts)",
+                            missing.size() == 1 ? "" : "s", fmt::join(missing, ", "),
+                            missing.size() == 1 ? "it" : "them", count));
+  }
+  std::vector<Part> ordered;
+  for (std::size_t i = 0; i < count; ++i) {
+    const Part& part = *by_index[i];
+    const auto [first, last] = Shard{i, count}.range(total);
+    if (part.header["samples"]["first"].get<std::size_t>() != first || part.count != last - first) {
+      throw Error(fmt::format("{}: shard {}/{} should hold samples [{}, {}) of {}; it holds {} from {}", part.path, i,
+                              count, first, last, total, part.count, part.header["samples"]["first"].dump()));
+    }
+    ordered.push_back(part);
+  }
+  return ordered;
+}
+
+// The arguments the shards were run with, parsed as measure parses them.
+MeasureArguments shard_arguments(const nlohmann::json& words) {
+  const std::unique_ptr<CommandLine> line = make_command_line();
+  std::vector<std::string> arguments = {"measure"};
+  for (const auto& word : words) arguments.push_back(word.get<std::string>());
+  const std::string error = parse_command_line(*line, arguments);
+  if (!error.empty()) throw Error("merge: the parts' arguments do not parse: " + error);
+  return line->args;
+}
+
+}  // namespace
+
+void write_shard_part(std::FILE* out, const MeasureArguments& args, const MeasureRun& run) {
+  const MeasureReport& r = run.report;
+  const DirectionReport& d = r.directions.front();
+  const ShardSlice& slice = *r.shard;
+  nlohmann::json header = {
+      {"format", kPartMagic},
+      {"tool", r.provenance.at("tool")},
+      {"arguments", args.figure_arguments},
+      {"inputs", r.provenance.at("inputs")},
+      {"command_line", args.command_line},
+      {"shard", {{"index", slice.shard.index}, {"count", slice.shard.count}}},
+      {"samples",
+       {{"kind", d.samples.kind},
+        {"total", slice.total},
+        {"first", slice.first},
+        {"count", d.samples.size()},
+        {"skipped_degenerate_faces", d.samples.skipped_degenerate_faces},
+        {"skipped_unreferenced_vertices", d.samples.skipped_unreferenced_vertices},
+        {"skipped_zero_normal_vertices", d.samples.skipped_zero_normal_vertices}}},
+      {"header", format_header(*run.a, *run.b, r)},
+      {"method", r.method},
+      {"semantics", to_string(r.semantics)},
+      {"max_error", r.max_error},
+      {"max_error_text", r.max_error_text},
+      {"hausdorff_bound", r.hausdorff_bound},
+      {"diagonal", r.diagonal},
+      {"seed", r.seed},
+      {"reference", d.reference_json},
+      {"test", d.test_json},
+      {"model_warnings", slice.model_warnings},
+      {"seconds",
+       {{"load_reference", r.load_seconds[0]},
+        {"load_test", r.load_seconds[1]},
+        {"build", d.result.build_seconds},
+        {"query", d.result.query_seconds},
+        {"total", r.total_seconds}}},
+      {"hausdorff", d.hausdorff ? hausdorff_json(*d.hausdorff) : nlohmann::json(nullptr)},
+      {"byte_order", little_endian() ? "little" : "big"}};
+  const std::string line = std::string(kPartMagic) + "\n" + header.dump() + "\n";
+  write_array(out, line.data(), line.size());
+  // Weights are per sample wherever samples are made; a set without them stands for equal areas.
+  std::vector<double> weights = d.samples.weights;
+  weights.resize(d.samples.size(), weights.empty() ? 1.0 : weights.back());
+  write_array(out, d.result.signed_distance.data(), d.samples.size() * sizeof(double));
+  write_array(out, d.result.hit.data(), d.samples.size());
+  write_array(out, weights.data(), weights.size() * sizeof(double));
+}
+
+MergedReport merge_parts(const std::vector<std::string>& paths, const std::string& command_line) {
+  const Stopwatch watch;
+  const std::vector<Part> parts = ordered_parts(paths);
+  MergedReport merged;
+  const nlohmann::json& first = parts.front().header;
+  MeasureReport& r = merged.report;
+  try {
+    merged.plan = plan_measurement(shard_arguments(first.at("arguments")));
+    merged.header = first.at("header").get<std::string>();
+    r.method = first.at("method").get<std::string>();
+    r.semantics = parse_semantics(first.at("semantics").get<std::string>());
+    r.max_error = first.at("max_error").get<double>();
+    r.max_error_text = first.at("max_error_text").get<std::string>();
+    r.hausdorff_bound = first.at("hausdorff_bound").get<double>();
+    r.diagonal = first.at("diagonal").get<double>();
+    r.seed = first.at("seed").get<std::uint64_t>();
+    r.warnings = first.at("model_warnings").get<std::vector<std::string>>();
+    std::vector<std::string> part_paths;
+    for (const Part& part : parts) part_paths.push_back(part.path);
+    r.provenance = {{"tool", tool_json()},
+                    {"command_line", command_line},
+                    {"inputs", first.at("inputs")},
+                    {"merged_from", {{"parts", part_paths}, {"shard_command_line", first.at("command_line")}}}};
+    DirectionReport& d = r.directions.emplace_back();
+    d.reference_json = first.at("reference");
+    d.test_json = first.at("test");
+    const nlohmann::json& samples = first.at("samples");
+    d.samples.kind = samples.at("kind").get<std::string>();
+    d.samples.skipped_degenerate_faces = samples.at("skipped_degenerate_faces").get<std::size_t>();
+    d.samples.skipped_unreferenced_vertices = samples.at("skipped_unreferenced_vertices").get<std::size_t>();
+    d.samples.skipped_zero_normal_vertices = samples.at("skipped_zero_normal_vertices").get<std::size_t>();
+    const std::size_t total = samples.at("total").get<std::size_t>();
+    d.result.signed_distance.reserve(total);
+    d.result.hit.reserve(total);
+    d.samples.weights.reserve(total);
+    std::optional<HausdorffInterval> hausdorff;
+    for (const Part& part : parts) {
+      read_arrays(part, d);
+      const nlohmann::json& seconds = part.header.at("seconds");
+      r.load_seconds[0] += seconds.at("load_reference").get<double>();
+      r.load_seconds[1] += seconds.at("load_test").get<double>();
+      d.result.build_seconds += seconds.at("build").get<double>();
+      d.result.query_seconds += seconds.at("query").get<double>();
+      r.total_seconds += seconds.at("total").get<double>();
+      if (part.header.at("hausdorff").is_null()) continue;
+      // The largest lower end (with the points that attain it) and the largest upper end.
+      const HausdorffInterval h = hausdorff_of(part.header["hausdorff"]);
+      if (!hausdorff) {
+        hausdorff = h;
+        continue;
+      }
+      if (h.lower > hausdorff->lower) {
+        hausdorff->lower = h.lower, hausdorff->lower_point = h.lower_point, hausdorff->lower_closest = h.lower_closest;
+      }
+      hausdorff->upper = std::max(hausdorff->upper, h.upper);
+      hausdorff->distance_queries += h.distance_queries;
+      hausdorff->triangles_split += h.triangles_split;
+      hausdorff->seconds += h.seconds;
+    }
+    d.hausdorff = hausdorff;
+  } catch (const nlohmann::json::exception& e) {
+    throw Error(fmt::format("{}: the part's description is incomplete: {}", parts.front().path, e.what()));
+  }
+  // From here, as measure_models computes them from the same arrays.
+  DirectionReport& d = r.directions.front();
+  const MeasurePlan& plan = merged.plan;
+  for (const std::uint8_t hit : d.result.hit) {
+    if (hit > 1) throw Error(fmt::format("merge: a part's hit flag is {}, not 0 or 1; the part is damaged", hit));
+  }
+  d.statistics = compute_statistics(d.result.signed_distance, d.result.hit, d.samples.weights, r.max_error,
+                                    plan.histogram_bins);
+  if (d.samples.kind.rfind("area:", 0) == 0 && d.result.hit.size() >= 2) {
+    d.intervals = sampling_intervals(d.result.signed_distance, d.result.hit, r.max_error);
+  }
+  d.heatmap_range =
+      plan.heatmap_range ? plan.heatmap_range->resolve(r.diagonal) : default_heatmap_range(d.result, r.max_error);
+  for (std::string& line : result_warnings(d.statistics, r.semantics)) r.warnings.push_back(line);
+  r.total_seconds += watch.seconds();
+  return merged;
+}
+
+int run_merge(const MergeArguments& args, std::string& stage) {
+  stage = "merging the shards' parts";
+  const MergedReport merged = merge_parts(args.parts, args.command_line);
+  const MeasureReport& report = merged.report;
+  if (!args.quiet) {
+    for (const std::string& line : report.warnings) std::fprintf(stderr, "roving: warning: %s\n", line.c_str());
+  }
+  const std::string json = to_json(report).dump(2) + "\n";
+  if (!args.json_path.empty() && args.json_path != "-") {
+    stage = "writing the report";
+    AtomicFile file(args.json_path);
+    std::fputs(json.c_str(), file.stream());
+    file.commit();
+  }
+  write_stdout(args.json_path == "-" ? json : merged.header + format_body(report));
+  const std::vector<MetricValue> values = gate_values(report);
+  if (merged.plan.gate_on == GateOn::Estimate) {
+    for (const std::string& line : undecided_gates(merged.plan.gates, values))
+      std::fprintf(stderr, "roving: note: %s\n", line.c_str());
+  }
+  const std::vector<std::string> breached = breached_gates(merged.plan.gates, values, merged.plan.gate_on);
+  for (const std::string& line : breached) std::fprintf(stderr, "roving: %s\n", line.c_str());
+  return breached.empty() ? 0 : kGateExitCode;
+}
+
+}  // namespace roving

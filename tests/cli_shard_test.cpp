@@ -1,0 +1,196 @@
+// One pair across processes: `measure --shard I/N --shard-out PART` and `roving merge` give the
+// report one process gives: every figure but the times (and the certified Hausdorff interval,
+// which each shard bounds over its own triangles: it must hold the truth within the same width).
+// Bad shards, parts and merges get one line and no output.
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "cli_support.h"
+
+namespace {
+
+using namespace roving::testing::cli;
+
+// The report's fields that say how long or by which command it ran, or how a certified interval
+// was searched for, not what was measured.
+bool incidental(const std::string& key) {
+  for (const char* name : {"seconds", "command_line", "tool", "merged_from", "distance_queries", "triangles_split"}) {
+    if (key == name) return true;
+  }
+  return false;
+}
+
+// Every field of `one` equal in `merged` (numbers bit for bit), but the incidental ones; `path`
+// names the field in the failure.
+void expect_same_report(const nlohmann::json& one, const nlohmann::json& merged, const std::string& path = "") {
+  ASSERT_EQ(one.type(), merged.type()) << path;
+  if (one.is_object()) {
+    for (const auto& [key, value] : one.items()) {
+      if (incidental(key)) continue;
+      ASSERT_TRUE(merged.contains(key)) << path << "/" << key;
+      expect_same_report(value, merged[key], path + "/" + key);
+    }
+    for (const auto& [key, value] : merged.items()) {
+      if (!incidental(key)) EXPECT_TRUE(one.contains(key)) << "only merged: " << path << "/" << key;
+    }
+  } else if (one.is_array()) {
+    ASSERT_EQ(one.size(), merged.size()) << path;
+    for (std::size_t i = 0; i < one.size(); ++i) expect_same_report(one[i], merged[i], fmt::format("{}[{}]", path, i));
+  } else {
+    EXPECT_EQ(one, merged) << path;
+  }
+}
+
+// `shards` parts of `pair options` in `folder`, named NAME.I.part; returns their paths joined.
+std::string measure_shards(const Folder& folder, const std::string& name, const std::string& command,
+                           std::size_t shards) {
+  std::string parts;
+  for (std::size_t i = 0; i < shards; ++i) {
+    const std::string part = folder.file(fmt::format("{}.{}.part", name, i));
+    const CliRun run = run_cli(fmt::format("measure {} --shard {}/{} --shard-out {} --quiet", command, i, shards, part));
+    EXPECT_EQ(run.exit_code, 0) << run.err;
+    EXPECT_NE(run.out.find(fmt::format("shard {}/{}: samples", i, shards)), std::string::npos) << run.out;
+    parts += " " + part;
+  }
+  return parts;
+}
+
+nlohmann::json merged_json(const std::string& parts) {
+  const CliRun run = run_cli("merge" + parts + " --json - --quiet");
+  EXPECT_EQ(run.exit_code, 0) << run.err;
+  return nlohmann::json::parse(run.out);
+}
+
+// Face, vertex and area samples, first-hit, nearest and closest, three methods, 1 to 7 shards:
+// the merged report is the one-process report.
+TEST(CliShard, MergedShardsGiveTheOneProcessReport) {
+  const Folder folder;
+  const std::string bunny_path = bunny(), rocker = roving::testing::data_file("rocker-arm.obj");
+  const std::string cases[] = {
+      bunny_path + " " + rocker + " --samples faces",
+      bunny_path + " " + rocker + " --samples area:20000 --seed 3 --method cgal --semantics closest",
+      rocker + " " + bunny_path + " --samples vertices --method v2p-aabb --max-error 10%",
+      rocker + " " + bunny_path + " --samples area:5000 --semantics nearest --histogram-bins 9",
+  };
+  int k = 0;
+  for (const std::string& command : cases) {
+    const CliRun one = run_cli("measure " + command + " --json - --quiet");
+    ASSERT_EQ(one.exit_code, 0) << one.err;
+    const nlohmann::json expected = nlohmann::json::parse(one.out);
+    for (const std::size_t shards : {1, 3, 7}) {
+      SCOPED_TRACE(fmt::format("{} in {} shards", command, shards));
+      const nlohmann::json merged = merged_json(measure_shards(folder, fmt::format("c{}-{}", k, shards), command, shards));
+      expect_same_report(expected, merged);
+      EXPECT_EQ(merged["merged_from"]["parts"].size(), shards);
+    }
+    ++k;
+  }
+}
+
+// The text report too, but for its time lines.
+TEST(CliShard, MergedTextIsTheOneProcessText) {
+  const Folder folder;
+  const std::string command = bunny() + " " + roving::testing::data_file("rocker-arm.obj") + " --samples area:3000";
+  const CliRun one = run_cli("measure " + command + " --quiet");
+  const CliRun merged = run_cli("merge" + measure_shards(folder, "t", command, 2) + " --quiet");
+  ASSERT_EQ(merged.exit_code, 0) << merged.err;
+  const auto without_times = [](const std::string& text) {
+    std::string kept, line;
+    std::istringstream in(text);
+    while (std::getline(in, line)) {
+      if (line.find("time:") == std::string::npos && line.find("build ") == std::string::npos) kept += line + "\n";
+    }
+    return kept;
+  };
+  EXPECT_EQ(without_times(one.out), without_times(merged.out));
+}
+
+// Cubes of half-sides 0.5 and 0.55: from the large one's corners the small one is 0.05 sqrt(3)
+// away, the one-sided Hausdorff distance. Each shard bounds its share of the triangles; merged,
+// the interval still holds it and is no wider than asked.
+TEST(CliShard, MergedCertifiedIntervalHoldsTheClosedForm) {
+  const Folder folder;
+  const std::string command = folder.file("large.obj", cube_obj(0.55)) + " " + folder.file("small.obj", cube_obj(0.5)) +
+                              " --semantics closest --hausdorff-bound 1e-6";
+  const nlohmann::json merged = merged_json(measure_shards(folder, "h", command, 4));
+  const auto& h = merged["hausdorff_certified"];
+  const double truth = 0.05 * std::sqrt(3.0);
+  EXPECT_LE(h["lower"].get<double>(), truth + 1e-12);
+  EXPECT_GE(h["upper"].get<double>(), truth - 1e-12);
+  EXPECT_LE(h["upper"].get<double>() - h["lower"].get<double>(), 1e-6);
+}
+
+// Gates given to the shards are the merge's: exit 3 when breached.
+TEST(CliShard, MergeAppliesTheShardsGates) {
+  const Folder folder;
+  const std::string command = folder.file("a.obj", cube_obj(0.5)) + " " + folder.file("b.obj", cube_obj(0.55)) +
+                              " --fail-above usiad=0.01";
+  const CliRun run = run_cli("merge" + measure_shards(folder, "g", command, 2) + " --quiet");
+  EXPECT_EQ(run.exit_code, 3) << run.err;
+  EXPECT_NE(run.err.find("usiad"), std::string::npos) << run.err;
+}
+
+TEST(CliShard, BadShardsGetOneLineAndNoPart) {
+  const Folder folder;
+  const std::string pair = folder.file("a.obj", cube_obj(0.5)) + " " + folder.file("b.obj", cube_obj(0.55));
+  const std::string part = folder.file("x.part");
+  for (const char* shard : {"5/4", "0/0", "1", "a/4", "-1/4", "1/4/2", "4/4"}) {
+    expect_error(fmt::format("measure {} --shard {} --shard-out {}", pair, shard, part), {"--shard", shard});
+  }
+  expect_error("measure " + pair + " --shard 0/2", {"--shard", "--shard-out"});
+  expect_error("measure " + pair + " --shard-out " + part, {"--shard-out", "--shard"});
+  expect_error("measure " + pair + " --shard 0/2 --shard-out " + part + " --symmetric", {"--symmetric", "--shard"});
+  expect_error("measure " + pair + " --shard 0/2 --shard-out " + part + " --html x.html", {"--html", "--shard"});
+  expect_error("measure " + pair + " --shard 0/2 --shard-out " + part + " --method roving", {"--shard", "roving"});
+  // A cube has 12 face samples: in 13 shards, the first has none.
+  expect_error("measure " + pair + " --shard 0/13 --shard-out " + part, {"--shard 0/13", "12 samples", "at most 12"});
+  EXPECT_EQ(folder.entries(), 2u);  // the models alone: no part, no temporary file
+}
+
+TEST(CliShard, BadMergesGetOneLineAndNoReport) {
+  const Folder folder;
+  const std::string a = folder.file("a.obj", cube_obj(0.5)), b = folder.file("b.obj", cube_obj(0.55));
+  const std::string pair = a + " " + b;
+  const std::string p0 = folder.file("p0.part"), p1 = folder.file("p1.part"), p2 = folder.file("p2.part");
+  for (const auto& [i, path] : {std::pair{0, p0}, {1, p1}, {2, p2}}) {
+    ASSERT_EQ(run_cli(fmt::format("measure {} --shard {}/3 --shard-out {}", pair, i, path)).exit_code, 0);
+  }
+  const std::string other = folder.file("other.part");
+  ASSERT_EQ(run_cli(fmt::format("measure {} --max-error 1% --shard 2/3 --shard-out {}", pair, other)).exit_code, 0);
+  const std::string halves = folder.file("halves.part");
+  ASSERT_EQ(run_cli(fmt::format("measure {} --shard 1/2 --shard-out {}", pair, halves)).exit_code, 0);
+  const std::string report = folder.file("report.json");
+  const std::string out = " --json " + report;
+
+  expect_error("merge " + p0 + " " + p2 + out, {"shard 1/3 missing"});
+  expect_error("merge " + p0 + " " + p1 + " " + p1 + " " + p2 + out, {"both are shard 1/3"});
+  expect_error("merge " + p0 + " " + p1 + " " + other + out, {"different measurements", "arguments"});
+  expect_error("merge " + p0 + " " + p1 + " " + halves + out, {"different shardings"});
+  expect_error("merge " + a + out, {a.c_str(), "expected a shard's part"});
+  expect_error("merge " + folder.file("none.part") + out, {"none.part", "cannot read"});
+  expect_error("merge" + out, {"PARTS"});
+
+  // A part cut short, or with a byte more: its size says so.
+  std::string bytes;
+  {
+    std::ifstream in(p2, std::ios::binary);
+    bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
+  const std::string cut = folder.file("cut.part", bytes.substr(0, bytes.size() - 5));
+  expect_error("merge " + p0 + " " + p1 + " " + cut + out, {"cut.part", "truncated"});
+  const std::string longer = folder.file("longer.part", bytes + "x");
+  expect_error("merge " + p0 + " " + p1 + " " + longer + out, {"longer.part", "bytes"});
+  const std::string header_only = folder.file("header.part", bytes.substr(0, bytes.find('\n') + 10));
+  expect_error("merge " + p0 + " " + p1 + " " + header_only + out, {"header.part"});
+  // A hit flag that is neither 0 nor 1.
+  std::string damaged = bytes;
+  damaged[damaged.size() - 4 * 8 - 1] = 7;  // shard 2/3 holds 4 of the 12 face samples
+  expect_error("merge " + p0 + " " + p1 + " " + folder.file("damaged.part", damaged) + out, {"hit flag", "damaged"});
+  EXPECT_FALSE(fs::exists(report));
+}
+
+}  // namespace
