@@ -32,7 +32,12 @@ METHODS = [
     ("cooperative auto", ["--method", "cooperative", "--views", "auto"], "first-hit", 1e-2),
     ("v2p-aabb", ["--method", "v2p-aabb"], "closest", 1e-6),
     ("v2v-kdtree", ["--method", "v2v-kdtree"], "closest", None),  # vertex distances: not comparable
+    ("4 shards of embree first-hit + merge", ["--method", "embree"], "first-hit", 0.0),
 ]
+
+# Measured as `measure --shard I/N` processes one after the other, then `roving merge`: its USiAD
+# must be Embree's bit for bit (tolerance 0).
+SHARDED = {"4 shards of embree first-hit + merge": 4}
 
 
 def run(roving, ref, test, arguments, timeout):
@@ -58,6 +63,28 @@ def run(roving, ref, test, arguments, timeout):
         report = json.load(file)
     os.unlink(report_path)
     return report, usage.ru_maxrss * 1024, wall
+
+
+def run_sharded(roving, ref, test, arguments, shards, timeout):
+    """The same measurement as `shards` shard processes in turn and their merge: (the merged report,
+    the largest process's peak RSS, the processes' summed wall seconds)."""
+    with tempfile.TemporaryDirectory() as folder:
+        parts, peak, wall = [], 0, 0.0
+        for i in range(shards):
+            parts.append(os.path.join(folder, f"{i}.part"))
+            _, rss, seconds = run(roving, ref, test, arguments + ["--shard", f"{i}/{shards}", "--shard-out", parts[-1]],
+                                  timeout)
+            peak, wall = max(peak, rss), wall + seconds
+        merged = os.path.join(folder, "merged.json")
+        start = time.monotonic()
+        process = subprocess.Popen([roving, "merge", *parts, "--json", merged, "--quiet"], stdout=subprocess.DEVNULL,
+                                   stderr=subprocess.PIPE)
+        _, status, usage = os.wait4(process.pid, 0)
+        if os.waitstatus_to_exitcode(status) != 0:
+            raise RuntimeError(f"roving merge failed: {process.stderr.read().decode().strip()}")
+        with open(merged) as file:
+            report = json.load(file)
+        return report, max(peak, usage.ru_maxrss * 1024), wall + time.monotonic() - start
 
 
 def fit_exponent(points):
@@ -96,7 +123,10 @@ def main():
                           file=sys.stderr)
                     rows.append({"method": name, "n": n, "skipped": predicted})
                     continue
-            report, rss, wall = run(args.roving, ref, test, arguments, args.budget)
+            if name in SHARDED:
+                report, rss, wall = run_sharded(args.roving, ref, test, arguments, SHARDED[name], args.budget)
+            else:
+                report, rss, wall = run(args.roving, ref, test, arguments, args.budget)
             seconds = report["seconds"]
             row = {
                 "method": name, "n": n, "semantics": semantics, "tolerance": tolerance,
@@ -141,6 +171,9 @@ def write_markdown(rows, failures, args):
         "is its own `roving measure` process: load is both files, build the acceleration structures or",
         "uploads, query the measurement; peak RSS is the process's (`ru_maxrss`). Checked before reported:",
         "USiAD against Embree's with the same semantics (CGAL 1e-6, roving 0.2%, cooperative 1%, v2p 1e-6).",
+        "The sharded row runs 4 `roving measure --shard I/4` processes one after the other and then",
+        "`roving merge` (docs/batch.md): its times are summed over the shards, its peak RSS is the largest",
+        "process's (every shard loads both models whole), and its USiAD must equal Embree's bit for bit.",
         "",
         f"Machine: {platform.machine()}, {os.cpu_count()} cores, {platform.platform()}.",
         "",

@@ -53,7 +53,7 @@ std::string measure_shards(const Folder& folder, const std::string& name, const 
     const std::string part = folder.file(fmt::format("{}.{}.part", name, i));
     const CliRun run = run_cli(fmt::format("measure {} --shard {}/{} --shard-out {} --quiet", command, i, shards, part));
     EXPECT_EQ(run.exit_code, 0) << run.err;
-    EXPECT_NE(run.out.find(fmt::format("shard {}/{}: samples", i, shards)), std::string::npos) << run.out;
+    EXPECT_NE(run.out.find(fmt::format("shard {}/{}: ", i, shards)), std::string::npos) << run.out;
     parts += " " + part;
   }
   return parts;
@@ -65,8 +65,8 @@ nlohmann::json merged_json(const std::string& parts) {
   return nlohmann::json::parse(run.out);
 }
 
-// Face, vertex and area samples, first-hit, nearest and closest, three methods, 1 to 7 shards:
-// the merged report is the one-process report.
+// Face, vertex and area samples, first-hit, nearest and closest, three methods, one direction and
+// both, 1 to 7 shards: the merged report is the one-process report.
 TEST(CliShard, MergedShardsGiveTheOneProcessReport) {
   const Folder folder;
   const std::string bunny_path = bunny(), rocker = roving::testing::data_file("rocker-arm.obj");
@@ -75,6 +75,9 @@ TEST(CliShard, MergedShardsGiveTheOneProcessReport) {
       bunny_path + " " + rocker + " --samples area:20000 --seed 3 --method cgal --semantics closest",
       rocker + " " + bunny_path + " --samples vertices --method v2p-aabb --max-error 10%",
       rocker + " " + bunny_path + " --samples area:5000 --semantics nearest --histogram-bins 9",
+      // Both directions: Metro's two-sided summary and the reconstruction figures.
+      bunny_path + " " + rocker + " --symmetric --samples area:8000 --threshold 1% --threshold 0.2",
+      rocker + " " + bunny_path + " --symmetric --method v2p-aabb",
   };
   int k = 0;
   for (const std::string& command : cases) {
@@ -143,7 +146,7 @@ TEST(CliShard, BadShardsGetOneLineAndNoPart) {
   }
   expect_error("measure " + pair + " --shard 0/2", {"--shard", "--shard-out"});
   expect_error("measure " + pair + " --shard-out " + part, {"--shard-out", "--shard"});
-  expect_error("measure " + pair + " --shard 0/2 --shard-out " + part + " --symmetric", {"--symmetric", "--shard"});
+  expect_error("measure " + pair + " --shard 0/2 --shard-out " + part + " --ibsm", {"--ibsm", "--shard"});
   expect_error("measure " + pair + " --shard 0/2 --shard-out " + part + " --html x.html", {"--html", "--shard"});
   expect_error("measure " + pair + " --shard 0/2 --shard-out " + part + " --method roving", {"--shard", "roving"});
   // A cube has 12 face samples: in 13 shards, the first has none.

@@ -186,7 +186,7 @@ std::vector<std::string> figure_arguments(const CLI::App& measure) {
     if (std::find(outputs.begin(), outputs.end(), name) != outputs.end()) continue;
     for (const std::string& value : option->results()) {
       words.push_back("--" + name);
-      if (option->get_type_size() != 0) words.push_back(value);
+      if (option->get_expected_max() != 0) words.push_back(value);  // a flag takes none
     }
   }
   return words;

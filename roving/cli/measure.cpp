@@ -2,6 +2,7 @@
 #include "measure.h"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <tbb/parallel_invoke.h>
 
 #include <algorithm>
@@ -214,7 +215,6 @@ void plan_shard(const MeasureArguments& args, MeasurePlan& plan) {
   plan.shard = parse_shard("--shard", args.shard);
   if (args.shard_out.empty()) throw Error("--shard: needs --shard-out FILE, where the shard's part is written");
   const std::pair<const char*, bool> refused[] = {
-      {"--symmetric", args.symmetric},
       {"--pcc", args.pcc},
       {"--protocol", !args.protocol.empty()},
       {"--ibsm", args.ibsm},
@@ -226,8 +226,8 @@ void plan_shard(const MeasureArguments& args, MeasurePlan& plan) {
   };
   for (const auto& [option, given] : refused) {
     if (given) {
-      throw Error(fmt::format("{}: not with --shard, whose part holds one direction's distance figures; measure "
-                              "without --shard for it (roving merge reports the shards' figures)",
+      throw Error(fmt::format("{}: not with --shard, whose part holds the distance and reconstruction figures; "
+                              "measure without --shard for it (roving merge reports the shards' figures)",
                               option));
     }
   }
@@ -516,6 +516,7 @@ void measure_models(const Model& a, const Model& b, MeasurePlan& plan, MeasureRe
   warn(orientation_warnings(a));
   if (plan.symmetric) warn(orientation_warnings(b));
 
+  if (plan.shard) report.shard = ShardSlice{*plan.shard, report.warnings};  // the models' warnings alone
   plan.method->set_progress(progress.callback());
   const std::vector<std::pair<const Model*, const Model*>> pairs =
       plan.symmetric ? std::vector<std::pair<const Model*, const Model*>>{{&a, &b}, {&b, &a}}
@@ -550,9 +551,8 @@ void measure_models(const Model& a, const Model& b, MeasurePlan& plan, MeasureRe
       if (plan.shard) {  // this shard's slice of the pair's samples: the same samples whatever N
         const std::size_t total = spec.kind == SampleSpec::Kind::Area ? spec.count : d.samples.size();
         const auto [first, last] = plan.shard->range(total);
-        const std::size_t triangles = test_surface(*reference).triangle_count();
-        const auto [hausdorff_first, hausdorff_last] = plan.shard->range(triangles);
-        report.shard = ShardSlice{*plan.shard, first, total, hausdorff_first, hausdorff_last, report.warnings};
+        d.slice_first = first;
+        d.slice_total = total;
         if (first == last) {
           throw Error(fmt::format("--shard {}/{}: this slice of {}'s {} samples is empty; use at most {} shards",
                                   plan.shard->index, plan.shard->count, reference->path(), total, total));
@@ -587,9 +587,12 @@ void measure_models(const Model& a, const Model& b, MeasurePlan& plan, MeasureRe
       stage = fmt::format("bounding the Hausdorff distance from {} to {}", reference->path(), test->path());
       progress.stage(fmt::format("{}certified Hausdorff", d.label.empty() ? "" : d.label + ": "));
       const TriangleMesh& surface = test_surface(*reference);
-      d.hausdorff = report.shard ? certified_hausdorff(surface, test_mesh, report.hausdorff_bound,
-                                                       report.shard->hausdorff_first, report.shard->hausdorff_last)
-                                 : certified_hausdorff(surface, test_mesh, report.hausdorff_bound);
+      if (plan.shard) {  // this shard's slice of the reference's triangles
+        const auto [first, last] = plan.shard->range(surface.triangle_count());
+        d.hausdorff = certified_hausdorff(surface, test_mesh, report.hausdorff_bound, first, last);
+      } else {
+        d.hausdorff = certified_hausdorff(surface, test_mesh, report.hausdorff_bound);
+      }
     }
     if (plan.correspondences)
       d.correspondences = correspondences(d.samples, test_mesh, d.result, plan.options.semantics);
@@ -853,15 +856,18 @@ int run_measure(const MeasureArguments& args, std::string& stage) {
   write_measure_outputs(args, run, stage);
   const MeasureReport& report = run.report;
   if (report.shard) {  // a slice's figures are not the pair's: roving merge reports them, and gates them
-    const ShardSlice& slice = *report.shard;
     if (!text_to_stdout) {
       write_stdout(to_json(report).dump(2) + "\n");
       return 0;
     }
-    write_stdout(fmt::format("shard {}/{}: samples {} to {} of {} measured in {:.3g} s; part written to {} (roving "
-                             "merge gives the figures)\n",
-                             slice.shard.index, slice.shard.count, slice.first,
-                             slice.first + report.directions.front().statistics.sample_count - 1, slice.total,
+    std::vector<std::string> slices;
+    for (const DirectionReport& d : report.directions) {
+      slices.push_back(fmt::format("{}samples {} to {} of {}", d.label.empty() ? "" : d.label + ": ", d.slice_first,
+                                   d.slice_first + d.statistics.sample_count - 1, d.slice_total));
+    }
+    write_stdout(fmt::format("shard {}/{}: {} measured in {:.3g} s; part written to {} (roving merge gives the "
+                             "figures)\n",
+                             report.shard->shard.index, report.shard->shard.count, fmt::join(slices, "; "),
                              report.total_seconds, args.shard_out));
     return 0;
   }

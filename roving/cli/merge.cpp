@@ -65,11 +65,18 @@ HausdorffInterval hausdorff_of(const nlohmann::json& json) {
   return h;
 }
 
-// One part as read: its JSON line, and where its arrays start in the file.
+// One direction of a part: its samples and whether each carries normal_agreement's value.
+struct PartDirection {
+  std::size_t count = 0, first = 0;
+  bool agreement = false;
+  std::size_t bytes() const { return count * (kBytesPerSample + (agreement ? sizeof(double) : 0)); }
+};
+
+// One part as read: its JSON line, its directions, and where its arrays start in the file.
 struct Part {
   std::string path;
   nlohmann::json header;
-  std::size_t count = 0;  // samples in it
+  std::vector<PartDirection> directions;
   std::streamoff arrays_at = 0;
 };
 
@@ -93,9 +100,22 @@ Part read_part_header(const std::string& path) {
                             kMaxHeaderBytes));
   }
   part.arrays_at = in.tellg();
+  std::error_code error;
+  const std::uintmax_t size = std::filesystem::file_size(path, error);
+  std::uintmax_t expected = static_cast<std::uintmax_t>(part.arrays_at);
   try {
     part.header = nlohmann::json::parse(line);
-    part.count = part.header.at("samples").at("count").get<std::size_t>();
+    const nlohmann::json& directions = part.header.at("directions");
+    if (directions.empty() || directions.size() > 2) throw Error("it has no direction or more than two");
+    for (const nlohmann::json& d : directions) {
+      const nlohmann::json& samples = d.at("samples");
+      PartDirection& direction = part.directions.emplace_back();
+      direction.count = samples.at("count").get<std::size_t>();
+      direction.first = samples.at("first").get<std::size_t>();
+      direction.agreement = d.at("normal_agreement").get<bool>();
+      if (direction.count > size / kBytesPerSample) break;  // the size check below says so
+      expected += direction.bytes();
+    }
     if (part.header.at("byte_order").get<std::string>() != "little" || !little_endian()) {
       throw Error("its arrays' byte order is not this machine's");
     }
@@ -105,32 +125,35 @@ Part read_part_header(const std::string& path) {
   } catch (const Error& e) {
     throw Error(fmt::format("{}: {}", path, e.what()));
   }
-  std::error_code error;
-  const std::uintmax_t size = std::filesystem::file_size(path, error);
-  const std::uintmax_t expected = static_cast<std::uintmax_t>(part.arrays_at) + kBytesPerSample * part.count;
-  if (error || part.count > size / kBytesPerSample || size != expected) {
-    throw Error(fmt::format("{}: expected {} bytes ({} samples of {} bytes after the description), found {}; the "
-                            "part is truncated or damaged: run its shard again",
-                            path, expected, part.count, kBytesPerSample, size));
+  if (error || size != expected) {
+    throw Error(fmt::format("{}: expected {} bytes (the description, then {} bytes per sample), found {}; the part "
+                            "is truncated or damaged: run its shard again",
+                            path, expected, kBytesPerSample, size));
   }
   return part;
 }
 
-// Appends the part's d, hit and weights to the direction's arrays.
-void read_arrays(const Part& part, DirectionReport& d) {
+// Appends the part's per-sample arrays to each direction's: d, hit, weight (and the normal
+// agreement where it has it).
+void read_arrays(const Part& part, std::vector<DirectionReport>& directions,
+                 std::vector<std::vector<double>>& agreement) {
   std::ifstream in(part.path, std::ios::binary);
   in.seekg(part.arrays_at);
-  const auto read = [&](auto& values) {
-    const std::size_t at = values.size();
-    values.resize(at + part.count);
-    const std::size_t bytes = part.count * sizeof(values[0]);
-    if (!in.read(reinterpret_cast<char*>(values.data() + at), static_cast<std::streamsize>(bytes))) {
-      throw Error(fmt::format("{}: the part ended before its {} samples", part.path, part.count));
-    }
-  };
-  read(d.result.signed_distance);
-  read(d.result.hit);
-  read(d.samples.weights);
+  for (std::size_t i = 0; i < part.directions.size(); ++i) {
+    const std::size_t count = part.directions[i].count;
+    const auto read = [&](auto& values) {
+      const std::size_t at = values.size();
+      values.resize(at + count);
+      if (!in.read(reinterpret_cast<char*>(values.data() + at), static_cast<std::streamsize>(count * sizeof(values[0])))) {
+        throw Error(fmt::format("{}: the part ended before its {} samples", part.path, count));
+      }
+    };
+    DirectionReport& d = directions[i];
+    read(d.result.signed_distance);
+    read(d.result.hit);
+    read(d.samples.weights);
+    if (part.directions[i].agreement) read(agreement[i]);
+  }
 }
 
 // The fields every part of one measurement has alike.
@@ -144,15 +167,17 @@ void check_alike(const Part& first, const Part& part) {
                               first.path, part.path, key));
     }
   }
-  for (const char* key : {"count"}) {
-    if (part.header.at("shard").at(key) != first.header.at("shard").at(key)) {
-      throw Error(fmt::format("{} and {}: parts of different shardings ({}/{} and {}/{})", first.path, part.path,
-                              first.header["shard"]["index"].dump(), first.header["shard"]["count"].dump(),
-                              part.header["shard"]["index"].dump(), part.header["shard"]["count"].dump()));
-    }
+  if (part.header.at("shard").at("count") != first.header.at("shard").at("count")) {
+    throw Error(fmt::format("{} and {}: parts of different shardings ({}/{} and {}/{})", first.path, part.path,
+                            first.header["shard"]["index"].dump(), first.header["shard"]["count"].dump(),
+                            part.header["shard"]["index"].dump(), part.header["shard"]["count"].dump()));
   }
-  if (part.header.at("samples").at("total") != first.header.at("samples").at("total")) {
-    throw Error(fmt::format("{} and {}: parts of different sample sets", first.path, part.path));
+  for (std::size_t i = 0; i < first.directions.size(); ++i) {
+    const auto total = [&](const Part& p) { return p.header["directions"][i]["samples"]["total"]; };
+    if (part.directions.size() != first.directions.size() || total(part) != total(first) ||
+        part.directions[i].agreement != first.directions[i].agreement) {
+      throw Error(fmt::format("{} and {}: parts of different sample sets", first.path, part.path));
+    }
   }
 }
 
@@ -161,10 +186,9 @@ std::vector<Part> ordered_parts(const std::vector<std::string>& paths) {
   if (paths.empty()) throw Error("merge: expected the parts of one measurement's shards, found none");
   std::vector<Part> parts;
   for (const std::string& path : paths) parts.push_back(read_part_header(path));
-  std::size_t count = 0, total = 0;
+  std::size_t count = 0;
   try {
     count = parts[0].header.at("shard").at("count").get<std::size_t>();
-    total = parts[0].header.at("samples").at("total").get<std::size_t>();
     for (const Part& part : parts) check_alike(parts[0], part);
   } catch (const nlohmann::json::exception& e) {
     throw Error(fmt::format("merge: a part's description is incomplete: {}", e.what()));
@@ -190,10 +214,14 @@ std::vector<Part> ordered_parts(const std::vector<std::string>& paths) {
   std::vector<Part> ordered;
   for (std::size_t i = 0; i < count; ++i) {
     const Part& part = *by_index[i];
-    const auto [first, last] = Shard{i, count}.range(total);
-    if (part.header["samples"]["first"].get<std::size_t>() != first || part.count != last - first) {
-      throw Error(fmt::format("{}: shard {}/{} should hold samples [{}, {}) of {}; it holds {} from {}", part.path, i,
-                              count, first, last, total, part.count, part.header["samples"]["first"].dump()));
+    for (std::size_t k = 0; k < part.directions.size(); ++k) {
+      const std::size_t total = part.header["directions"][k]["samples"]["total"].get<std::size_t>();
+      const auto [first, last] = Shard{i, count}.range(total);
+      const PartDirection& d = part.directions[k];
+      if (d.first != first || d.count != last - first) {
+        throw Error(fmt::format("{}: shard {}/{} should hold samples [{}, {}) of {}; it holds {} from {}", part.path,
+                                i, count, first, last, total, d.count, d.first));
+      }
     }
     ordered.push_back(part);
   }
@@ -214,23 +242,33 @@ MeasureArguments shard_arguments(const nlohmann::json& words) {
 
 void write_shard_part(std::FILE* out, const MeasureArguments& args, const MeasureRun& run) {
   const MeasureReport& r = run.report;
-  const DirectionReport& d = r.directions.front();
-  const ShardSlice& slice = *r.shard;
-  nlohmann::json header = {
+  nlohmann::json directions = nlohmann::json::array();
+  std::vector<std::vector<double>> agreement;
+  for (const DirectionReport& d : r.directions) {
+    agreement.push_back(normal_agreement({&d.samples, &d.result, &test_surface(*d.test)}));
+    directions.push_back(
+        {{"label", d.label},
+         {"samples",
+          {{"kind", d.samples.kind},
+           {"total", d.slice_total},
+           {"first", d.slice_first},
+           {"count", d.samples.size()},
+           {"skipped_degenerate_faces", d.samples.skipped_degenerate_faces},
+           {"skipped_unreferenced_vertices", d.samples.skipped_unreferenced_vertices},
+           {"skipped_zero_normal_vertices", d.samples.skipped_zero_normal_vertices}}},
+         {"reference", d.reference_json},
+         {"test", d.test_json},
+         {"seconds", {{"build", d.result.build_seconds}, {"query", d.result.query_seconds}}},
+         {"hausdorff", d.hausdorff ? hausdorff_json(*d.hausdorff) : nlohmann::json(nullptr)},
+         {"normal_agreement", !agreement.back().empty()}});
+  }
+  const nlohmann::json header = {
       {"format", kPartMagic},
       {"tool", r.provenance.at("tool")},
       {"arguments", args.figure_arguments},
       {"inputs", r.provenance.at("inputs")},
       {"command_line", args.command_line},
-      {"shard", {{"index", slice.shard.index}, {"count", slice.shard.count}}},
-      {"samples",
-       {{"kind", d.samples.kind},
-        {"total", slice.total},
-        {"first", slice.first},
-        {"count", d.samples.size()},
-        {"skipped_degenerate_faces", d.samples.skipped_degenerate_faces},
-        {"skipped_unreferenced_vertices", d.samples.skipped_unreferenced_vertices},
-        {"skipped_zero_normal_vertices", d.samples.skipped_zero_normal_vertices}}},
+      {"shard", {{"index", r.shard->shard.index}, {"count", r.shard->shard.count}}},
       {"header", format_header(*run.a, *run.b, r)},
       {"method", r.method},
       {"semantics", to_string(r.semantics)},
@@ -238,26 +276,25 @@ void write_shard_part(std::FILE* out, const MeasureArguments& args, const Measur
       {"max_error_text", r.max_error_text},
       {"hausdorff_bound", r.hausdorff_bound},
       {"diagonal", r.diagonal},
+      {"diagonal_of_both", r.diagonal_of_both},
       {"seed", r.seed},
-      {"reference", d.reference_json},
-      {"test", d.test_json},
-      {"model_warnings", slice.model_warnings},
+      {"model_warnings", r.shard->model_warnings},
+      {"directions", directions},
       {"seconds",
-       {{"load_reference", r.load_seconds[0]},
-        {"load_test", r.load_seconds[1]},
-        {"build", d.result.build_seconds},
-        {"query", d.result.query_seconds},
-        {"total", r.total_seconds}}},
-      {"hausdorff", d.hausdorff ? hausdorff_json(*d.hausdorff) : nlohmann::json(nullptr)},
+       {{"load_reference", r.load_seconds[0]}, {"load_test", r.load_seconds[1]}, {"total", r.total_seconds}}},
       {"byte_order", little_endian() ? "little" : "big"}};
   const std::string line = std::string(kPartMagic) + "\n" + header.dump() + "\n";
   write_array(out, line.data(), line.size());
-  // Weights are per sample wherever samples are made; a set without them stands for equal areas.
-  std::vector<double> weights = d.samples.weights;
-  weights.resize(d.samples.size(), weights.empty() ? 1.0 : weights.back());
-  write_array(out, d.result.signed_distance.data(), d.samples.size() * sizeof(double));
-  write_array(out, d.result.hit.data(), d.samples.size());
-  write_array(out, weights.data(), weights.size() * sizeof(double));
+  for (std::size_t i = 0; i < r.directions.size(); ++i) {
+    const DirectionReport& d = r.directions[i];
+    // Weights are per sample wherever samples are made; a set without them stands for equal areas.
+    std::vector<double> weights = d.samples.weights;
+    weights.resize(d.samples.size(), weights.empty() ? 1.0 : weights.back());
+    write_array(out, d.result.signed_distance.data(), d.samples.size() * sizeof(double));
+    write_array(out, d.result.hit.data(), d.samples.size());
+    write_array(out, weights.data(), weights.size() * sizeof(double));
+    write_array(out, agreement[i].data(), agreement[i].size() * sizeof(double));
+  }
 }
 
 MergedReport merge_parts(const std::vector<std::string>& paths, const std::string& command_line) {
@@ -266,6 +303,7 @@ MergedReport merge_parts(const std::vector<std::string>& paths, const std::strin
   MergedReport merged;
   const nlohmann::json& first = parts.front().header;
   MeasureReport& r = merged.report;
+  std::vector<std::vector<double>> agreement(parts.front().directions.size());
   try {
     merged.plan = plan_measurement(shard_arguments(first.at("arguments")));
     merged.header = first.at("header").get<std::string>();
@@ -275,6 +313,7 @@ MergedReport merge_parts(const std::vector<std::string>& paths, const std::strin
     r.max_error_text = first.at("max_error_text").get<std::string>();
     r.hausdorff_bound = first.at("hausdorff_bound").get<double>();
     r.diagonal = first.at("diagonal").get<double>();
+    r.diagonal_of_both = first.at("diagonal_of_both").get<bool>();
     r.seed = first.at("seed").get<std::uint64_t>();
     r.warnings = first.at("model_warnings").get<std::vector<std::string>>();
     std::vector<std::string> part_paths;
@@ -283,60 +322,78 @@ MergedReport merge_parts(const std::vector<std::string>& paths, const std::strin
                     {"command_line", command_line},
                     {"inputs", first.at("inputs")},
                     {"merged_from", {{"parts", part_paths}, {"shard_command_line", first.at("command_line")}}}};
-    DirectionReport& d = r.directions.emplace_back();
-    d.reference_json = first.at("reference");
-    d.test_json = first.at("test");
-    const nlohmann::json& samples = first.at("samples");
-    d.samples.kind = samples.at("kind").get<std::string>();
-    d.samples.skipped_degenerate_faces = samples.at("skipped_degenerate_faces").get<std::size_t>();
-    d.samples.skipped_unreferenced_vertices = samples.at("skipped_unreferenced_vertices").get<std::size_t>();
-    d.samples.skipped_zero_normal_vertices = samples.at("skipped_zero_normal_vertices").get<std::size_t>();
-    const std::size_t total = samples.at("total").get<std::size_t>();
-    d.result.signed_distance.reserve(total);
-    d.result.hit.reserve(total);
-    d.samples.weights.reserve(total);
-    std::optional<HausdorffInterval> hausdorff;
+    for (const nlohmann::json& direction : first.at("directions")) {
+      DirectionReport& d = r.directions.emplace_back();
+      d.label = direction.at("label").get<std::string>();
+      d.reference_json = direction.at("reference");
+      d.test_json = direction.at("test");
+      const nlohmann::json& samples = direction.at("samples");
+      d.samples.kind = samples.at("kind").get<std::string>();
+      d.samples.skipped_degenerate_faces = samples.at("skipped_degenerate_faces").get<std::size_t>();
+      d.samples.skipped_unreferenced_vertices = samples.at("skipped_unreferenced_vertices").get<std::size_t>();
+      d.samples.skipped_zero_normal_vertices = samples.at("skipped_zero_normal_vertices").get<std::size_t>();
+      const std::size_t total = samples.at("total").get<std::size_t>();
+      d.result.signed_distance.reserve(total);
+      d.result.hit.reserve(total);
+      d.samples.weights.reserve(total);
+    }
     for (const Part& part : parts) {
-      read_arrays(part, d);
+      read_arrays(part, r.directions, agreement);
       const nlohmann::json& seconds = part.header.at("seconds");
       r.load_seconds[0] += seconds.at("load_reference").get<double>();
       r.load_seconds[1] += seconds.at("load_test").get<double>();
-      d.result.build_seconds += seconds.at("build").get<double>();
-      d.result.query_seconds += seconds.at("query").get<double>();
       r.total_seconds += seconds.at("total").get<double>();
-      if (part.header.at("hausdorff").is_null()) continue;
-      // The largest lower end (with the points that attain it) and the largest upper end.
-      const HausdorffInterval h = hausdorff_of(part.header["hausdorff"]);
-      if (!hausdorff) {
-        hausdorff = h;
-        continue;
+      for (std::size_t i = 0; i < r.directions.size(); ++i) {
+        DirectionReport& d = r.directions[i];
+        const nlohmann::json& direction = part.header.at("directions").at(i);
+        d.result.build_seconds += direction.at("seconds").at("build").get<double>();
+        d.result.query_seconds += direction.at("seconds").at("query").get<double>();
+        if (direction.at("hausdorff").is_null()) continue;
+        // The largest lower end (with the points that attain it) and the largest upper end.
+        const HausdorffInterval h = hausdorff_of(direction["hausdorff"]);
+        if (!d.hausdorff) {
+          d.hausdorff = h;
+          continue;
+        }
+        if (h.lower > d.hausdorff->lower) {
+          d.hausdorff->lower = h.lower, d.hausdorff->lower_point = h.lower_point,
+          d.hausdorff->lower_closest = h.lower_closest;
+        }
+        d.hausdorff->upper = std::max(d.hausdorff->upper, h.upper);
+        d.hausdorff->distance_queries += h.distance_queries;
+        d.hausdorff->triangles_split += h.triangles_split;
+        d.hausdorff->seconds += h.seconds;
       }
-      if (h.lower > hausdorff->lower) {
-        hausdorff->lower = h.lower, hausdorff->lower_point = h.lower_point, hausdorff->lower_closest = h.lower_closest;
-      }
-      hausdorff->upper = std::max(hausdorff->upper, h.upper);
-      hausdorff->distance_queries += h.distance_queries;
-      hausdorff->triangles_split += h.triangles_split;
-      hausdorff->seconds += h.seconds;
     }
-    d.hausdorff = hausdorff;
   } catch (const nlohmann::json::exception& e) {
     throw Error(fmt::format("{}: the part's description is incomplete: {}", parts.front().path, e.what()));
   }
   // From here, as measure_models computes them from the same arrays.
-  DirectionReport& d = r.directions.front();
   const MeasurePlan& plan = merged.plan;
-  for (const std::uint8_t hit : d.result.hit) {
-    if (hit > 1) throw Error(fmt::format("merge: a part's hit flag is {}, not 0 or 1; the part is damaged", hit));
+  for (DirectionReport& d : r.directions) {
+    for (const std::uint8_t hit : d.result.hit) {
+      if (hit > 1) throw Error(fmt::format("merge: a part's hit flag is {}, not 0 or 1; the part is damaged", hit));
+    }
+    d.statistics = compute_statistics(d.result.signed_distance, d.result.hit, d.samples.weights, r.max_error,
+                                      plan.histogram_bins);
+    if (d.samples.kind.rfind("area:", 0) == 0 && d.result.hit.size() >= 2) {
+      d.intervals = sampling_intervals(d.result.signed_distance, d.result.hit, r.max_error);
+    }
+    d.heatmap_range =
+        plan.heatmap_range ? plan.heatmap_range->resolve(r.diagonal) : default_heatmap_range(d.result, r.max_error);
+    for (const std::string& line : result_warnings(d.statistics, r.semantics))
+      r.warnings.push_back((d.label.empty() ? "" : d.label + ": ") + line);
   }
-  d.statistics = compute_statistics(d.result.signed_distance, d.result.hit, d.samples.weights, r.max_error,
-                                    plan.histogram_bins);
-  if (d.samples.kind.rfind("area:", 0) == 0 && d.result.hit.size() >= 2) {
-    d.intervals = sampling_intervals(d.result.signed_distance, d.result.hit, r.max_error);
+  if (r.symmetric()) {
+    std::vector<double> thresholds;
+    for (const MaxErrorSpec& tau : plan.thresholds) thresholds.push_back(tau.resolve(r.diagonal));
+    const auto arrays = [&](std::size_t i) {
+      const DirectionReport& d = r.directions[i];
+      return SampleFigures{&d.result.signed_distance, &d.result.hit, &d.samples.weights, &agreement[i]};
+    };
+    r.reconstruction = reconstruction_figures(arrays(0), arrays(1), thresholds,
+                                              r.directions[0].samples.kind.rfind("area:", 0) == 0);
   }
-  d.heatmap_range =
-      plan.heatmap_range ? plan.heatmap_range->resolve(r.diagonal) : default_heatmap_range(d.result, r.max_error);
-  for (std::string& line : result_warnings(d.statistics, r.semantics)) r.warnings.push_back(line);
   r.total_seconds += watch.seconds();
   return merged;
 }

@@ -1019,10 +1019,13 @@ nlohmann::json to_json(const MeasureReport& r) {
   }
   if (r.shard) {
     const ShardSlice& s = *r.shard;
+    nlohmann::json slices = nlohmann::json::array();
+    for (const DirectionReport& d : r.directions) {
+      slices.push_back({{"first", d.slice_first}, {"count", d.statistics.sample_count}, {"total", d.slice_total}});
+    }
     json["shard"] = {{"index", s.shard.index},
                      {"count", s.shard.count},
-                     {"first_sample", s.first},
-                     {"total_samples", s.total},
+                     {"samples", slices},
                      {"note", "this run's slice of the samples alone; roving merge gives the pair's figures"}};
   }
   if (r.mpeg) json["mpeg_pcc"] = mpeg_json(*r.mpeg);

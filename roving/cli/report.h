@@ -60,13 +60,13 @@ struct DirectionReport {
   // The reference and the test as the report describes them (model_json), taken before sampling
   // (which may release the reference's geometry); a merge of shards reports them without models.
   nlohmann::json reference_json, test_json;
+  // Under --shard: this direction's slice starts at sample `slice_first` of `slice_total`.
+  std::size_t slice_first = 0, slice_total = 0;
 };
 
-// measure --shard: the slice of the samples one run measured, for `roving merge` (merge.h).
+// measure --shard: which slice one run measured, for `roving merge` (merge.h).
 struct ShardSlice {
   Shard shard;
-  std::size_t first = 0, total = 0;  // the slice's first sample, and the samples of the whole pair
-  std::size_t hausdorff_first = 0, hausdorff_last = 0;  // the reference's triangles bounded here
   std::vector<std::string> model_warnings;  // the warnings about the models, before any figure's
 };
 

@@ -36,22 +36,21 @@ Estimate weighted_mean(const std::vector<double>& values, const std::vector<doub
   return {mean, mean - half, mean + half};
 }
 
-DirectionFigures direction_figures(const CorrespondenceSet& set, const std::vector<double>& thresholds,
+DirectionFigures direction_figures(const SampleFigures& set, const std::vector<double>& thresholds,
                                    bool area_uniform) {
-  const SampleSet& samples = *set.samples;
-  const DistanceResult& result = *set.result;
-  const std::size_t count = samples.size();
+  const std::vector<double>& weights = *set.weights;
+  const std::size_t count = set.signed_distance->size();
   DirectionFigures f;
   std::vector<double> distance(count, 0), squared(count, 0);
   std::vector<std::uint8_t> hit(count, 0), all(count, 1);
   for (std::size_t k = 0; k < count; ++k) {
-    hit[k] = result.hit[k];
-    distance[k] = std::abs(result.signed_distance[k]);
+    hit[k] = (*set.hit)[k];
+    distance[k] = std::abs((*set.signed_distance)[k]);
     squared[k] = distance[k] * distance[k];
     (hit[k] ? f.hits : f.no_hits) += 1;
   }
-  f.mean = weighted_mean(distance, samples.weights, hit, area_uniform);
-  const Estimate mean_square = weighted_mean(squared, samples.weights, hit, area_uniform);
+  f.mean = weighted_mean(distance, weights, hit, area_uniform);
+  const Estimate mean_square = weighted_mean(squared, weights, hit, area_uniform);
   f.rms = {std::sqrt(mean_square.value),
            std::isnan(mean_square.lower) ? kNaN : std::sqrt(std::max(0.0, mean_square.lower)),
            std::sqrt(mean_square.upper)};
@@ -63,11 +62,11 @@ DirectionFigures direction_figures(const CorrespondenceSet& set, const std::vect
   std::sort(order.begin(), order.end(),
             [&](std::size_t a, std::size_t b) { return distance[a] < distance[b]; });
   double total = 0;
-  for (std::size_t k : order) total += samples.weights[k];
+  for (std::size_t k : order) total += weights[k];
   double below = 0;
   f.median = kNaN;
   for (std::size_t k : order) {
-    below += samples.weights[k];
+    below += weights[k];
     if (below >= 0.5 * total) {
       f.median = distance[k];
       break;
@@ -77,29 +76,47 @@ DirectionFigures direction_figures(const CorrespondenceSet& set, const std::vect
   for (const double tau : thresholds) {
     std::vector<double> inside(count, 0);
     for (std::size_t k = 0; k < count; ++k) inside[k] = hit[k] && distance[k] <= tau ? 1 : 0;
-    f.within.push_back(weighted_mean(inside, samples.weights, all, area_uniform));
+    f.within.push_back(weighted_mean(inside, weights, all, area_uniform));
   }
   // Normal consistency where the correspondence's face is known.
-  if (result.hit_face.size() == count) {
-    std::vector<double> agreement(count, 0);
-    for (std::size_t k = 0; k < count; ++k) {
-      if (!hit[k]) continue;
-      const Triangle& t = set.to->triangles()[result.hit_face[k]];
-      const Vec3& a = set.to->positions()[t[0]];
-      const Vec3 n = (set.to->positions()[t[1]] - a).cross(set.to->positions()[t[2]] - a);
-      agreement[k] = n.norm() > 0 ? std::abs(samples.normals[k].dot(n.normalized())) : 0;
-    }
-    f.normal_consistency = weighted_mean(agreement, samples.weights, hit, area_uniform);
-  } else {
-    f.normal_consistency = {kNaN, kNaN, kNaN};
-  }
+  f.normal_consistency = set.agreement && set.agreement->size() == count
+                             ? weighted_mean(*set.agreement, weights, hit, area_uniform)
+                             : Estimate{kNaN, kNaN, kNaN};
   return f;
 }
 
 }  // namespace
 
+std::vector<double> normal_agreement(const CorrespondenceSet& set) {
+  const SampleSet& samples = *set.samples;
+  const DistanceResult& result = *set.result;
+  const std::size_t count = samples.size();
+  if (result.hit_face.size() != count) return {};
+  std::vector<double> agreement(count, 0);
+  for (std::size_t k = 0; k < count; ++k) {
+    if (!result.hit[k]) continue;
+    const Triangle& t = set.to->triangles()[result.hit_face[k]];
+    const Vec3& a = set.to->positions()[t[0]];
+    const Vec3 n = (set.to->positions()[t[1]] - a).cross(set.to->positions()[t[2]] - a);
+    agreement[k] = n.norm() > 0 ? std::abs(samples.normals[k].dot(n.normalized())) : 0;
+  }
+  return agreement;
+}
+
 ReconstructionFigures reconstruction_figures(const CorrespondenceSet& reference_to_test,
                                              const CorrespondenceSet& test_to_reference,
+                                             const std::vector<double>& thresholds, bool area_uniform) {
+  const std::vector<double> forward = normal_agreement(reference_to_test),
+                            backward = normal_agreement(test_to_reference);
+  const auto arrays = [](const CorrespondenceSet& set, const std::vector<double>& agreement) {
+    return SampleFigures{&set.result->signed_distance, &set.result->hit, &set.samples->weights, &agreement};
+  };
+  return reconstruction_figures(arrays(reference_to_test, forward), arrays(test_to_reference, backward), thresholds,
+                                area_uniform);
+}
+
+ReconstructionFigures reconstruction_figures(const SampleFigures& reference_to_test,
+                                             const SampleFigures& test_to_reference,
                                              const std::vector<double>& thresholds, bool area_uniform) {
   for (const double tau : thresholds) {
     if (!(tau > 0) || !std::isfinite(tau)) {

@@ -59,4 +59,22 @@ ReconstructionFigures reconstruction_figures(const CorrespondenceSet& reference_
                                              const CorrespondenceSet& test_to_reference,
                                              const std::vector<double>& thresholds, bool area_uniform);
 
+// Each hit's |n . n'|: the sample's normal against the normal of the face its correspondence lies
+// on (0 for a no-hit or a degenerate face); empty where the result names no faces.
+std::vector<double> normal_agreement(const CorrespondenceSet& set);
+
+// What the figures are computed from, per sample: d, hit, the area it stands for, and
+// normal_agreement's value (empty: unknown). A merge of shards has these without the models.
+struct SampleFigures {
+  const std::vector<double>* signed_distance = nullptr;
+  const std::vector<std::uint8_t>* hit = nullptr;
+  const std::vector<double>* weights = nullptr;
+  const std::vector<double>* agreement = nullptr;
+};
+
+// The same figures from the per-sample arrays.
+ReconstructionFigures reconstruction_figures(const SampleFigures& reference_to_test,
+                                             const SampleFigures& test_to_reference,
+                                             const std::vector<double>& thresholds, bool area_uniform);
+
 }  // namespace roving

@@ -354,7 +354,7 @@ def test_shards_merge_to_the_one_process_report(tmp_path):
     parts = [str(tmp_path / f"p{i}.part") for i in range(3)]
     for i, part in enumerate(parts):
         shard = roving.measure(BUNNY, FANDISK, shard=f"{i}/3", shard_out=part, **options)
-        assert shard["shard"]["index"] == i and shard["shard"]["total_samples"] == 4000
+        assert shard["shard"]["index"] == i and shard["shard"]["samples"][0]["total"] == 4000
     merged = roving.merge(*reversed(parts), json=str(tmp_path / "merged.json"))
     incidental = {"seconds", "command_line", "tool", "merged_from", "per_sample", "breached_gates"}
     assert {k: v for k, v in one.items() if k not in incidental} == \
