@@ -103,6 +103,15 @@ check_exit_codes() {
   [ "$(echo "$states" | awk '$2 == "COMPLETED" && $3 == "0:0" {n += $1} END {print n + 0}')" = "$2" ] ||
     fail "job $1: expected $2 tasks COMPLETED with exit code 0:0, found: $states"
 }
+# Cancels task 1 of array job $1 once it has run $2 seconds.
+cancel_task_1() {
+  for i in $(seq 240); do
+    [ -n "$(squeue -h -t R -j "${1}_1" 2>/dev/null)" ] && break
+    sleep 0.5
+  done
+  sleep "$2"
+  scancel "${1}_1"
+}
 # The summary without its seconds column.
 summary() {
   /usr/bin/python3 -c '
@@ -165,12 +174,7 @@ echo "test-slurm: array of 4 shards + merge: 24 reports, exit codes 0, summary.c
 # 2. A task cancelled mid-run, then submitted again: the set completes without duplicates.
 cd "$work/run2"
 jobid=$(sbatch --parsable --array=0-3 shards.sh)
-for i in $(seq 240); do
-  [ -n "$(squeue -h -t R -j "${jobid}_1" 2>/dev/null)" ] && break
-  sleep 0.5
-done
-sleep 1.5
-scancel "${jobid}_1"
+cancel_task_1 "$jobid" 1.5
 step "the array with task 1 cancelled (job $jobid)" wait_jobs "$jobid" 300
 scontrol -o show job "$jobid" | grep 'ArrayTaskId=1 ' | grep -q 'JobState=CANCELLED' ||
   fail "task 1 of job $jobid was not cancelled: $(scontrol -o show job "$jobid" | grep -o 'ArrayTaskId=[0-9-]* .*JobState=[A-Z]*' )"
@@ -226,12 +230,7 @@ same_report one.json report.json
 echo "test-slurm: one pair in 4 shards + merge: the one-process report"
 rm -rf parts report.json
 jobid=$(sbatch --parsable --array=0-3 pair-shards.sh)
-for i in $(seq 240); do
-  [ -n "$(squeue -h -t R -j "${jobid}_1" 2>/dev/null)" ] && break
-  sleep 0.5
-done
-sleep 1
-scancel "${jobid}_1"
+cancel_task_1 "$jobid" 1
 step "the pair's shards with task 1 cancelled (job $jobid)" wait_jobs "$jobid" 300
 [ ! -e parts/1.part ] || fail "the cancelled shard 1 left a part"
 [ -z "$(ls -A parts | grep '^\.')" ] || fail "temporary files left in parts/: $(ls -A parts)"

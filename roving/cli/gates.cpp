@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "report.h"
 #include "roving/core/error.h"
@@ -160,6 +161,15 @@ std::vector<std::string> undecided_gates(const std::vector<Gate>& gates, const s
     }
   }
   return lines;
+}
+
+int apply_gates(const std::vector<Gate>& gates, const std::vector<MetricValue>& values, GateOn on) {
+  if (on == GateOn::Estimate) {
+    for (const std::string& line : undecided_gates(gates, values)) std::fprintf(stderr, "roving: note: %s\n", line.c_str());
+  }
+  const std::vector<std::string> breached = breached_gates(gates, values, on);
+  for (const std::string& line : breached) std::fprintf(stderr, "roving: %s\n", line.c_str());
+  return breached.empty() ? 0 : kGateExitCode;
 }
 
 }  // namespace roving

@@ -69,4 +69,8 @@ std::vector<std::string> breached_gates(const std::vector<Gate>& gates, const st
 // interval does not (a sampled Hausdorff distance below the certified one).
 std::vector<std::string> undecided_gates(const std::vector<Gate>& gates, const std::vector<MetricValue>& values);
 
+// The gates as measure and merge apply them: the undecided ones as notes (gating on the
+// estimate) and the breached ones on stderr; returns 0, or kGateExitCode when one is breached.
+int apply_gates(const std::vector<Gate>& gates, const std::vector<MetricValue>& values, GateOn on);
+
 }  // namespace roving

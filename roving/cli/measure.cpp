@@ -205,8 +205,8 @@ void plan_protocol(const MeasureArguments& args, MeasurePlan& plan) {
   }
 }
 
-// --shard and --shard-out: one slice of one direction's samples, by a method whose answer at a
-// sample is the sample's alone, with the figures a merge can rebuild from d, hit and the weights.
+// --shard and --shard-out: one slice of each direction's samples, by a method whose answer at a
+// sample is the sample's alone, with the figures a merge can rebuild from the per-sample arrays.
 void plan_shard(const MeasureArguments& args, MeasurePlan& plan) {
   if (args.shard.empty()) {
     if (!args.shard_out.empty()) throw Error("--shard-out: only with --shard I/N");
@@ -873,14 +873,7 @@ int run_measure(const MeasureArguments& args, std::string& stage) {
   }
   write_stdout(text_to_stdout ? format_body(report) : to_json(report).dump(2) + "\n");
 
-  const std::vector<MetricValue> values = gate_values(report);
-  if (run.plan.gate_on == GateOn::Estimate) {
-    for (const std::string& line : undecided_gates(run.plan.gates, values))
-      std::fprintf(stderr, "roving: note: %s\n", line.c_str());
-  }
-  const std::vector<std::string> breached = breached_gates(run.plan.gates, values, run.plan.gate_on);
-  for (const std::string& line : breached) std::fprintf(stderr, "roving: %s\n", line.c_str());
-  return breached.empty() ? 0 : kGateExitCode;
+  return apply_gates(run.plan.gates, gate_values(report), run.plan.gate_on);
 }
 
 }  // namespace roving

@@ -245,7 +245,9 @@ void write_shard_part(std::FILE* out, const MeasureArguments& args, const Measur
   nlohmann::json directions = nlohmann::json::array();
   std::vector<std::vector<double>> agreement;
   for (const DirectionReport& d : r.directions) {
-    agreement.push_back(normal_agreement({&d.samples, &d.result, &test_surface(*d.test)}));
+    // Normal consistency's term, for the reconstruction figures of both directions.
+    agreement.push_back(r.symmetric() ? normal_agreement({&d.samples, &d.result, &test_surface(*d.test)})
+                                      : std::vector<double>());
     directions.push_back(
         {{"label", d.label},
          {"samples",
@@ -413,14 +415,7 @@ int run_merge(const MergeArguments& args, std::string& stage) {
     file.commit();
   }
   write_stdout(args.json_path == "-" ? json : merged.header + format_body(report));
-  const std::vector<MetricValue> values = gate_values(report);
-  if (merged.plan.gate_on == GateOn::Estimate) {
-    for (const std::string& line : undecided_gates(merged.plan.gates, values))
-      std::fprintf(stderr, "roving: note: %s\n", line.c_str());
-  }
-  const std::vector<std::string> breached = breached_gates(merged.plan.gates, values, merged.plan.gate_on);
-  for (const std::string& line : breached) std::fprintf(stderr, "roving: %s\n", line.c_str());
-  return breached.empty() ? 0 : kGateExitCode;
+  return apply_gates(merged.plan.gates, gate_values(report), merged.plan.gate_on);
 }
 
 }  // namespace roving

@@ -1,8 +1,9 @@
 // One pair measured across processes: `roving measure ... --shard I/N --shard-out PART` writes the
-// I-th slice of the pair's samples as a part (what the figures are rebuilt from: each sample's d,
-// hit and weight, 17 bytes, and the models' description), and `roving merge PART...` rebuilds the
-// report one process gives. The statistics, percentiles, histogram and confidence intervals come
-// from the very arrays one process holds, in its order, so they are equal bit for bit; the
+// I-th slice of each direction's samples as a part (what the figures are rebuilt from: each
+// sample's d, hit and weight, 17 bytes, with --symmetric also |n . n'| at its correspondence, and
+// the models' description), and `roving merge PART...` rebuilds the report one process gives. The
+// statistics, percentiles, histogram, confidence intervals, two-sided summary and reconstruction
+// figures come from the very arrays one process holds, in its order, so they are equal bit for bit; the
 // certified Hausdorff interval is each shard's share of the reference's triangles, merged as the
 // largest lower and upper ends: it holds the true value within the same width, with ends that may
 // differ from one process's within that width. Times are summed over the shards.
@@ -17,8 +18,9 @@
 namespace roving {
 
 // Writes `run`, a shard's (run.report.shard set), as a part: a first line naming the format, one
-// line of JSON (what was measured, by which tool and arguments, the models, the slice), then d
-// (float64), hit (uint8) and weight (float64) per sample, little-endian.
+// line of JSON (what was measured, by which tool and arguments, the models, the slices), then per
+// direction d (float64), hit (uint8), weight (float64) and, where the faces are known, |n . n'|
+// (float64) per sample, little-endian.
 void write_shard_part(std::FILE* out, const MeasureArguments& args, const MeasureRun& run);
 
 struct MergeArguments {
