@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -193,6 +194,16 @@ TEST(CliShard, BadMergesGetOneLineAndNoReport) {
   std::string damaged = bytes;
   damaged[damaged.size() - 4 * 8 - 1] = 7;  // shard 2/3 holds 4 of the 12 face samples
   expect_error("merge " + p0 + " " + p1 + " " + folder.file("damaged.part", damaged) + out, {"hit flag", "damaged"});
+  // A distance that is not a number, and a negative area: the arrays start after the second line.
+  const std::size_t arrays = bytes.find('\n', bytes.find('\n') + 1) + 1;
+  std::string not_a_number = bytes;
+  const double nan = std::nan("");
+  std::memcpy(&not_a_number[arrays], &nan, sizeof nan);
+  expect_error("merge " + p0 + " " + p1 + " " + folder.file("nan.part", not_a_number) + out, {"distance nan", "damaged"});
+  std::string negative = bytes;
+  const double minus_one = -1;
+  std::memcpy(&negative[bytes.size() - sizeof minus_one], &minus_one, sizeof minus_one);
+  expect_error("merge " + p0 + " " + p1 + " " + folder.file("negative.part", negative) + out, {"sample area -1", "damaged"});
   EXPECT_FALSE(fs::exists(report));
 }
 

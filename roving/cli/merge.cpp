@@ -5,7 +5,7 @@
 #include <fmt/ranges.h>
 
 #include <algorithm>
-#include <cstring>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 
@@ -18,26 +18,10 @@
 #include "roving/core/stopwatch.h"
 #include "roving/formats/atomic_file.h"
 #include "roving/formats/heatmap.h"
+#include "roving/formats/shard_part.h"
 
 namespace roving {
 namespace {
-
-constexpr const char* kPartMagic = "roving shard part 1";
-constexpr std::size_t kBytesPerSample = 17;       // d (float64), hit (uint8), weight (float64)
-constexpr std::size_t kMaxHeaderBytes = 1 << 24;  // the JSON line: models' descriptions and warnings
-
-static_assert(sizeof(double) == 8);
-
-bool little_endian() {
-  const std::uint16_t one = 1;
-  unsigned char first = 0;
-  std::memcpy(&first, &one, 1);
-  return first == 1;
-}
-
-void write_array(std::FILE* out, const void* data, std::size_t bytes) {
-  if (bytes && std::fwrite(data, 1, bytes, out) != bytes) throw Error("writing the shard's part failed");
-}
 
 nlohmann::json hausdorff_json(const HausdorffInterval& h) {
   const auto point = [](const Vec3& p) { return nlohmann::json{p.x(), p.y(), p.z()}; };
@@ -65,115 +49,26 @@ HausdorffInterval hausdorff_of(const nlohmann::json& json) {
   return h;
 }
 
-// One direction of a part: its samples and whether each carries normal_agreement's value.
-struct PartDirection {
-  std::size_t count = 0, first = 0;
-  bool agreement = false;
-  std::size_t bytes() const { return count * (kBytesPerSample + (agreement ? sizeof(double) : 0)); }
-};
-
-// One part as read: its JSON line, its directions, and where its arrays start in the file.
-struct Part {
-  std::string path;
-  nlohmann::json header;
-  std::vector<PartDirection> directions;
-  std::streamoff arrays_at = 0;
-};
-
-Part read_part_header(const std::string& path) {
-  Part part;
-  part.path = path;
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error(fmt::format("{}: cannot read the file", path));
-  std::string magic;
-  char c = 0;
-  while (magic.size() <= 64 && in.get(c) && c != '\n') magic.push_back(c);
-  if (magic != kPartMagic) {
-    throw Error(fmt::format("{}: expected a shard's part (written by roving measure --shard-out, first line '{}'), "
-                            "found something else",
-                            path, kPartMagic));
-  }
-  std::string line;
-  while (line.size() <= kMaxHeaderBytes && in.get(c) && c != '\n') line.push_back(c);
-  if (c != '\n' || line.size() > kMaxHeaderBytes) {
-    throw Error(fmt::format("{}: the part's description line is truncated or longer than {} bytes", path,
-                            kMaxHeaderBytes));
-  }
-  part.arrays_at = in.tellg();
-  std::error_code error;
-  const std::uintmax_t size = std::filesystem::file_size(path, error);
-  std::uintmax_t expected = static_cast<std::uintmax_t>(part.arrays_at);
-  try {
-    part.header = nlohmann::json::parse(line);
-    const nlohmann::json& directions = part.header.at("directions");
-    if (directions.empty() || directions.size() > 2) throw Error("it has no direction or more than two");
-    for (const nlohmann::json& d : directions) {
-      const nlohmann::json& samples = d.at("samples");
-      PartDirection& direction = part.directions.emplace_back();
-      direction.count = samples.at("count").get<std::size_t>();
-      direction.first = samples.at("first").get<std::size_t>();
-      direction.agreement = d.at("normal_agreement").get<bool>();
-      if (direction.count > size / kBytesPerSample) break;  // the size check below says so
-      expected += direction.bytes();
-    }
-    if (part.header.at("byte_order").get<std::string>() != "little" || !little_endian()) {
-      throw Error("its arrays' byte order is not this machine's");
-    }
-  } catch (const nlohmann::json::exception& e) {
-    throw Error(fmt::format("{}: the part's description is not what roving measure --shard-out writes: {}", path,
-                            e.what()));
-  } catch (const Error& e) {
-    throw Error(fmt::format("{}: {}", path, e.what()));
-  }
-  if (error || size != expected) {
-    throw Error(fmt::format("{}: expected {} bytes (the description, then {} bytes per sample), found {}; the part "
-                            "is truncated or damaged: run its shard again",
-                            path, expected, kBytesPerSample, size));
-  }
-  return part;
-}
-
-// Appends the part's per-sample arrays to each direction's: d, hit, weight (and the normal
-// agreement where it has it).
-void read_arrays(const Part& part, std::vector<DirectionReport>& directions,
-                 std::vector<std::vector<double>>& agreement) {
-  std::ifstream in(part.path, std::ios::binary);
-  in.seekg(part.arrays_at);
-  for (std::size_t i = 0; i < part.directions.size(); ++i) {
-    const std::size_t count = part.directions[i].count;
-    const auto read = [&](auto& values) {
-      const std::size_t at = values.size();
-      values.resize(at + count);
-      if (!in.read(reinterpret_cast<char*>(values.data() + at), static_cast<std::streamsize>(count * sizeof(values[0])))) {
-        throw Error(fmt::format("{}: the part ended before its {} samples", part.path, count));
-      }
-    };
-    DirectionReport& d = directions[i];
-    read(d.result.signed_distance);
-    read(d.result.hit);
-    read(d.samples.weights);
-    if (part.directions[i].agreement) read(agreement[i]);
-  }
-}
+using Part = PartHeader;
 
 // The fields every part of one measurement has alike.
-constexpr const char* kAlike[] = {"format", "tool", "arguments", "inputs", "method", "semantics", "diagonal"};
+constexpr const char* kAlike[] = {"tool", "arguments", "inputs", "method", "semantics", "diagonal"};
 
 void check_alike(const Part& first, const Part& part) {
   for (const char* key : kAlike) {
-    if (part.header.at(key) != first.header.at(key)) {
+    if (part.description.at(key) != first.description.at(key)) {
       throw Error(fmt::format("{} and {}: parts of different measurements (their {} differ); merge the parts of "
                               "one roving measure command",
                               first.path, part.path, key));
     }
   }
-  if (part.header.at("shard").at("count") != first.header.at("shard").at("count")) {
+  if (part.description.at("shard").at("count") != first.description.at("shard").at("count")) {
     throw Error(fmt::format("{} and {}: parts of different shardings ({}/{} and {}/{})", first.path, part.path,
-                            first.header["shard"]["index"].dump(), first.header["shard"]["count"].dump(),
-                            part.header["shard"]["index"].dump(), part.header["shard"]["count"].dump()));
+                            first.description["shard"]["index"].dump(), first.description["shard"]["count"].dump(),
+                            part.description["shard"]["index"].dump(), part.description["shard"]["count"].dump()));
   }
   for (std::size_t i = 0; i < first.directions.size(); ++i) {
-    const auto total = [&](const Part& p) { return p.header["directions"][i]["samples"]["total"]; };
+    const auto total = [&](const Part& p) { return p.description["directions"][i]["samples"]["total"]; };
     if (part.directions.size() != first.directions.size() || total(part) != total(first) ||
         part.directions[i].agreement != first.directions[i].agreement) {
       throw Error(fmt::format("{} and {}: parts of different sample sets", first.path, part.path));
@@ -188,14 +83,14 @@ std::vector<Part> ordered_parts(const std::vector<std::string>& paths) {
   for (const std::string& path : paths) parts.push_back(read_part_header(path));
   std::size_t count = 0;
   try {
-    count = parts[0].header.at("shard").at("count").get<std::size_t>();
+    count = parts[0].description.at("shard").at("count").get<std::size_t>();
     for (const Part& part : parts) check_alike(parts[0], part);
   } catch (const nlohmann::json::exception& e) {
     throw Error(fmt::format("merge: a part's description is incomplete: {}", e.what()));
   }
   std::vector<const Part*> by_index(count, nullptr);
   for (const Part& part : parts) {
-    const std::size_t index = part.header["shard"]["index"].get<std::size_t>();
+    const std::size_t index = part.description["shard"]["index"].get<std::size_t>();
     if (index >= count) throw Error(fmt::format("{}: shard {} of {} is out of range", part.path, index, count));
     if (by_index[index]) {
       throw Error(fmt::format("{} and {}: both are shard {}/{}", by_index[index]->path, part.path, index, count));
@@ -215,7 +110,7 @@ std::vector<Part> ordered_parts(const std::vector<std::string>& paths) {
   for (std::size_t i = 0; i < count; ++i) {
     const Part& part = *by_index[i];
     for (std::size_t k = 0; k < part.directions.size(); ++k) {
-      const std::size_t total = part.header["directions"][k]["samples"]["total"].get<std::size_t>();
+      const std::size_t total = part.description["directions"][k]["samples"]["total"].get<std::size_t>();
       const auto [first, last] = Shard{i, count}.range(total);
       const PartDirection& d = part.directions[k];
       if (d.first != first || d.count != last - first) {
@@ -264,8 +159,7 @@ void write_shard_part(std::FILE* out, const MeasureArguments& args, const Measur
          {"hausdorff", d.hausdorff ? hausdorff_json(*d.hausdorff) : nlohmann::json(nullptr)},
          {"normal_agreement", !agreement.back().empty()}});
   }
-  const nlohmann::json header = {
-      {"format", kPartMagic},
+  const nlohmann::json description = {
       {"tool", r.provenance.at("tool")},
       {"arguments", args.figure_arguments},
       {"inputs", r.provenance.at("inputs")},
@@ -283,27 +177,26 @@ void write_shard_part(std::FILE* out, const MeasureArguments& args, const Measur
       {"model_warnings", r.shard->model_warnings},
       {"directions", directions},
       {"seconds",
-       {{"load_reference", r.load_seconds[0]}, {"load_test", r.load_seconds[1]}, {"total", r.total_seconds}}},
-      {"byte_order", little_endian() ? "little" : "big"}};
-  const std::string line = std::string(kPartMagic) + "\n" + header.dump() + "\n";
-  write_array(out, line.data(), line.size());
-  for (std::size_t i = 0; i < r.directions.size(); ++i) {
-    const DirectionReport& d = r.directions[i];
-    // Weights are per sample wherever samples are made; a set without them stands for equal areas.
-    std::vector<double> weights = d.samples.weights;
-    weights.resize(d.samples.size(), weights.empty() ? 1.0 : weights.back());
-    write_array(out, d.result.signed_distance.data(), d.samples.size() * sizeof(double));
-    write_array(out, d.result.hit.data(), d.samples.size());
-    write_array(out, weights.data(), weights.size() * sizeof(double));
-    write_array(out, agreement[i].data(), agreement[i].size() * sizeof(double));
+       {{"load_reference", r.load_seconds[0]}, {"load_test", r.load_seconds[1]}, {"total", r.total_seconds}}}};
+  // Weights are per sample wherever samples are made; a set without them stands for equal areas.
+  std::vector<std::vector<double>> weights;
+  for (const DirectionReport& d : r.directions) {
+    weights.push_back(d.samples.weights);
+    weights.back().resize(d.samples.size(), d.samples.weights.empty() ? 1.0 : d.samples.weights.back());
   }
+  std::vector<PartColumns> columns;
+  for (std::size_t i = 0; i < r.directions.size(); ++i) {
+    const DistanceResult& result = r.directions[i].result;
+    columns.push_back({&result.signed_distance, &result.hit, &weights[i], &agreement[i]});
+  }
+  write_part(out, description, columns);
 }
 
 MergedReport merge_parts(const std::vector<std::string>& paths, const std::string& command_line) {
   const Stopwatch watch;
   const std::vector<Part> parts = ordered_parts(paths);
   MergedReport merged;
-  const nlohmann::json& first = parts.front().header;
+  const nlohmann::json& first = parts.front().description;
   MeasureReport& r = merged.report;
   std::vector<std::vector<double>> agreement(parts.front().directions.size());
   try {
@@ -340,14 +233,19 @@ MergedReport merge_parts(const std::vector<std::string>& paths, const std::strin
       d.samples.weights.reserve(total);
     }
     for (const Part& part : parts) {
-      read_arrays(part, r.directions, agreement);
-      const nlohmann::json& seconds = part.header.at("seconds");
+      std::vector<PartArrays> into;
+      for (std::size_t i = 0; i < r.directions.size(); ++i) {
+        DirectionReport& d = r.directions[i];
+        into.push_back({&d.result.signed_distance, &d.result.hit, &d.samples.weights, &agreement[i]});
+      }
+      append_part_arrays(part, into);
+      const nlohmann::json& seconds = part.description.at("seconds");
       r.load_seconds[0] += seconds.at("load_reference").get<double>();
       r.load_seconds[1] += seconds.at("load_test").get<double>();
       r.total_seconds += seconds.at("total").get<double>();
       for (std::size_t i = 0; i < r.directions.size(); ++i) {
         DirectionReport& d = r.directions[i];
-        const nlohmann::json& direction = part.header.at("directions").at(i);
+        const nlohmann::json& direction = part.description.at("directions").at(i);
         d.result.build_seconds += direction.at("seconds").at("build").get<double>();
         d.result.query_seconds += direction.at("seconds").at("query").get<double>();
         if (direction.at("hausdorff").is_null()) continue;
@@ -372,10 +270,8 @@ MergedReport merge_parts(const std::vector<std::string>& paths, const std::strin
   }
   // From here, as measure_models computes them from the same arrays.
   const MeasurePlan& plan = merged.plan;
-  for (DirectionReport& d : r.directions) {
-    for (const std::uint8_t hit : d.result.hit) {
-      if (hit > 1) throw Error(fmt::format("merge: a part's hit flag is {}, not 0 or 1; the part is damaged", hit));
-    }
+  for (std::size_t i = 0; i < r.directions.size(); ++i) {
+    DirectionReport& d = r.directions[i];
     d.statistics = compute_statistics(d.result.signed_distance, d.result.hit, d.samples.weights, r.max_error,
                                       plan.histogram_bins);
     if (d.samples.kind.rfind("area:", 0) == 0 && d.result.hit.size() >= 2) {
