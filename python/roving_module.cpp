@@ -349,15 +349,20 @@ py::dict measure(const py::object& reference, const py::object& test, const py::
   return result;
 }
 
+// roving.batch(*paths, **options) and roving.merge likewise: the subcommand with the paths (any
+// path-like) and the keyword options as its command line, parsed into `line`.
+void parse_call(CommandLine& line, const CLI::App& subcommand, const py::args& paths, const py::kwargs& options) {
+  std::vector<std::string> arguments = {subcommand.get_name()};
+  for (const py::handle path : paths) arguments.push_back(py::str(py::module_::import("os").attr("fspath")(path)));
+  const std::vector<std::string> given = arguments_of(subcommand, options, "roving." + subcommand.get_name());
+  arguments.insert(arguments.end(), given.begin(), given.end());
+  const std::string error = parse_command_line(line, arguments);
+  if (!error.empty()) throw Error(error);
+}
+
 py::dict merge(const py::args& parts, const py::kwargs& options) {
   const std::unique_ptr<CommandLine> line = make_command_line();
-  std::vector<std::string> arguments = {"merge"};
-  for (const py::handle part : parts)
-    arguments.push_back(py::str(py::module_::import("os").attr("fspath")(part)));
-  const std::vector<std::string> given = arguments_of(*line->merge, options, "roving.merge");
-  arguments.insert(arguments.end(), given.begin(), given.end());
-  const std::string error = parse_command_line(*line, arguments);
-  if (!error.empty()) throw Error(error);
+  parse_call(*line, *line->merge, parts, options);
   const MergeArguments& args = line->merge_args;
   std::string json, printed;
   std::vector<std::string> breached;
@@ -383,13 +388,7 @@ int batch(const py::args& pairs, const py::kwargs& all_options) {
   py::object callback = py::none();
   const py::kwargs options = without_progress(all_options, callback);
   const std::unique_ptr<CommandLine> line = make_command_line();
-  std::vector<std::string> arguments = {"batch"};
-  for (const py::handle pair : pairs)
-    arguments.push_back(py::str(py::module_::import("os").attr("fspath")(pair)));
-  const std::vector<std::string> given = arguments_of(*line->batch, options, "roving.batch");
-  arguments.insert(arguments.end(), given.begin(), given.end());
-  const std::string error = parse_command_line(*line, arguments);
-  if (!error.empty()) throw Error(error);
+  parse_call(*line, *line->batch, pairs, options);
   line->batch_args.defaults.command_line = "roving.batch";
   references_may_leave_folder(line->trust_references);
   std::string stage = "starting";
