@@ -67,7 +67,7 @@ nlohmann::json merged_json(const std::string& parts) {
 }
 
 // Face, vertex and area samples, first-hit, nearest and closest, three methods, one direction and
-// both, 1 to 7 shards: the merged report is the one-process report.
+// both, colour, 1 to 7 shards: the merged report is the one-process report.
 TEST(CliShard, MergedShardsGiveTheOneProcessReport) {
   const Folder folder;
   const std::string bunny_path = bunny(), rocker = roving::testing::data_file("rocker-arm.obj");
@@ -80,8 +80,11 @@ TEST(CliShard, MergedShardsGiveTheOneProcessReport) {
       bunny_path + " " + rocker + " --symmetric --samples area:8000 --threshold 1% --threshold 0.2",
       rocker + " " + bunny_path + " --symmetric --method v2p-aabb",
   };
+  // Colour: both models coloured, both directions.
+  const std::string coloured = folder.file("red.ply", coloured_cube_ply(0.5, 200)) + " " +
+                               folder.file("redder.ply", coloured_cube_ply(0.55, 210)) + " --symmetric";
   int k = 0;
-  for (const std::string& command : cases) {
+  for (const std::string& command : {cases[0], cases[1], cases[2], cases[3], cases[4], cases[5], coloured}) {
     const CliRun one = run_cli("measure " + command + " --json - --quiet");
     ASSERT_EQ(one.exit_code, 0) << one.err;
     const nlohmann::json expected = nlohmann::json::parse(one.out);

@@ -56,4 +56,11 @@ std::vector<std::string> result_warnings(const Statistics& s, Semantics semantic
   return warnings;
 }
 
+std::string no_colour_warning(const std::string& method) {
+  return fmt::format(
+      "colour: {} gives no colour (no face of TEST for each hit, no frame buffer); colour figures come from "
+      "embree, cgal and the GL methods",
+      method);
+}
+
 }  // namespace roving

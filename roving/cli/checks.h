@@ -22,4 +22,7 @@ std::vector<std::string> orientation_warnings(const Model& reference);
 // After measuring: more than 5% of the samples without a hit.
 std::vector<std::string> result_warnings(const Statistics& statistics, Semantics semantics);
 
+// Both models have colour but `method` found no colour at its hits.
+std::string no_colour_warning(const std::string& method);
+
 }  // namespace roving

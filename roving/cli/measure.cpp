@@ -413,11 +413,6 @@ void describe_pair(const Model& a, const Model& b, MeasurePlan& plan, MeasureRep
   report.method = plan.method->name();
   report.semantics = plan.options.semantics;
   plan.options.colour = has_colour(a) && has_colour(b);
-  if (plan.shard && plan.options.colour) {
-    throw Error(fmt::format("--shard: {} and {} have colour, whose figures a merge cannot rebuild yet; measure "
-                            "them without --shard",
-                            a.path(), b.path()));
-  }
   if (plan.heatmap_of == HeatmapQuantity::DeltaE && !plan.options.colour) {
     throw Error(fmt::format("--heatmap-of delta-e: needs colour on both models; {} has none",
                             has_colour(a) ? b.path() : a.path()));
@@ -597,11 +592,7 @@ void measure_models(const Model& a, const Model& b, MeasurePlan& plan, MeasureRe
     if (plan.correspondences)
       d.correspondences = correspondences(d.samples, test_mesh, d.result, plan.options.semantics);
     if (plan.options.colour && d.result.hit_face.empty() && d.result.hit_colour.empty()) {
-      if (&d == &report.directions.front())
-        warn({fmt::format(
-            "colour: {} gives no colour (no face of TEST for each hit, no frame buffer); colour figures "
-            "come from embree, cgal and the GL methods",
-            plan.method->name())});
+      if (&d == &report.directions.front()) warn({no_colour_warning(plan.method->name())});
     } else if (plan.options.colour) {
       stage = "comparing colours";
       d.colour_pairs = colour_pairs(reference_colours(*reference, d.samples), d.samples, test_mesh, d.result,

@@ -70,7 +70,8 @@ void check_alike(const Part& first, const Part& part) {
   for (std::size_t i = 0; i < first.directions.size(); ++i) {
     const auto total = [&](const Part& p) { return p.description["directions"][i]["samples"]["total"]; };
     if (part.directions.size() != first.directions.size() || total(part) != total(first) ||
-        part.directions[i].agreement != first.directions[i].agreement) {
+        part.directions[i].agreement != first.directions[i].agreement ||
+        part.directions[i].colour != first.directions[i].colour) {
       throw Error(fmt::format("{} and {}: parts of different sample sets", first.path, part.path));
     }
   }
@@ -157,7 +158,9 @@ void write_shard_part(std::FILE* out, const MeasureArguments& args, const Measur
          {"test", d.test_json},
          {"seconds", {{"build", d.result.build_seconds}, {"query", d.result.query_seconds}}},
          {"hausdorff", d.hausdorff ? hausdorff_json(*d.hausdorff) : nlohmann::json(nullptr)},
-         {"normal_agreement", !agreement.back().empty()}});
+         {"normal_agreement", !agreement.back().empty()},
+         {"colour", d.colour_pairs.has_value()},
+         {"colour_source", d.result.colour_source}});
   }
   const nlohmann::json description = {
       {"tool", r.provenance.at("tool")},
@@ -175,6 +178,7 @@ void write_shard_part(std::FILE* out, const MeasureArguments& args, const Measur
       {"diagonal_of_both", r.diagonal_of_both},
       {"seed", r.seed},
       {"model_warnings", r.shard->model_warnings},
+      {"colour_compared", run.plan.options.colour},
       {"directions", directions},
       {"seconds",
        {{"load_reference", r.load_seconds[0]}, {"load_test", r.load_seconds[1]}, {"total", r.total_seconds}}}};
@@ -187,7 +191,9 @@ void write_shard_part(std::FILE* out, const MeasureArguments& args, const Measur
   std::vector<PartColumns> columns;
   for (std::size_t i = 0; i < r.directions.size(); ++i) {
     const DistanceResult& result = r.directions[i].result;
-    columns.push_back({&result.signed_distance, &result.hit, &weights[i], &agreement[i]});
+    const std::optional<ColourPairs>& colours = r.directions[i].colour_pairs;
+    columns.push_back({&result.signed_distance, &result.hit, &weights[i], &agreement[i],
+                       colours ? &colours->reference : nullptr, colours ? &colours->test : nullptr});
   }
   write_part(out, description, columns);
 }
@@ -199,7 +205,9 @@ MergedReport merge_parts(const std::vector<std::string>& paths, const std::strin
   const nlohmann::json& first = parts.front().description;
   MeasureReport& r = merged.report;
   std::vector<std::vector<double>> agreement(parts.front().directions.size());
+  bool colour_compared = false;  // both models have colour
   try {
+    colour_compared = first.at("colour_compared").get<bool>();
     merged.plan = plan_measurement(shard_arguments(first.at("arguments")));
     merged.header = first.at("header").get<std::string>();
     r.method = first.at("method").get<std::string>();
@@ -227,6 +235,8 @@ MergedReport merge_parts(const std::vector<std::string>& paths, const std::strin
       d.samples.skipped_degenerate_faces = samples.at("skipped_degenerate_faces").get<std::size_t>();
       d.samples.skipped_unreferenced_vertices = samples.at("skipped_unreferenced_vertices").get<std::size_t>();
       d.samples.skipped_zero_normal_vertices = samples.at("skipped_zero_normal_vertices").get<std::size_t>();
+      d.result.colour_source = direction.at("colour_source").get<std::string>();
+      if (direction.at("colour").get<bool>()) d.colour_pairs.emplace();
       const std::size_t total = samples.at("total").get<std::size_t>();
       d.result.signed_distance.reserve(total);
       d.result.hit.reserve(total);
@@ -236,7 +246,9 @@ MergedReport merge_parts(const std::vector<std::string>& paths, const std::strin
       std::vector<PartArrays> into;
       for (std::size_t i = 0; i < r.directions.size(); ++i) {
         DirectionReport& d = r.directions[i];
-        into.push_back({&d.result.signed_distance, &d.result.hit, &d.samples.weights, &agreement[i]});
+        ColourPairs* colours = d.colour_pairs ? &*d.colour_pairs : nullptr;
+        into.push_back({&d.result.signed_distance, &d.result.hit, &d.samples.weights, &agreement[i],
+                        colours ? &colours->reference : nullptr, colours ? &colours->test : nullptr});
       }
       append_part_arrays(part, into);
       const nlohmann::json& seconds = part.description.at("seconds");
@@ -276,6 +288,11 @@ MergedReport merge_parts(const std::vector<std::string>& paths, const std::strin
                                       plan.histogram_bins);
     if (d.samples.kind.rfind("area:", 0) == 0 && d.result.hit.size() >= 2) {
       d.intervals = sampling_intervals(d.result.signed_distance, d.result.hit, r.max_error);
+    }
+    if (d.colour_pairs) {
+      d.colour = compute_colour_statistics(*d.colour_pairs, d.result.hit);
+    } else if (colour_compared && i == 0) {
+      r.warnings.push_back(no_colour_warning(r.method));
     }
     d.heatmap_range =
         plan.heatmap_range ? plan.heatmap_range->resolve(r.diagonal) : default_heatmap_range(d.result, r.max_error);

@@ -26,8 +26,10 @@ bool little_endian() {
   return first == 1;
 }
 
+static_assert(sizeof(Colour) == 3 * sizeof(float));
+
 std::uint64_t bytes_of(const PartDirection& d) {
-  return d.count * (kBytesPerSample + (d.agreement ? sizeof(double) : 0));
+  return d.count * (kBytesPerSample + (d.agreement ? sizeof(double) : 0) + (d.colour ? 2 * sizeof(Colour) : 0));
 }
 
 void write_array(std::FILE* out, const void* data, std::size_t bytes) {
@@ -46,6 +48,9 @@ void write_part(std::FILE* out, nlohmann::json description, const std::vector<Pa
     write_array(out, a.hit->data(), count);
     write_array(out, a.weights->data(), count * sizeof(double));
     if (a.agreement) write_array(out, a.agreement->data(), a.agreement->size() * sizeof(double));
+    for (const std::vector<Colour>* colours : {a.reference_colour, a.test_colour}) {
+      if (colours) write_array(out, colours->data(), colours->size() * sizeof(Colour));
+    }
   }
 }
 
@@ -84,6 +89,7 @@ PartHeader read_part_header(const std::string& path) {
       direction.count = samples.at("count").get<std::size_t>();
       direction.first = samples.at("first").get<std::size_t>();
       direction.agreement = d.at("normal_agreement").get<bool>();
+      direction.colour = d.at("colour").get<bool>();
       if (direction.count > size / kBytesPerSample) break;  // the size check below says so
       expected += bytes_of(direction);
     }
@@ -121,6 +127,10 @@ void append_part_arrays(const PartHeader& part, const std::vector<PartArrays>& i
       return at;
     };
     const PartArrays& a = into[i];
+    const PartDirection& direction = part.directions[i];
+    if ((direction.agreement && !a.agreement) || (direction.colour && !(a.reference_colour && a.test_colour))) {
+      throw Error(fmt::format("{}: the part carries per-sample values the other parts do not", part.path));
+    }
     for (std::size_t k = read(*a.signed_distance); k < a.signed_distance->size(); ++k) {
       if (!std::isfinite((*a.signed_distance)[k])) throw damaged("the distance", (*a.signed_distance)[k]);
     }
@@ -131,10 +141,19 @@ void append_part_arrays(const PartHeader& part, const std::vector<PartArrays>& i
       const double w = (*a.weights)[k];
       if (!(w >= 0 && std::isfinite(w))) throw damaged("the sample area", w);
     }
-    if (!part.directions[i].agreement) continue;
-    for (std::size_t k = read(*a.agreement); k < a.agreement->size(); ++k) {
-      const double value = (*a.agreement)[k];
-      if (!(value >= 0 && value <= 1 + 1e-12)) throw damaged("the normal agreement", value);
+    if (direction.agreement) {
+      for (std::size_t k = read(*a.agreement); k < a.agreement->size(); ++k) {
+        const double value = (*a.agreement)[k];
+        if (!(value >= 0 && value <= 1 + 1e-12)) throw damaged("the normal agreement", value);
+      }
+    }
+    if (!direction.colour) continue;
+    for (std::vector<Colour>* colours : {a.reference_colour, a.test_colour}) {
+      for (std::size_t k = read(*colours); k < colours->size(); ++k) {
+        for (const float value : (*colours)[k]) {
+          if (!std::isnan(value) && !(value >= 0 && value <= 255)) throw damaged("the colour value", value);
+        }
+      }
     }
   }
 }

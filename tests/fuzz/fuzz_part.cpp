@@ -22,8 +22,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const roving::PartHeader part = roving::read_part_header(path);
     std::vector<double> distance[2], weights[2], agreement[2];
     std::vector<std::uint8_t> hit[2];
+    std::vector<roving::Colour> reference_colour[2], test_colour[2];
     std::vector<roving::PartArrays> into;
-    for (int i = 0; i < 2; ++i) into.push_back({&distance[i], &hit[i], &weights[i], &agreement[i]});
+    for (int i = 0; i < 2; ++i) {
+      into.push_back({&distance[i], &hit[i], &weights[i], &agreement[i], &reference_colour[i], &test_colour[i]});
+    }
     roving::append_part_arrays(part, into);
   } catch (const roving::Error&) {
   }
