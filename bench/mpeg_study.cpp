@@ -25,7 +25,7 @@ constexpr double kPeak = 1023;  // the 10-bit grid's, given to both figures
 // `mesh` on the 10-bit grid: longest side 1023, every coordinate rounded to a multiple of `step`.
 TriangleMesh on_grid(const TriangleMesh& mesh, const Normalisation& grid, double step) {
   const TriangleMesh placed = apply(grid, mesh);
-  std::vector<Vec3> positions = placed.positions();
+  std::vector<Vec3> positions = placed.positions().to_vector();
   for (Vec3& p : positions) p = (p / step).array().round().matrix() * step;
   return TriangleMesh(std::move(positions), placed.triangles());
 }

@@ -532,7 +532,7 @@ void surfel_study(Bench& bench) {
 TriangleMesh perturbed_middle(const TriangleMesh& bunny) {
   const double diagonal = bunny.bounding_box().diagonal();
   const TriangleMesh middle = decimate_quadric(bunny, 10459);
-  std::vector<Vec3> moved = middle.positions();
+  std::vector<Vec3> moved = middle.positions().to_vector();
   const double k = 2 * M_PI / (0.5 * diagonal);
   const std::vector<Vec3> normals = middle.vertex_normals();
   for (std::size_t v = 0; v < moved.size(); ++v) {

@@ -72,7 +72,7 @@ TriangleMesh square(double half, double height, int n) {
 }
 
 TriangleMesh smoothly_perturbed(const TriangleMesh& mesh, double amplitude, double wavelength) {
-  std::vector<Vec3> moved = mesh.positions();
+  std::vector<Vec3> moved = mesh.positions().to_vector();
   const double k = 2 * M_PI / wavelength;
   const std::vector<Vec3> normals = mesh.vertex_normals();
   for (std::size_t v = 0; v < moved.size(); ++v) {

@@ -13,7 +13,7 @@ namespace roving {
 TriangleMesh split_triangles(const TriangleMesh& mesh, int n) {
   if (n < 1) throw Error(fmt::format("split_triangles: expected n >= 1, found {}", n));
   const auto& p = mesh.positions();
-  std::vector<Vec3> positions = p;
+  std::vector<Vec3> positions = p.to_vector();
   std::vector<Triangle> triangles;
   triangles.reserve(mesh.triangle_count() * n * n);
   // First of the n - 1 interior points of edge (a, b), a < b, running from a to b.

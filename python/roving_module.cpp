@@ -13,6 +13,9 @@
 
 #include <atomic>
 #include <cmath>
+#include <cstdint>
+#include <memory>
+#include <optional>
 #include <string>
 
 #include "roving/cli/batch.h"
@@ -119,22 +122,53 @@ std::vector<Colour> colours_of(const py::handle& array, const std::string& what)
   return out;
 }
 
-TriangleMesh mesh_from_arrays(const py::handle& vertices, const py::handle& faces, const std::string& name) {
-  std::vector<Vec3> positions = vectors_of(vertices, name + " vertices");
-  const auto f = rows_of<long long>(faces, name + " faces");
-  std::vector<Triangle> triangles(f.shape(0));
-  for (py::ssize_t i = 0; i < f.shape(0); ++i) {
-    for (int c = 0; c < 3; ++c) {
-      const long long index = f.at(i, c);
-      if (index < 0 || index >= static_cast<long long>(positions.size())) {
-        throw Error(name + " faces: face " + std::to_string(i) + " refers to vertex " +
-                    std::to_string(index) + "; expected an index in [0, " + std::to_string(positions.size()) +
-                    ")");
-      }
-      triangles[i][c] = static_cast<int>(index);
-    }
+// What keeps a lent array alive while the library reads it: a reference, dropped under the GIL
+// (the mesh may go from a thread that released it).
+std::shared_ptr<const void> lender(py::array array) {
+  return std::shared_ptr<const void>(array.release().ptr(), [](const void* object) {
+    py::gil_scoped_acquire gil;
+    Py_DECREF(static_cast<PyObject*>(const_cast<void*>(object)));
+  });
+}
+
+// `given` as the rows the mesh stores, read in place where it already is them (C-contiguous N x 3
+// of `Scalar` in native order, aligned): no copy; null otherwise.
+template <class Row, class Scalar>
+std::optional<SharedArray<Row>> lent_rows(const py::handle& given) {
+  static_assert(sizeof(Row) == 3 * sizeof(Scalar), "a row is three scalars with no padding");
+  if (!py::isinstance<py::array_t<Scalar, py::array::c_style>>(given)) return std::nullopt;
+  auto a = py::reinterpret_borrow<py::array>(given);
+  if (a.ndim() != 2 || a.shape(1) != 3 || reinterpret_cast<std::uintptr_t>(a.data()) % alignof(Row) != 0) {
+    return std::nullopt;
   }
-  return TriangleMesh(std::move(positions), std::move(triangles), name + " arrays");
+  const auto* rows = static_cast<const Row*>(a.data());
+  const auto count = static_cast<std::size_t>(a.shape(0));
+  return SharedArray<Row>(rows, count, lender(std::move(a)));
+}
+
+// A mesh from vertex and face arrays: float64 vertices and int32 faces in C order are read in
+// place (a NumPy array's memory, or Open3D's behind it); other types and layouts are converted.
+// TriangleMesh checks the values (finite coordinates, indices in range) either way.
+TriangleMesh mesh_from_arrays(const py::handle& vertices, const py::handle& faces, const std::string& name) {
+  std::optional<SharedArray<Vec3>> positions = lent_rows<Vec3, double>(vertices);
+  if (!positions) positions = vectors_of(vertices, name + " vertices");
+  std::optional<SharedArray<Triangle>> triangles = lent_rows<Triangle, int>(faces);
+  if (!triangles) {
+    const auto f = rows_of<long long>(faces, name + " faces");
+    std::vector<Triangle> converted(f.shape(0));
+    for (py::ssize_t i = 0; i < f.shape(0); ++i) {
+      for (int c = 0; c < 3; ++c) {
+        const long long index = f.at(i, c);
+        if (index < 0 || index >= static_cast<long long>(positions->size())) {
+          throw Error(name + " faces: face " + std::to_string(i) + " refers to vertex " + std::to_string(index) +
+                      "; expected an index in [0, " + std::to_string(positions->size()) + ")");
+        }
+        converted[i][c] = static_cast<int>(index);
+      }
+    }
+    triangles = std::move(converted);
+  }
+  return TriangleMesh(std::move(*positions), std::move(*triangles), name + " arrays");
 }
 
 // The attribute `name` of `object` where it has one that is not empty.
@@ -422,8 +456,8 @@ reference, test: a path (any format the tool reads); an N x 3 array of points; a
   M x 3 vertex indices); an object with `vertices` and `faces` or `triangles` (trimesh, Open3D's
   TriangleMesh; vertex_colors taken where present, floats on [0, 1] or 8-bit integers); or an object
   with `points` (Open3D's PointCloud; its normals and colors where present, otherwise PCA normals).
-  Arrays are converted to float64 / int64 where they are not (a copy is made only then) and copied
-  into the library's mesh.
+  A mesh's float64 vertices and int32 faces in C order (Open3D's) are read in place, with no copy (do
+  not change them during the call); other types and layouts, and point clouds, are copied once.
 
 Returns the JSON report (`roving measure --json`) as a dict, every number equal to the command's,
 plus 'breached_gates' (the --fail-above gates breached: the command's exit status 3) and the

@@ -6,6 +6,12 @@ cd "$(dirname "$0")/.."
 bash scripts/setup.sh
 cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DROVING_SANITIZE=ON >/dev/null
 cmake --build build-asan --parallel "$(nproc)"
+# The plain run's test times (scripts/test.sh ran it first) order these runs longest first: without
+# them CTest starts the slowest GL test late and one core idles for minutes at the end.
+if [[ -f build/Testing/Temporary/CTestCostData.txt ]]; then
+  mkdir -p build-asan/Testing/Temporary
+  cp build/Testing/Temporary/CTestCostData.txt build-asan/Testing/Temporary/
+fi
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 export LSAN_OPTIONS="suppressions=$PWD/tests/lsan.supp:print_suppressions=0"
 # Every suite without GL under LeakSanitizer too; the GL suites (label gl) with ASan and UBSan

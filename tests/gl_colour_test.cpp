@@ -223,7 +223,7 @@ TEST(BunnyColour, GlMethodsAgreeWithEmbree) {
 // The bunny (normalised) along its normals by `offset`, vertex by vertex: each vertex sample's
 // normal line then passes through TEST's vertex, where the faces around it meet.
 TriangleMesh moved_along_vertex_normals(const TriangleMesh& mesh, double offset) {
-  std::vector<Vec3> positions = mesh.positions();
+  std::vector<Vec3> positions = mesh.positions().to_vector();
   const std::vector<Vec3> normals = mesh.vertex_normals();
   for (std::size_t v = 0; v < positions.size(); ++v) {
     if (normals[v].norm() > 0) positions[v] += offset * normals[v].normalized();

@@ -481,7 +481,7 @@ TEST(ViewCulling, EveryPixelReadHasTheWholeViewsDepth) {
   auto renderer = make_depth_renderer(default_gl_backend());
   for (const Vec3& offset : {Vec3(0, 0, 0), Vec3(1e5, -2e5, 3e5)}) {
     const auto moved = [&](const TriangleMesh& mesh) {
-      std::vector<Vec3> positions = mesh.positions();
+      std::vector<Vec3> positions = mesh.positions().to_vector();
       for (Vec3& p : positions) p += offset;
       return TriangleMesh(positions, mesh.triangles());
     };
@@ -583,7 +583,7 @@ TEST_P(EachBackend, GpuCamerasGiveTheCpuCamerasAnswers) {
   const TriangleMesh bunny = normalised(testing::bunny());
   const double diagonal = bunny.bounding_box().diagonal();
   const auto far_away = [&](const TriangleMesh& mesh) {
-    std::vector<Vec3> positions = mesh.positions();
+    std::vector<Vec3> positions = mesh.positions().to_vector();
     for (Vec3& p : positions) p += Vec3(1e5, -2e5, 3e5) * diagonal;
     return TriangleMesh(positions, mesh.triangles());
   };

@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
+#include <optional>
 #include <random>
 
 #include "roving/core/confidence.h"
@@ -58,6 +60,29 @@ TEST(Samples, ReleasingTheReferenceGivesTheSameSamples) {
     EXPECT_EQ(bunny.total_area(), testing::bunny().total_area());
     EXPECT_EQ(bunny.bounding_box().diagonal(), testing::bunny().bounding_box().diagonal());
   }
+}
+
+// A mesh over a caller's memory (Python's NumPy arrays) reads it in place, keeps the lender alive
+// as long as any copy of the mesh, and gives the same samples as a mesh of its own.
+TEST(Samples, LentGeometryIsReadInPlace) {
+  const TriangleMesh& own = testing::bunny();
+  auto buffers = std::make_shared<std::pair<std::vector<Vec3>, std::vector<Triangle>>>(
+      own.positions().to_vector(), own.triangles().to_vector());
+  const std::weak_ptr<const void> watch = buffers;
+  std::optional<TriangleMesh> lent;
+  lent.emplace(SharedArray<Vec3>(buffers->first.data(), buffers->first.size(), buffers),
+               SharedArray<Triangle>(buffers->second.data(), buffers->second.size(), buffers));
+  const Vec3* in_place = buffers->first.data();
+  buffers.reset();
+  EXPECT_EQ(lent->positions().data(), in_place) << "no copy";
+  EXPECT_TRUE(lent->positions().lent() && !own.positions().lent());
+  EXPECT_EQ(make_samples(*lent, {}).positions, make_samples(own, {}).positions);
+  TriangleMesh copy = *lent;
+  lent.reset();
+  EXPECT_FALSE(watch.expired()) << "a copy of the mesh keeps the lender";
+  const SampleSet released = make_samples_releasing(copy, {SampleSpec::Kind::Vertices});
+  EXPECT_EQ(released.positions, make_samples(own, {SampleSpec::Kind::Vertices}).positions);
+  EXPECT_TRUE(watch.expired()) << "giving up the geometry lets the lender go";
 }
 
 TEST(Samples, AreaSamplingIsReproducibleAndLiesOnTheSurface) {
@@ -151,14 +176,14 @@ TEST(Orientation, ClosedOutwardInsideOutAndOpen) {
   const Orientation o = orientation(outward);
   EXPECT_TRUE(o.closed_and_consistent);
   EXPECT_NEAR(o.signed_volume, 8.0, 1e-12);
-  std::vector<Triangle> flipped = outward.triangles(), open = outward.triangles();
+  std::vector<Triangle> flipped = outward.triangles().to_vector(), open = outward.triangles().to_vector();
   for (Triangle& t : flipped) std::swap(t[1], t[2]);
   const Orientation inside_out = orientation(TriangleMesh(outward.positions(), flipped));
   EXPECT_TRUE(inside_out.closed_and_consistent);
   EXPECT_NEAR(inside_out.signed_volume, -8.0, 1e-12);
   open.pop_back();  // a hole
   EXPECT_FALSE(orientation(TriangleMesh(outward.positions(), open)).closed_and_consistent);
-  std::vector<Triangle> one_flipped = outward.triangles();
+  std::vector<Triangle> one_flipped = outward.triangles().to_vector();
   std::swap(one_flipped[3][1], one_flipped[3][2]);  // closed, but one face disagrees with its neighbours
   EXPECT_FALSE(orientation(TriangleMesh(outward.positions(), one_flipped)).closed_and_consistent);
   // The bunny has holes: no claim about its inside.

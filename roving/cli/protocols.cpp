@@ -77,10 +77,12 @@ DtuReport dtu_report(const Model& ground_truth, const Model& reconstruction, con
                              role, to_string(model.type)));
   };
   const std::vector<Vec3>* truth = nullptr;
+  std::vector<Vec3> mesh_vertices;
   if (ground_truth.type == ModelType::Points) {
     truth = &ground_truth.points.positions;
   } else if (ground_truth.type == ModelType::Mesh) {
-    truth = &ground_truth.mesh.mesh.positions();  // the script reads a mesh's file as its vertices
+    mesh_vertices = ground_truth.mesh.mesh.positions().to_vector();  // the script reads a mesh's file as its vertices
+    truth = &mesh_vertices;
   } else {
     throw refuse(ground_truth, "REF (the ground truth)");
   }

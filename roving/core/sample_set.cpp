@@ -172,7 +172,7 @@ SampleSet make_samples(const TriangleMesh& reference, const SampleSpec& spec) {
     case SampleSpec::Kind::Vertices: {
       std::vector<double> vertex_area;
       std::vector<Vec3> normals = reference.vertex_normals(&vertex_area);
-      sample_vertices(reference, reference.positions(), std::move(normals), std::move(vertex_area), samples);
+      sample_vertices(reference, {reference.positions().begin(), reference.positions().end()}, std::move(normals), std::move(vertex_area), samples);
       break;
     }
     case SampleSpec::Kind::Area:

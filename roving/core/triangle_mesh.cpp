@@ -15,6 +15,9 @@ namespace roving {
 
 TriangleMesh::TriangleMesh(std::vector<Vec3> positions, std::vector<Triangle> triangles,
                            const std::string& source)
+    : TriangleMesh(SharedArray<Vec3>(std::move(positions)), SharedArray<Triangle>(std::move(triangles)), source) {}
+
+TriangleMesh::TriangleMesh(SharedArray<Vec3> positions, SharedArray<Triangle> triangles, const std::string& source)
     : positions_(std::move(positions)),
       triangles_(std::move(triangles)),
       vertex_count_(positions_.size()),
@@ -134,14 +137,14 @@ std::vector<Vec3> TriangleMesh::vertex_normals(std::vector<double>* third_areas)
 }
 
 std::vector<Vec3> TriangleMesh::release_geometry() {
-  std::vector<Triangle>().swap(triangles_);
-  return std::move(positions_);
+  triangles_ = {};
+  return positions_.release();
 }
 
 TriangleMesh TriangleMesh::transformed(const Vec3& origin, double scale) const {
   std::vector<Vec3> moved(positions_.size());
   for (std::size_t i = 0; i < positions_.size(); ++i) moved[i] = scale * (positions_[i] - origin);
-  TriangleMesh mesh(std::move(moved), triangles_);
+  TriangleMesh mesh(SharedArray<Vec3>(std::move(moved)), triangles_);
   mesh.vertex_colours_ = vertex_colours_;
   mesh.texture_mapping_ = texture_mapping_;
   return mesh;

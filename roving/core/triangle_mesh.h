@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "roving/core/shared_array.h"
 #include "roving/core/texture.h"
 
 namespace roving {
@@ -42,14 +43,16 @@ class TriangleMesh {
   TriangleMesh() = default;
   TriangleMesh(std::vector<Vec3> positions, std::vector<Triangle> triangles,
                const std::string& source = "mesh");
+  // The same from arrays that may be a caller's memory (shared_array.h), read in place.
+  TriangleMesh(SharedArray<Vec3> positions, SharedArray<Triangle> triangles, const std::string& source = "mesh");
 
-  const std::vector<Vec3>& positions() const { return positions_; }
-  const std::vector<Triangle>& triangles() const { return triangles_; }
+  const SharedArray<Vec3>& positions() const { return positions_; }
+  const SharedArray<Triangle>& triangles() const { return triangles_; }
   // Counts as loaded (they stay after release_geometry(); the arrays do not).
   std::size_t vertex_count() const { return vertex_count_; }
   std::size_t triangle_count() const { return triangle_count_; }
 
-  // Hands over the positions and frees the triangles, keeping what reports name (counts, area,
+  // Hands over the positions (a copy where they are lent) and frees the triangles, keeping what reports name (counts, area,
   // box, colour): for a reference nothing reads once it is sampled, so that the query runs
   // without it (240 MB at 10 M triangles). No method that reads geometry may be called after.
   std::vector<Vec3> release_geometry();
@@ -99,8 +102,8 @@ class TriangleMesh {
   };
   FaceShape face_shape(std::size_t face) const;
 
-  std::vector<Vec3> positions_;
-  std::vector<Triangle> triangles_;
+  SharedArray<Vec3> positions_;
+  SharedArray<Triangle> triangles_;
   std::size_t vertex_count_ = 0, triangle_count_ = 0;
   std::vector<Colour> vertex_colours_;
   std::shared_ptr<const TextureMapping> texture_mapping_;  // shared: transformed() copies keep it

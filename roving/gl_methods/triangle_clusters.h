@@ -28,7 +28,7 @@ class TriangleClusters {
 
   // The mesh's box centre.
   const Vec3& origin() const { return origin_; }
-  const std::vector<Vec3>& positions() const { return *positions_; }
+  const SharedArray<Vec3>& positions() const { return *positions_; }
   std::size_t count() const { return cluster_boxes_.size(); }
   // How many triangles cluster c holds.
   std::size_t size(std::size_t c) const { return std::min(kSize, boxes_.size() - c * kSize); }
@@ -41,7 +41,7 @@ class TriangleClusters {
 
  private:
   Vec3 origin_;
-  const std::vector<Vec3>* positions_;
+  const SharedArray<Vec3>* positions_;
   std::vector<std::uint32_t> corners_;  // cluster by cluster
   std::vector<Box> boxes_;              // one per triangle of corners_
   std::vector<Box> cluster_boxes_;

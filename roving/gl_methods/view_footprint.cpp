@@ -170,7 +170,7 @@ std::vector<std::uint32_t> ViewFootprint::corners_reaching(const TriangleCluster
   // the inner side of each edge's line moved out by kSlack in x and in y (which holds the
   // triangle grown by a square of kSlack). In double: projected as the box centres are, a few
   // thousand triangles a view, while the GL thread draws another view.
-  const std::vector<Vec3>& positions = clusters.positions();
+  const SharedArray<Vec3>& positions = clusters.positions();
   const auto covers_read_pixel = [&](const std::uint32_t* corners) {
     Eigen::Vector2d p[3];
     for (int k = 0; k < 3; ++k) p[k] = offset + linear * (positions[corners[k]] - clusters.origin());

@@ -150,8 +150,8 @@ void require_positive(double value, const char* what) {
 std::vector<Vec3> dtu_mesh_points(const TriangleMesh& mesh, const std::string& name, double density,
                                   std::size_t* samples) {
   require_positive(density, "density");
-  const std::vector<Vec3>& v = mesh.positions();
-  const std::vector<Triangle>& faces = mesh.triangles();
+  const SharedArray<Vec3>& v = mesh.positions();
+  const SharedArray<Triangle>& faces = mesh.triangles();
   const auto too_many = [&] {
     return Error(fmt::format("{}: sampling it every {} (the DTU protocol's density) would make over {} points; "
                              "is it in millimetres, as DTU's models are?",

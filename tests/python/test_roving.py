@@ -169,14 +169,41 @@ def test_meshes_python_holds():
     np.testing.assert_allclose(by_pair["per_sample"]["d"], 0.05, atol=1e-12)
     by_object = roving.measure(MeshLike(*small), MeshLike(*large), semantics="closest")
     assert by_object["statistics"] == by_pair["statistics"]
-    # float32 and int32 arrays are converted (a copy), with the same answer.
-    as_32 = roving.measure((small[0].astype(np.float32), small[1].astype(np.int32)), large, semantics="closest")
-    assert as_32["statistics"] == by_pair["statistics"]
+    # Other types and layouts are converted (a copy), with the same answer.
+    for vertices, faces in [(small[0].astype(np.float32), small[1]), (np.asfortranarray(small[0]), small[1]),
+                            (small[0], small[1].astype(np.uint16)), (small[0].astype(">f8"), small[1])]:
+        converted = roving.measure((vertices, faces), large, semantics="closest")
+        assert converted["statistics"] == by_pair["statistics"]
     # An N x 3 array is a point cloud (PCA normals), measured against a mesh.
     points = np.random.default_rng(1).uniform(-0.5, 0.5, (400, 3))
     points[:, 2] = 0.5
     cloud = roving.measure(points, large, semantics="closest", samples="vertices")
     np.testing.assert_allclose(np.abs(cloud["per_sample"]["d"]), 0.05, atol=1e-12)  # a flat patch: either side
+
+
+def test_float64_vertices_and_int32_faces_are_read_in_place():
+    """The library holds a reference to such arrays while it measures (their memory is the mesh's),
+    and to nothing once it returns; other types are converted and not held."""
+    small = cube(0.5)
+    vertices, faces = cube(0.55)[0], cube(0.55)[1].astype(np.int32)
+    lent, converted = (vertices, faces), (np.asfortranarray(vertices), faces.astype(np.int64))
+    before = [sys.getrefcount(a) for a in lent + converted]
+    during = {}
+
+    def progress(*_):
+        if not during:
+            during["lent"] = [sys.getrefcount(a) for a in lent + converted]
+
+    in_place = roving.measure(small, lent, semantics="closest", progress=progress)
+    assert during["lent"] == [before[0] + 1, before[1] + 1, before[2], before[3]]
+    during.clear()
+    copied = roving.measure(small, converted, semantics="closest", progress=progress)
+    assert during["lent"] == before
+    assert [sys.getrefcount(a) for a in lent + converted] == before
+    assert in_place["statistics"] == copied["statistics"]
+    # An index out of range in a lent array is refused as in a converted one.
+    with pytest.raises(roving.Error, match="refers to vertex 8"):
+        roving.measure((small[0], np.array([[0, 1, 8]], dtype=np.int32)), small)
 
 
 def test_open3d_meshes_and_point_clouds():
