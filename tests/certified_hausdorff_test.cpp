@@ -1,5 +1,6 @@
 // The certified Hausdorff interval: closed forms inside it, its width within the bound asked, every
-// sampled closest-point distance below it, CGAL's bounded-error value inside it on real pairs.
+// sampled closest-point distance below it, CGAL's bounded-error value inside it on real pairs. The
+// certified share of area within tau: closed forms, the sampled share inside it, shards adding up.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -9,6 +10,7 @@
 #include "roving/core/normalise.h"
 #include "roving/core/sample_set.h"
 #include "roving/reference_cgal/cgal_reference.h"
+#include "roving/reference_embree/certified_area_within.h"
 #include "roving/reference_embree/certified_hausdorff.h"
 #include "roving/registry/method_registry.h"
 #include "test_support.h"
@@ -91,6 +93,62 @@ TEST(CertifiedHausdorff, ContainsCgalsValueAndExceedsEverySampledDistance) {
     EXPECT_GE(h.lower, sampled * (1 - 1e-9)) << what << ": the vertices and subdivisions find the sampled maximum or more";
     EXPECT_NEAR((h.lower_point - h.lower_closest).norm(), h.lower, 1e-12 * diagonal) << what;
   }
+}
+
+TEST(CertifiedAreaWithin, ClosedForms) {
+  // Every point of the inner cube is 0.3 from the outer one: none within 0.2, all within 0.4.
+  const roving::AreaWithin w = roving::certified_area_within(box(1), box(1.3), {0.2, 0.4}, 1e-3, 0, 12);
+  EXPECT_EQ(w.lower(0), 0);
+  EXPECT_EQ(w.upper(0), 0);
+  // Each of the 16,000-odd pieces loses under 2^-60 to rounding down and its area ~1e-16 to rounding.
+  EXPECT_NEAR(w.lower(1), 1, 1e-13);
+  EXPECT_NEAR(w.upper(1), 1, 1e-13);
+  // A mesh against itself: all of it within any tau > 0 (at 0, a corner's distance to its own
+  // triangle may round to 1e-17).
+  const TriangleMesh bunny = roving::decimate_quadric(roving::testing::bunny(), 5000);
+  const double tiny = 1e-9 * bunny.bounding_box().diagonal();
+  const roving::AreaWithin self = roving::certified_area_within(bunny, bunny, {tiny}, 1e-3, 0, bunny.triangle_count());
+  EXPECT_NEAR(self.lower(0), 1, 1e-13) << self.upper(0) << " " << self.triangles_split;
+}
+
+TEST(CertifiedAreaWithin, HoldsTheSampledShareAndShardsAddUp) {
+  const TriangleMesh bunny = roving::decimate_quadric(roving::normalised(roving::testing::bunny()), 5000);
+  const TriangleMesh coarse = roving::decimate_quadric(bunny, 800);
+  const double diagonal = bunny.bounding_box().diagonal();
+  const std::vector<double> taus = {1e-3 * diagonal, 3e-3 * diagonal, 1e-2 * diagonal};
+  for (const auto& [a, b, what] : {std::tuple{&bunny, &coarse, "bunny to 800"}, {&coarse, &bunny, "800 to bunny"}}) {
+    const roving::AreaWithin w = roving::certified_area_within(*a, *b, taus, 1e-4 * diagonal, 0, a->triangle_count());
+    // The share of 100,000 area samples within tau estimates the truth, which lies in [lower,
+    // upper], with a standard error of at most 0.5 / sqrt(N): 5 of them is 0.0079.
+    const roving::SampleSet samples = roving::make_samples(*a, {roving::SampleSpec::Kind::Area, 100000});
+    const auto embree = roving::make_method("embree");
+    embree->build(*b);
+    const roving::DistanceResult r = embree->measure(samples, {roving::Semantics::Closest, diagonal});
+    for (std::size_t k = 0; k < taus.size(); ++k) {
+      double within = 0;
+      for (double d : r.signed_distance) within += std::abs(d) <= taus[k];
+      within /= static_cast<double>(samples.size());
+      EXPECT_GE(within, w.lower(k) - 0.0079) << what << " tau " << taus[k];
+      EXPECT_LE(within, w.upper(k) + 0.0079) << what << " tau " << taus[k];
+      EXPECT_LT(w.upper(k) - w.lower(k), 0.5) << what << " tau " << taus[k] << ": decided for most of the area";
+    }
+    // Two shards' areas add up to the whole run's, bit for bit.
+    const std::size_t half = a->triangle_count() / 2;
+    const roving::AreaWithin low = roving::certified_area_within(*a, *b, taus, 1e-4 * diagonal, 0, half);
+    const roving::AreaWithin high = roving::certified_area_within(*a, *b, taus, 1e-4 * diagonal, half, a->triangle_count());
+    for (std::size_t k = 0; k < taus.size(); ++k) {
+      EXPECT_EQ(low.within[k] + high.within[k], w.within[k]) << what;
+      EXPECT_EQ(low.undecided[k] + high.undecided[k], w.undecided[k]) << what;
+    }
+  }
+}
+
+TEST(CertifiedAreaWithin, RefusesEmptyMeshesAndBadThresholds) {
+  EXPECT_THROW(roving::certified_area_within(TriangleMesh(), box(1), {0.1}, 1e-3, 0, 0), roving::Error);
+  EXPECT_THROW(roving::certified_area_within(box(1), box(1), {-1}, 1e-3, 0, 12), roving::Error);
+  EXPECT_THROW(roving::certified_area_within(box(1), box(1), {std::nan("")}, 1e-3, 0, 12), roving::Error);
+  EXPECT_THROW(roving::certified_area_within(box(1), box(1), {0.1}, 0, 0, 12), roving::Error);
+  EXPECT_THROW(roving::certified_area_within(box(1), box(1), {0.1}, 1e-3, 0, 13), roving::Error);
 }
 
 TEST(CertifiedHausdorff, RefusesEmptyMeshesAndBadGaps) {

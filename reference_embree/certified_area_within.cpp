@@ -1,0 +1,173 @@
+// The certified share of A's area within tau of B, piece by piece (see the header).
+#include "roving/reference_embree/certified_area_within.h"
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/squared_distance_3.h>
+#include <fmt/format.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "roving/core/error.h"
+#include "roving/core/stopwatch.h"
+#include "triangle_piece.h"
+
+namespace roving {
+namespace {
+
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+
+// The distance between triangle `a` and triangle pqr (CGAL's, which gives 0 where it cannot show
+// them apart: still a lower bound); for a degenerate pqr, which CGAL does not take, the distance
+// from a's centre less a's reach (1-Lipschitz), a lower bound too.
+double triangle_distance(const std::array<Vec3, 3>& a, const Vec3& p, const Vec3& q, const Vec3& r) {
+  if ((q - p).cross(r - p).squaredNorm() == 0) {
+    const Vec3 centre = (a[0] + a[1] + a[2]) / 3;
+    double reach = 0;
+    for (const Vec3& corner : a) reach = std::max(reach, (corner - centre).norm());
+    return std::max(0.0, (closest_point_on_triangle(centre, p, q, r) - centre).norm() - reach);
+  }
+  const auto point = [](const Vec3& x) { return Kernel::Point_3(x.x(), x.y(), x.z()); };
+  return std::sqrt(CGAL::squared_distance(Kernel::Triangle_3(point(a[0]), point(a[1]), point(a[2])),
+                                          Kernel::Triangle_3(point(p), point(q), point(r))));
+}
+
+// What one piece adds: per tau, its area in units rounded down where it is surely within, rounded
+// up where it may be; and whether it is to be split.
+struct Verdict {
+  std::vector<std::uint64_t> within, undecided;
+  bool split = false;
+};
+
+}  // namespace
+
+AreaWithin certified_area_within(const TriangleMesh& a, const TriangleMesh& b, const std::vector<double>& thresholds,
+                                 double min_length, std::size_t first, std::size_t last) {
+  if (a.triangle_count() == 0 || b.triangle_count() == 0) {
+    throw Error("certified area within tau: expected two meshes with triangles, found an empty one");
+  }
+  for (const double tau : thresholds) {
+    if (!(tau >= 0) || !std::isfinite(tau)) throw Error(fmt::format("--threshold: expected a finite tau >= 0, found {}", tau));
+  }
+  if (!(min_length > 0) || !std::isfinite(min_length)) {
+    throw Error(fmt::format("certified area within tau: expected a positive finite piece length, found {}", min_length));
+  }
+  if (first > last || last > a.triangle_count()) {
+    throw Error(fmt::format("certified area within tau: triangles [{}, {}) are not within A's {}", first, last,
+                            a.triangle_count()));
+  }
+  const Stopwatch watch;
+  const std::size_t n = thresholds.size();
+  AreaWithin result;
+  result.thresholds = thresholds;
+  result.within.assign(n, 0);
+  result.undecided.assign(n, 0);
+  if (n == 0 || a.total_area() <= 0) return result;
+  const ClosestPoints closest(b);
+  const double units_per_area = 1 / (AreaWithin::kUnit * a.total_area());
+
+  // A piece's verdict; `exact` asks for the piece's own distance to B where the bounds at hand do
+  // not decide it (one more query).
+  const auto judge = [&](const Piece& piece, bool exact, std::size_t& queries) {
+    Verdict v{std::vector<std::uint64_t>(n, 0), std::vector<std::uint64_t>(n, 0), false};
+    const auto& c = piece.corner;
+    const double area = 0.5 * (c[1] - c[0]).cross(c[2] - c[0]).norm() * units_per_area;
+    if (!(area > 0)) return v;  // a degenerate piece has no area
+    const double longest = std::max({(c[1] - c[0]).norm(), (c[2] - c[1]).norm(), (c[0] - c[2]).norm()});
+    const auto [least, most] = std::minmax({piece.distance[0], piece.distance[1], piece.distance[2]});
+    // Every point of a triangle is within its longest edge / sqrt 3 of a corner (the circumradius
+    // at most, for the largest angle is >= 60 degrees), and within the longest edge of each.
+    const double upper = std::min(piece.upper, most + longest / std::sqrt(3.0));
+    double lower = std::max({0.0, most - longest, least - longest / std::sqrt(3.0)});
+    double open_tau = -1;  // the largest tau neither bound decides
+    for (const double tau : thresholds) {
+      if (upper > tau && lower <= tau) open_tau = std::max(open_tau, tau);
+    }
+    if (exact && open_tau >= 0) {
+      lower = std::max(lower, closest.distance_from(c, open_tau, triangle_distance));
+      ++queries;
+    }
+    const bool may_split = longest > min_length && piece.depth < kMaxDepth;
+    for (std::size_t k = 0; k < n; ++k) {
+      if (upper <= thresholds[k]) {
+        v.within[k] = static_cast<std::uint64_t>(std::floor(area));
+      } else if (lower <= thresholds[k]) {
+        if (may_split) {
+          v.split = true;
+        } else {
+          v.undecided[k] = static_cast<std::uint64_t>(std::ceil(area));
+        }
+      }
+    }
+    if (v.split) v.within.assign(n, 0), v.undecided.assign(n, 0);  // its children will say
+    return v;
+  };
+
+  // Every vertex of the range's triangles: its distance to B and its closest triangle, once.
+  const auto& positions = a.positions();
+  const auto& triangles = a.triangles();
+  std::vector<bool> used(positions.size(), false);
+  for (std::size_t t = first; t < last; ++t) {
+    for (const int v : triangles[t]) used[v] = true;
+  }
+  std::vector<ClosestPoints::Found> at_vertex(positions.size());
+  tbb::parallel_for(std::size_t{0}, positions.size(), [&](std::size_t v) {
+    if (used[v]) at_vertex[v] = closest.query(positions[v]);
+  });
+  result.distance_queries = static_cast<std::size_t>(std::count(used.begin(), used.end(), true));
+
+  // The triangles in blocks on both cores, each undecided piece split depth first; the blocks'
+  // sums are exact, so their order does not matter.
+  constexpr std::size_t kBlock = 1024;
+  const std::size_t blocks = (last - first + kBlock - 1) / kBlock;
+  std::vector<Verdict> block_sum(blocks, Verdict{std::vector<std::uint64_t>(n, 0), std::vector<std::uint64_t>(n, 0)});
+  std::vector<std::size_t> block_splits(blocks, 0), block_queries(blocks, 0);
+  tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t block) {
+    Verdict& sum = block_sum[block];
+    std::vector<Piece> stack;
+    for (std::size_t t = first + block * kBlock; t < std::min(last, first + (block + 1) * kBlock); ++t) {
+      Piece piece;
+      for (int i = 0; i < 3; ++i) {
+        const int v = triangles[t][i];
+        piece.corner[i] = positions[v];
+        piece.distance[i] = at_vertex[v].distance;
+        add_candidate(piece, at_vertex[v].triangle);
+      }
+      bound(piece, closest);
+      stack.push_back(piece);
+      while (!stack.empty()) {
+        Piece p = stack.back();
+        stack.pop_back();
+        Verdict v = judge(p, false, block_queries[block]);
+        if (v.split) {  // before splitting: the triangle of B closest to the piece's centre as a candidate, and
+                        // the piece's own distance to B
+          add_candidate(p, closest.query((p.corner[0] + p.corner[1] + p.corner[2]) / 3).triangle);
+          bound(p, closest);
+          ++block_queries[block];
+          v = judge(p, true, block_queries[block]);
+        }
+        if (v.split) {
+          std::array<std::pair<Vec3, ClosestPoints::Found>, 3> midpoints;
+          for (Piece& child : split(p, closest, midpoints)) stack.push_back(std::move(child));
+          ++block_splits[block];
+          continue;
+        }
+        for (std::size_t k = 0; k < n; ++k) sum.within[k] += v.within[k], sum.undecided[k] += v.undecided[k];
+      }
+    }
+  });
+  for (std::size_t block = 0; block < blocks; ++block) {
+    for (std::size_t k = 0; k < n; ++k) {
+      result.within[k] += block_sum[block].within[k];
+      result.undecided[k] += block_sum[block].undecided[k];
+    }
+    result.triangles_split += block_splits[block];
+    result.distance_queries += block_queries[block];
+  }
+  result.distance_queries += 3 * result.triangles_split;
+  result.seconds = watch.seconds();
+  return result;
+}
+
+}  // namespace roving

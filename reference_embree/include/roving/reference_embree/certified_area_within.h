@@ -1,0 +1,45 @@
+// The share of A's area within a distance tau of B, certified: the area that is surely within and
+// the area that may be, for each of several tau (precision and recall as area fractions). Embree's
+// headers stay inside the .cpp.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "roving/core/triangle_mesh.h"
+
+namespace roving {
+
+// Areas in fixed point, units of 2^-60 of A's total area: sums of pieces are then exact, so that
+// shards covering A add up to the whole run's figures bit for bit, whatever the order.
+struct AreaWithin {
+  static constexpr double kUnit = 0x1p-60;
+  std::vector<double> thresholds;
+  std::vector<std::uint64_t> within;     // per tau: area surely within tau of B (rounded down)
+  std::vector<std::uint64_t> undecided;  // per tau: area that may be within tau (rounded up)
+  std::size_t distance_queries = 0;      // closest-point queries on B made
+  std::size_t triangles_split = 0;       // subdivisions of A's triangles the bounds needed
+  double seconds = 0;
+
+  // The share of A's area within thresholds[k] of B lies in [lower(k), upper(k)].
+  double lower(std::size_t k) const { return static_cast<double>(within[k]) * kUnit; }
+  double upper(std::size_t k) const { return static_cast<double>(within[k] + undecided[k]) * kUnit; }
+};
+
+// Over A's triangles [first, last), the distance to B's triangles bounded piece by piece: above by
+// the convexity bound of certified_hausdorff.h over the triangles of B closest to the piece's
+// corners and centre (or by a corner's distance plus the piece's reach, 1-Lipschitz); below by a
+// corner's distance less the reach, and, where that does not decide, by the piece's own distance
+// to B (CGAL's triangle-to-triangle distance over B's triangles near it, by Embree's BVH). A piece
+// is within tau where its upper bound is <= tau, beyond where its lower bound is > tau, and split
+// in four otherwise while it is longer than `min_length` (> 0) and fewer than kMaxDepth splits
+// from its triangle: the work per triangle is bounded, and the same whatever the range. What is
+// left is undecided. Both cores (TBB). Throws roving::Error on an empty mesh, a threshold that is
+// not finite and >= 0, a bad length or a range outside A.
+AreaWithin certified_area_within(const TriangleMesh& a, const TriangleMesh& b, const std::vector<double>& thresholds,
+                                 double min_length, std::size_t first, std::size_t last);
+
+constexpr int kMaxDepth = 6;  // at most 4^6 = 4096 pieces of one triangle
+
+}  // namespace roving
