@@ -641,6 +641,7 @@ TEST(CliReport, JsonLayoutIsTheDocumentedOne) {
        {coloured + " --symmetric", coloured + " --ibsm --ibsm-resolution 64", cubes.pair,
         cubes.pair + " --symmetric", cubes.pair + " --semantics closest", cubes.pair + " --samples area:auto",
         cubes.pair + " --symmetric --threshold 1%", cubes.pair + " --symmetric --threshold 1% --samples area:200",
+        cubes.pair + " --symmetric --threshold 1% --threshold 10% --certify-thresholds",
         cubes.pair + " --method cooperative --views 4x2 --resolution 64",
         teapot + " " + teapot + " --samples area:100", points + " " + cubes.small,
         cubes.small + " " + grid, grid + " " + grid + " --samples vertices", points + " " + grid + " --pcc",

@@ -76,8 +76,9 @@ TEST(CliShard, MergedShardsGiveTheOneProcessReport) {
       bunny_path + " " + rocker + " --samples area:20000 --seed 3 --method cgal --semantics closest",
       rocker + " " + bunny_path + " --samples vertices --method v2p-aabb --max-error 10%",
       rocker + " " + bunny_path + " --samples area:5000 --semantics nearest --histogram-bins 9",
-      // Both directions: Metro's two-sided summary and the reconstruction figures.
-      bunny_path + " " + rocker + " --symmetric --samples area:8000 --threshold 1% --threshold 0.2",
+      // Both directions: Metro's two-sided summary and the reconstruction figures, with their
+      // certified bounds (areas summed in fixed point: bit for bit whatever the shards).
+      bunny_path + " " + rocker + " --symmetric --samples area:8000 --threshold 1% --threshold 0.2 --certify-thresholds",
       rocker + " " + bunny_path + " --symmetric --method v2p-aabb",
   };
   // Colour: both models coloured, both directions.

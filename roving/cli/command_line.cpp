@@ -125,6 +125,11 @@ void add_measurement_options(CLI::App& app, MeasureArguments& args, bool& trust_
       "with --symmetric: precision, recall and F-score at this distance tau (a length or P% of the "
       "diagonal), as reconstruction benchmarks report them; repeatable");
   app.add_flag(
+      "--certify-thresholds", args.certify_thresholds,
+      "with --threshold and closest semantics: precision and recall also as certified bounds, the shares of "
+      "area surely and possibly within tau over every point of the surfaces (can take 100x the measurement's "
+      "time: docs/reconstruction.md)");
+  app.add_flag(
       "--pcc", args.pcc,
       "MPEG's point-cloud figures alone, as its pc_error computes them: D1 and D2 MSE and PSNR, their "
       "Hausdorff forms, colour PSNR, per direction and the worse of the two (two point clouds; given "

@@ -329,6 +329,17 @@ MeasurePlan plan_measurement(const MeasureArguments& args) {
   if (!plan.thresholds.empty() && !plan.symmetric) {
     throw Error("--threshold: precision, recall and F-score need both directions; add --symmetric");
   }
+  plan.certify_thresholds = args.certify_thresholds;
+  if (plan.certify_thresholds) {
+    if (plan.thresholds.empty()) throw Error("--certify-thresholds: bounds precision and recall at each --threshold; give one");
+    if (plan.options.semantics != Semantics::Closest) {
+      throw Error(fmt::format("--certify-thresholds: bounds closest-point shares; found --semantics {}",
+                              to_string(plan.options.semantics)));
+    }
+    if (!plan.hausdorff_bound) {
+      throw Error("--certify-thresholds: splits the surfaces down to --hausdorff-bound's length; not with none");
+    }
+  }
   // Python's per_sample and --samples-out show them; --pcc's surface D2 is computed from them.
   plan.correspondences = args.correspondences || !args.samples_csv_path.empty() || args.pcc;
   plan.options.faces = plan.symmetric || plan.correspondences;
@@ -513,6 +524,8 @@ void measure_models(const Model& a, const Model& b, MeasurePlan& plan, MeasureRe
 
   if (plan.shard) report.shard = ShardSlice{*plan.shard, report.warnings};  // the models' warnings alone
   plan.method->set_progress(progress.callback());
+  std::vector<double> thresholds;  // --threshold in model units
+  for (const MaxErrorSpec& tau : plan.thresholds) thresholds.push_back(tau.resolve(report.diagonal));
   const std::vector<std::pair<const Model*, const Model*>> pairs =
       plan.symmetric ? std::vector<std::pair<const Model*, const Model*>>{{&a, &b}, {&b, &a}}
                      : std::vector<std::pair<const Model*, const Model*>>{{&a, &b}};
@@ -588,6 +601,13 @@ void measure_models(const Model& a, const Model& b, MeasurePlan& plan, MeasureRe
       } else {
         d.hausdorff = certified_hausdorff(surface, test_mesh, report.hausdorff_bound);
       }
+      if (plan.certify_thresholds && test->type != ModelType::Points) {
+        stage = fmt::format("bounding the share of {} within each threshold of {}", reference->path(), test->path());
+        progress.stage(fmt::format("{}certified precision and recall", d.label + ": "));
+        const auto [first, last] =
+            plan.shard ? plan.shard->range(surface.triangle_count()) : std::pair{std::size_t{0}, surface.triangle_count()};
+        d.area_within = certified_area_within(surface, test_mesh, thresholds, report.hausdorff_bound, first, last);
+      }
     }
     if (plan.correspondences)
       d.correspondences = correspondences(d.samples, test_mesh, d.result, plan.options.semantics);
@@ -606,12 +626,14 @@ void measure_models(const Model& a, const Model& b, MeasurePlan& plan, MeasureRe
     warn(found);
   }
   if (plan.symmetric) {
-    std::vector<double> thresholds;
-    for (const MaxErrorSpec& tau : plan.thresholds) thresholds.push_back(tau.resolve(report.diagonal));
     const DirectionReport &ab = report.directions[0], &ba = report.directions[1];
     report.reconstruction = reconstruction_figures({&ab.samples, &ab.result, &test_surface(b)},
                                                    {&ba.samples, &ba.result, &test_surface(a)}, thresholds,
                                                    ab.samples.kind.rfind("area:", 0) == 0);
+    certify_reconstruction(report);
+    if (plan.certify_thresholds && !plan.shard && report.reconstruction->precision_certified.empty()) {
+      warn({"--certify-thresholds: no certified bounds: they are shares of area, and a point cloud has none"});
+    }
   }
   if ((a.type == ModelType::Points && b.type == ModelType::Points) || plan.pcc_only) {
     stage = fmt::format("computing MPEG's point-cloud figures of {} and {}", a.path(), b.path());

@@ -45,6 +45,7 @@ struct MeasureArguments {
   std::vector<std::string> gates;       // --fail-above METRIC=LIMIT
   std::vector<std::string> floors;      // --fail-below METRIC=FLOOR
   std::vector<std::string> thresholds;  // --threshold TAU: precision, recall, F-score at TAU
+  bool certify_thresholds = false;      // --certify-thresholds: their certified bounds too
   bool pcc = false;                     // MPEG's point-cloud figures alone (pc_error's)
   std::optional<double> pcc_resolution;  // their PSNR peak; unset: pc_error's default
   std::string protocol;                  // "dtu": a benchmark's own evaluation (protocols.h)
@@ -84,6 +85,7 @@ struct MeasurePlan {
   std::optional<double> heatmap_delta_e_range;   // --heatmap-range with --heatmap-of delta-e
   std::optional<ImageBasedOptions> image_based;  // --ibsm
   std::vector<MaxErrorSpec> thresholds;          // --threshold, resolved per pair
+  bool certify_thresholds = false;               // --certify-thresholds
   bool pcc_only = false;                         // --pcc: MPEG's point-cloud figures, nothing else
   std::optional<double> pcc_resolution;          // --pcc-resolution
   std::optional<DtuPlan> dtu;                    // --protocol dtu

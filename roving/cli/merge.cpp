@@ -49,6 +49,54 @@ HausdorffInterval hausdorff_of(const nlohmann::json& json) {
   return h;
 }
 
+// A shard's certified areas within each threshold: fixed-point sums, added exactly by the merge.
+nlohmann::json area_within_json(const AreaWithin& w) {
+  return {{"thresholds", w.thresholds},
+          {"within", w.within},
+          {"undecided", w.undecided},
+          {"distance_queries", w.distance_queries},
+          {"triangles_split", w.triangles_split},
+          {"seconds", w.seconds}};
+}
+
+// Adds the part's areas `json` to `sum` (empty: the first part's are taken as they are).
+void add_area_within(std::optional<AreaWithin>& sum, const nlohmann::json& json, const std::string& path) {
+  AreaWithin w;
+  w.thresholds = json.at("thresholds").get<std::vector<double>>();
+  w.within = json.at("within").get<std::vector<std::uint64_t>>();
+  w.undecided = json.at("undecided").get<std::vector<std::uint64_t>>();
+  w.distance_queries = json.at("distance_queries").get<std::size_t>();
+  w.triangles_split = json.at("triangles_split").get<std::size_t>();
+  w.seconds = json.at("seconds").get<double>();
+  if (w.within.size() != w.thresholds.size() || w.undecided.size() != w.thresholds.size()) {
+    throw Error(fmt::format("{}: the certified areas have {} and {} values for {} thresholds", path, w.within.size(),
+                            w.undecided.size(), w.thresholds.size()));
+  }
+  // A share of A's area cannot exceed it (2^60 units, with room for rounding): more, and the parts
+  // do not belong together (checked as they are added, so that no sum can wrap around).
+  constexpr std::uint64_t kMost = (std::uint64_t{1} << 60) + (std::uint64_t{1} << 40);
+  for (std::size_t k = 0; k < w.thresholds.size(); ++k) {
+    if (w.within[k] > kMost || w.undecided[k] > kMost || w.within[k] + w.undecided[k] > kMost) {
+      throw Error(fmt::format("{}: its certified areas are more than the surface", path));
+    }
+  }
+  if (!sum) {
+    sum = std::move(w);
+    return;
+  }
+  if (w.thresholds != sum->thresholds) throw Error(fmt::format("{}: its certified areas are for other thresholds", path));
+  for (std::size_t k = 0; k < w.thresholds.size(); ++k) {
+    sum->within[k] += w.within[k];
+    sum->undecided[k] += w.undecided[k];
+    if (sum->within[k] + sum->undecided[k] > kMost) {
+      throw Error(fmt::format("{}: the certified areas add up to more than the surface", path));
+    }
+  }
+  sum->distance_queries += w.distance_queries;
+  sum->triangles_split += w.triangles_split;
+  sum->seconds += w.seconds;
+}
+
 using Part = PartHeader;
 
 // The fields every part of one measurement has alike.
@@ -158,6 +206,7 @@ void write_shard_part(std::FILE* out, const MeasureArguments& args, const Measur
          {"test", d.test_json},
          {"seconds", {{"build", d.result.build_seconds}, {"query", d.result.query_seconds}}},
          {"hausdorff", d.hausdorff ? hausdorff_json(*d.hausdorff) : nlohmann::json(nullptr)},
+         {"area_within", d.area_within ? area_within_json(*d.area_within) : nlohmann::json(nullptr)},
          {"normal_agreement", !agreement.back().empty()},
          {"colour", d.colour_pairs.has_value()},
          {"colour_source", d.result.colour_source}});
@@ -242,6 +291,7 @@ MergedReport merge_parts(const std::vector<std::string>& paths, const std::strin
       d.result.hit.reserve(total);
       d.samples.weights.reserve(total);
     }
+    std::vector<std::size_t> parts_with_areas(r.directions.size(), 0);
     for (const Part& part : parts) {
       std::vector<PartArrays> into;
       for (std::size_t i = 0; i < r.directions.size(); ++i) {
@@ -260,6 +310,10 @@ MergedReport merge_parts(const std::vector<std::string>& paths, const std::strin
         const nlohmann::json& direction = part.description.at("directions").at(i);
         d.result.build_seconds += direction.at("seconds").at("build").get<double>();
         d.result.query_seconds += direction.at("seconds").at("query").get<double>();
+        if (!direction.at("area_within").is_null()) {
+          add_area_within(d.area_within, direction["area_within"], part.path);
+          ++parts_with_areas[i];
+        }
         if (direction.at("hausdorff").is_null()) continue;
         // The largest lower end (with the points that attain it) and the largest upper end.
         const HausdorffInterval h = hausdorff_of(direction["hausdorff"]);
@@ -275,6 +329,12 @@ MergedReport merge_parts(const std::vector<std::string>& paths, const std::strin
         d.hausdorff->distance_queries += h.distance_queries;
         d.hausdorff->triangles_split += h.triangles_split;
         d.hausdorff->seconds += h.seconds;
+      }
+    }
+    for (std::size_t i = 0; i < r.directions.size(); ++i) {
+      if (parts_with_areas[i] != 0 && parts_with_areas[i] != parts.size()) {
+        throw Error(fmt::format("{}: {} of {} parts carry certified areas within the thresholds; expected all or none",
+                                parts.front().path, parts_with_areas[i], parts.size()));
       }
     }
   } catch (const nlohmann::json::exception& e) {
@@ -308,6 +368,7 @@ MergedReport merge_parts(const std::vector<std::string>& paths, const std::strin
     };
     r.reconstruction = reconstruction_figures(arrays(0), arrays(1), thresholds,
                                               r.directions[0].samples.kind.rfind("area:", 0) == 0);
+    certify_reconstruction(r);
   }
   r.total_seconds += watch.seconds();
   return merged;

@@ -494,6 +494,20 @@ std::string format_header(const Model& a, const Model& b, const MeasureReport& r
   return out;
 }
 
+void certify_reconstruction(MeasureReport& report) {
+  if (!report.reconstruction || !report.symmetric() || !report.directions[0].area_within ||
+      !report.directions[1].area_within) {
+    return;
+  }
+  const auto bounds = [](const AreaWithin& w) {
+    std::vector<ReconstructionFigures::Bounds> out;
+    for (std::size_t k = 0; k < w.thresholds.size(); ++k) out.push_back({w.lower(k), w.upper(k)});
+    return out;
+  };
+  set_certified_shares(*report.reconstruction, bounds(*report.directions[1].area_within),
+                       bounds(*report.directions[0].area_within));
+}
+
 namespace {
 
 // An estimate with its 95% interval where it has one.
@@ -521,7 +535,9 @@ nlohmann::json reconstruction_json(const ReconstructionFigures& f) {
        "within tau of REF; recall: REF's within tau of TEST (a no-hit is beyond); f_score = 2 P R / (P + R). "
        "normal_consistency: mean |n . n'| of a sample's normal and the other surface's at the "
        "correspondence, "
-       "each direction and their mean. Intervals (estimate, lower, upper): 95%, for area-uniform samples."},
+       "each direction and their mean. Intervals (estimate, lower, upper): 95%, for area-uniform samples. "
+       "*_certified (closest semantics between surfaces): the shares of area surely and possibly within tau, "
+       "every point of the surfaces bounded, not sampled (docs/reconstruction.md); f_score_certified from them."},
       {"accuracy", direction(f.accuracy)},
       {"completeness", direction(f.completeness)},
       {"chamfer_mean", f.chamfer_mean},
@@ -530,11 +546,20 @@ nlohmann::json reconstruction_json(const ReconstructionFigures& f) {
       {"chamfer_squared_sum", f.chamfer_squared_sum},
       {"normal_consistency", f.normal_consistency},
       {"thresholds", nlohmann::json::array()}};
+  const auto bounds = [](const ReconstructionFigures::Bounds& b) {
+    return nlohmann::json{{"lower", b.lower}, {"upper", b.upper}};
+  };
   for (std::size_t i = 0; i < f.thresholds.size(); ++i) {
-    json["thresholds"].push_back({{"tau", f.thresholds[i]},
-                                  {"precision", estimate_json(f.accuracy.within[i])},
-                                  {"recall", estimate_json(f.completeness.within[i])},
-                                  {"f_score", f.f_score[i]}});
+    nlohmann::json row = {{"tau", f.thresholds[i]},
+                          {"precision", estimate_json(f.accuracy.within[i])},
+                          {"recall", estimate_json(f.completeness.within[i])},
+                          {"f_score", f.f_score[i]}};
+    if (!f.precision_certified.empty()) {
+      row["precision_certified"] = bounds(f.precision_certified[i]);
+      row["recall_certified"] = bounds(f.recall_certified[i]);
+      row["f_score_certified"] = bounds(f.f_score_certified[i]);
+    }
+    json["thresholds"].push_back(row);
   }
   return json;
 }
@@ -558,6 +583,12 @@ std::string reconstruction_lines(const ReconstructionFigures& f, double diagonal
         "  {:<40} {:>14}\n",
         fmt::format("at tau = {:.6g} ({:.3g}%)", f.thresholds[i], 100 * f.thresholds[i] / diagonal),
         fmt::format("P {:.4f} R {:.4f} F {:.4f}", f.precision[i], f.recall[i], f.f_score[i]));
+    if (!f.precision_certified.empty()) {
+      const auto& p = f.precision_certified[i];
+      const auto& r = f.recall_certified[i];
+      out += fmt::format("  {:<40} {:>14}\n", "  certified (every point, not sampled)",
+                         fmt::format("P [{:.4f}, {:.4f}] R [{:.4f}, {:.4f}]", p.lower, p.upper, r.lower, r.upper));
+    }
   }
   return out;
 }

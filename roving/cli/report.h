@@ -19,6 +19,7 @@
 #include "roving/mpeg/point_cloud_psnr.h"
 #include "roving/mpeg/surface_psnr.h"
 #include "roving/reconstruction/reconstruction_figures.h"
+#include "roving/reference_embree/certified_area_within.h"
 #include "roving/reference_embree/certified_hausdorff.h"
 #include "roving/representations/model.h"
 
@@ -39,6 +40,9 @@ struct DirectionReport {
   // The certified one-sided Hausdorff distance of the reference's surface from the test's, where
   // asked (closest semantics, or --symmetric) and the reference is a surface.
   std::optional<HausdorffInterval> hausdorff;
+  // The certified shares of the reference's area within each --threshold of the test, where both
+  // directions are measured with closest semantics between surfaces (precision and recall).
+  std::optional<AreaWithin> area_within;
   // 95% intervals of SiAD, USiAD and RMS as estimates of the surface means, for area:N samples.
   std::optional<SamplingIntervals> intervals;
   // area:auto: the half-width asked of USiAD's interval, the one reached, and whether it was met
@@ -122,6 +126,10 @@ struct MeasureReport {
 
 // A model as the report's JSON describes it (paths, counts, area, box, colour, representation).
 nlohmann::json model_json(const Model& model);
+
+// The reconstruction figures' certified precision and recall, from the directions' area_within
+// where both have it (TEST -> REF's is precision, REF -> TEST's recall).
+void certify_reconstruction(MeasureReport& report);
 
 // The models, the sampling and the method: known before the long work, printed at once.
 std::string format_header(const Model& a, const Model& b, const MeasureReport& report);

@@ -136,10 +136,26 @@ ReconstructionFigures reconstruction_figures(const SampleFigures& reference_to_t
     const double p = r.accuracy.within[i].value, q = r.completeness.within[i].value;
     r.precision.push_back(p);
     r.recall.push_back(q);
-    r.f_score.push_back(p + q > 0 ? 2 * p * q / (p + q) : 0);
+    r.f_score.push_back(f_score(p, q));
   }
   r.normal_consistency = (r.accuracy.normal_consistency.value + r.completeness.normal_consistency.value) / 2;
   return r;
+}
+
+double f_score(double p, double r) { return p + r > 0 ? 2 * p * r / (p + r) : 0; }
+
+void set_certified_shares(ReconstructionFigures& f, std::vector<ReconstructionFigures::Bounds> precision,
+                          std::vector<ReconstructionFigures::Bounds> recall) {
+  if (precision.size() != f.thresholds.size() || recall.size() != f.thresholds.size()) {
+    throw Error(fmt::format("certified shares: expected {} thresholds, found {} and {}", f.thresholds.size(),
+                            precision.size(), recall.size()));
+  }
+  f.f_score_certified.clear();
+  for (std::size_t k = 0; k < f.thresholds.size(); ++k) {
+    f.f_score_certified.push_back({f_score(precision[k].lower, recall[k].lower), f_score(precision[k].upper, recall[k].upper)});
+  }
+  f.precision_certified = std::move(precision);
+  f.recall_certified = std::move(recall);
 }
 
 }  // namespace roving

@@ -51,7 +51,21 @@ struct ReconstructionFigures {
   // harmonic mean F (0 where both are 0).
   std::vector<double> precision, recall, f_score;
   double normal_consistency = 0;  // the mean of both directions'
+  // Per threshold, where both surfaces are triangles measured with closest semantics: precision's
+  // and recall's certified bounds as shares of area (reference_embree/certified_area_within.h) and
+  // F's from them (F grows with P and with R). Empty otherwise.
+  struct Bounds {
+    double lower = 0, upper = 0;
+  };
+  std::vector<Bounds> precision_certified, recall_certified, f_score_certified;
 };
+
+// The harmonic mean of precision p and recall r; 0 where both are 0.
+double f_score(double p, double r);
+
+// Sets f's certified bounds from precision's and recall's, one per threshold each.
+void set_certified_shares(ReconstructionFigures& f, std::vector<ReconstructionFigures::Bounds> precision,
+                          std::vector<ReconstructionFigures::Bounds> recall);
 
 // `reference_to_test` measured REF's samples against TEST, `test_to_reference` TEST's against REF.
 // Throws roving::Error for a threshold that is not finite and > 0.

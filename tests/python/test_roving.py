@@ -431,6 +431,28 @@ def test_reconstruction_figures_in_closed_form():
                                                                       half["completeness"]["mean"]["estimate"])
 
 
+def test_certified_precision_and_recall_hold_the_closed_form():
+    """The same half square with --certify-thresholds: precision exactly 1; recall 0.5 + tau inside
+    bounds whose width is the pieces left astride the line x = 0.5 + tau (at most 4,096 pieces of
+    each of the 40 triangles it crosses: 40 x 1/800 / 64 of the area, 0.00078). Areas are summed in
+    double over some 10^4 pieces: 1e-12 for rounding."""
+    options = dict(symmetric=True, threshold=["0.1", "0.25", "0.6"], samples="area:2000", max_error="50%",
+                   certify_thresholds=True)
+    half = roving.measure(square(1), square(0.5), **options)["reconstruction"]
+    for t, tau in zip(half["thresholds"], (0.1, 0.25, 0.6)):
+        p, r, f = t["precision_certified"], t["recall_certified"], t["f_score_certified"]
+        assert p["lower"] == pytest.approx(1, abs=1e-12) and p["upper"] == pytest.approx(1, abs=1e-12)
+        truth = min(0.5 + tau, 1)
+        assert r["lower"] <= truth + 1e-12 and truth - 1e-12 <= r["upper"], (tau, r)
+        assert r["upper"] - r["lower"] <= 40 / 800 / 64 + 1e-12, (tau, r)
+        assert f["lower"] - 1e-12 <= 2 * truth / (1 + truth) <= f["upper"] + 1e-12
+    with pytest.raises(roving.Error, match="--certify-thresholds"):
+        roving.measure(square(1), square(0.5), symmetric=True, certify_thresholds=True)
+    with pytest.raises(roving.Error, match="--certify-thresholds"):
+        roving.measure(square(1), square(0.5), symmetric=True, threshold="0.1", certify_thresholds=True,
+                       hausdorff_bound="none")
+
+
 def read_binary_ply(path):
     """x y z [nx ny nz] [red green blue] of make_clouds.py's files, as NumPy arrays."""
     with open(path, "rb") as f:

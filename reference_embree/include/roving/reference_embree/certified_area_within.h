@@ -3,6 +3,7 @@
 // headers stay inside the .cpp.
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -22,9 +23,10 @@ struct AreaWithin {
   std::size_t triangles_split = 0;       // subdivisions of A's triangles the bounds needed
   double seconds = 0;
 
-  // The share of A's area within thresholds[k] of B lies in [lower(k), upper(k)].
-  double lower(std::size_t k) const { return static_cast<double>(within[k]) * kUnit; }
-  double upper(std::size_t k) const { return static_cast<double>(within[k] + undecided[k]) * kUnit; }
+  // The share of A's area within thresholds[k] of B lies in [lower(k), upper(k)] (the pieces' areas,
+  // each rounded, may add up to a little over 1: a share is at most 1).
+  double lower(std::size_t k) const { return std::min(1.0, static_cast<double>(within[k]) * kUnit); }
+  double upper(std::size_t k) const { return std::min(1.0, static_cast<double>(within[k] + undecided[k]) * kUnit); }
 };
 
 // Over A's triangles [first, last), the distance to B's triangles bounded piece by piece: above by
