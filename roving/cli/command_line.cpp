@@ -262,7 +262,7 @@ std::unique_ptr<CommandLine> make_command_line() {
       "N), e.g. $SLURM_ARRAY_TASK_ID/$SLURM_ARRAY_TASK_COUNT, into --shard-out; roving merge gives the report "
       "one process gives");
   measure->add_option("--shard-out", args.shard_out,
-                      "with --shard: the part to write (17 bytes per sample and the models' description)");
+                      "with --shard: the part to write (17 bytes per sample per direction, 25 with --symmetric, 24 more for colour; and the models' description)");
   measure->add_option("--samples-out", args.samples_csv_path, "write one CSV row per sample");
   measure->add_option(
       "--heatmap", args.heatmap_path,
