@@ -64,8 +64,8 @@ struct DistanceOptions {
   // and the nearest-vertex baselines take their vertex's (hit_colour), where TEST has colour.
   bool colour = false;
   // Also give the face each hit lies on (DistanceResult::hit_face), where the method knows it (the
-  // exact references, the nearest-point baselines): for figures at the correspondence, as the
-  // reconstruction figures' normal consistency.
+  // exact references, the nearest-point baselines, the GL methods by the exact rule near their d):
+  // for figures at the correspondence, as the reconstruction figures' normal consistency.
   bool faces = false;
 };
 

@@ -1,13 +1,17 @@
 // What the three GL methods share: the scene (renderer, uploaded model, culling grid), option
 // checks, and the --views parser.
 #include <fmt/format.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <limits>
 
+#include "agreement.h"
 #include "gl_passes.h"
+#include "hit_colour.h"
 #include "roving/core/error.h"
 #include "roving/core/stopwatch.h"
 #include "roving/gl_methods/gl_methods.h"
@@ -182,6 +186,25 @@ DistanceResult GlMethod::measure(const SampleSet& samples, const DistanceOptions
         report.resolved_by[k] = how;
       },
       coloured);
+  // The face at each hit where asked (normal consistency, the correspondences' barycentric
+  // coordinates): by the exact rule near the pass's d, as the colour's face is chosen
+  // (hit_colour.h). A camera's d is good to the cameras' bound; a view's bound depends on its
+  // angle, which is not kept, so a view's hit is looked for along the whole line (its first hit).
+  if (options.faces) {
+    result.hit_face.assign(samples.size(), 0);
+    const double camera_window = roving_tolerance(report);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, samples.size(), 256),
+                      [&](const tbb::blocked_range<std::size_t>& range) {
+                        for (std::size_t k = range.begin(); k != range.end(); ++k) {
+                          if (!result.hit[k]) continue;
+                          const double window =
+                              report.resolved_by[k] == Resolution::Camera ? camera_window : 2 * options.max_error;
+                          result.hit_face[k] = hit_face(scene_, samples, static_cast<std::uint32_t>(k),
+                                                        result.signed_distance[k], options.max_error, window)
+                                                   .face;
+                        }
+                      });
+  }
   result.query_seconds = watch.seconds();
   result.gl = std::move(report);
   return result;

@@ -142,6 +142,14 @@ def test_correspondences_lie_on_the_named_face():
             assert np.abs(gap).max() < 1e-12 * size
 
 
+def read_obj(path):
+    """An OBJ's vertices and triangles (the first index of each corner), as NumPy arrays."""
+    lines = [line.split() for line in open(path) if line.startswith(("v ", "f "))]
+    vertices = np.array([[float(x) for x in line[1:4]] for line in lines if line[0] == "v"])
+    faces = np.array([[int(x.split("/")[0]) - 1 for x in line[1:4]] for line in lines if line[0] == "f"])
+    return vertices, faces
+
+
 def test_colour_and_gl_columns():
     result = roving.measure(os.path.join(IBSM, "torus-a.obj"), os.path.join(IBSM, "torus-b.obj"),
                             method="roving", samples="area:300")
@@ -151,9 +159,17 @@ def test_colour_and_gl_columns():
     assert not np.isnan(columns["test_colour"][hit]).any() and np.isnan(columns["test_colour"][~hit]).all()
     assert set(np.unique(columns["resolved_by"])) <= {roving.resolved_by["camera"], roving.resolved_by["no-hit"]}
     assert (columns["delta_e"][hit] >= 0).all()
-    # A GL method knows where the line met TEST, x + d n, but not the face: no barycentrics.
+    # A GL method's face, chosen by the exact rule near its d (hit_colour.h): test_point is the
+    # face's point nearest x + d n, within the cameras' bound on d (agreement.h's
+    # roving_tolerance), and its barycentric coordinates give it back.
+    gl = result["gl"]
+    bound = 8 * gl["camera_depth_step"] + 10 * gl["camera_half_width"] / 128
     on_line = columns["positions"] + columns["d"][:, None] * columns["normals"]
-    assert (columns["test_point"][hit] == on_line[hit]).all() and np.isnan(columns["barycentric"]).all()
+    assert np.linalg.norm(columns["test_point"] - on_line, axis=1)[hit].max() <= bound
+    vertices, faces = read_obj(os.path.join(IBSM, "torus-b.obj"))
+    on_face = np.einsum("kc,kcx->kx", columns["barycentric"], vertices[faces[columns["hit_face"]]])
+    assert np.abs(columns["test_point"] - on_face)[hit].max() < 1e-12 * result["diagonal"]
+    assert np.isnan(columns["barycentric"][~hit]).all()
 
 
 class MeshLike:
