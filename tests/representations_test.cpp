@@ -5,6 +5,8 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iomanip>
+#include <sstream>
 
 #include "analytic.h"
 #include "decimate.h"
@@ -335,6 +337,39 @@ TEST_F(TempFolder, PointColours) {
       "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nproperty "
       "float z\nproperty uchar red\nproperty uchar green\nproperty uchar blue\nend_header\n1 2 3 4 5 6\n"));
   EXPECT_EQ(ply.colours.at(0), Colour(4, 5, 6));
+  // Binary vertices of fixed-size properties (read on all cores by byte offsets): double and float
+  // coordinates and normals, uchar colours, other properties skipped, as their ASCII twin reads.
+  const char* header =
+      "element vertex 3\nproperty double x\nproperty double y\nproperty double z\nproperty uchar alpha\n"
+      "property float nx\nproperty float ny\nproperty float nz\nproperty uchar red\nproperty uchar green\n"
+      "property uchar blue\nproperty short quality\nend_header\n";
+  std::string binary = std::string("ply\nformat binary_little_endian 1.0\n") + header;
+  std::string ascii = std::string("ply\nformat ascii 1.0\n") + header;
+  for (int i = 0; i < 3; ++i) {
+    const double position[3] = {0.1 * i, 1e-300 * i, -3.25 + i};
+    const float normal[3] = {0.6f, 0, -0.8f * float(i % 2)};
+    const unsigned char rgb[3] = {std::uint8_t(i), 255, std::uint8_t(100 + i)};
+    const std::int16_t quality = -7;
+    binary.append(reinterpret_cast<const char*>(position), sizeof position);
+    binary += char(200);
+    binary.append(reinterpret_cast<const char*>(normal), sizeof normal);
+    binary.append(reinterpret_cast<const char*>(rgb), sizeof rgb);
+    binary.append(reinterpret_cast<const char*>(&quality), sizeof quality);
+    std::ostringstream line;
+    line << std::setprecision(17) << position[0] << ' ' << position[1] << ' ' << position[2] << " 200 " << normal[0]
+         << ' ' << normal[1] << ' ' << normal[2] << ' ' << int(rgb[0]) << ' ' << int(rgb[1]) << ' ' << int(rgb[2])
+         << " -7\n";
+    ascii += line.str();
+  }
+  const PointCloud from_binary = read_point_cloud(write("b.ply", binary));
+  const PointCloud from_ascii = read_point_cloud(write("a.ply", ascii));
+  EXPECT_EQ(from_binary.positions, from_ascii.positions);
+  EXPECT_EQ(from_binary.normals, from_ascii.normals);
+  EXPECT_EQ(from_binary.colours, from_ascii.colours);
+  EXPECT_EQ(from_binary.positions.at(2), Vec3(0.2, 2e-300, -1.25));
+  EXPECT_EQ(from_binary.colours.at(1), Colour(1, 255, 101));
+  // Cut short by a byte: the file's end named, as before.
+  EXPECT_THROW(read_point_cloud(write("short.ply", binary.substr(0, binary.size() - 1))), Error);
   // As a test model, each disk carries its point's colour over its whole fan.
   PointCloud grid;
   for (int i = 0; i < 100; ++i) {

@@ -372,69 +372,82 @@ bool read_plain_triangles(const Element& element, BinaryBody& body, std::size_t 
   return true;
 }
 
-// The layouts nearly every binary PLY uses, read without per-value dispatch (in native byte
-// order): vertices of float properties only, and faces of one list of uchar count and 32-bit
-// indices. Same checks as the general path; false when `element` has another layout.
-bool read_plain_layout(const Element& element, BinaryBody& body, std::vector<Vec3>& positions,
-                       std::vector<Vec3>& normals, bool have_normals, std::optional<PolygonSink>& sink,
-                       std::vector<Triangle>& triangles) {
-  if (element.name == "vertex") {
-    for (const Property& p : element.properties) {
-      if (p.is_list || p.type != Scalar::Float32) return false;
+// Vertices of fixed-size properties, the layout nearly every binary PLY uses (in native byte
+// order): float or double coordinates and normals, uchar colours, any other scalar skipped; read
+// on all cores by byte offsets, without per-value dispatch. False for another layout, or where the
+// file ends early (the general path then names the item).
+bool read_fixed_vertices(const Element& element, BinaryBody& body, std::vector<Vec3>& positions,
+                         std::vector<Vec3>& normals, bool have_normals, std::vector<Colour>& colours,
+                         bool have_colours) {
+  struct Field {
+    std::size_t offset = 0;
+    bool is_double = false;
+  };
+  Field field[10];  // indexed by Role - 1: x y z nx ny nz (corners) red green blue
+  std::size_t stride = 0;
+  for (const Property& p : element.properties) {
+    if (p.is_list) return false;
+    const int slot = static_cast<int>(p.role) - 1;
+    const bool colour = p.role == Role::Red || p.role == Role::Green || p.role == Role::Blue;
+    if (p.role != Role::Skip) {
+      if (colour ? p.type != Scalar::UInt8 : p.type != Scalar::Float32 && p.type != Scalar::Float64) return false;
+      field[slot] = {stride, p.type == Scalar::Float64};
     }
-    const std::size_t stride = element.properties.size();
-    int slot[6] = {-1, -1, -1, -1, -1, -1};  // x y z nx ny nz
-    for (std::size_t i = 0; i < stride; ++i) {
-      const Role role = element.properties[i].role;
-      if (role != Role::Skip && role != Role::Corners) slot[static_cast<int>(role) - 1] = static_cast<int>(i);
-    }
-    if (stride > 256) return false;
-    // Fixed-size items: all on all cores, once the bytes are known to be there (if not, the loop
-    // below names the item where the file ends).
-    if (body.remaining() / (4 * stride) >= element.count) {
-      const char* items = body.take(4 * stride * element.count, element, 0);
-      positions.resize(element.count);
-      if (have_normals) normals.resize(element.count);
-      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, element.count, 16384),
-                        [&](const tbb::blocked_range<std::size_t>& range) {
-                          float values[256];
-                          for (std::size_t item = range.begin(); item != range.end(); ++item) {
-                            std::memcpy(values, items + 4 * stride * item, 4 * stride);
-                            positions[item] = Vec3(values[slot[0]], values[slot[1]], values[slot[2]]);
-                            if (have_normals)
-                              normals[item] = Vec3(values[slot[3]], values[slot[4]], values[slot[5]]);
-                          }
-                        });
-      return true;
-    }
-    float values[256];
-    for (unsigned long long item = 0; item < element.count; ++item) {
-      std::memcpy(values, body.take(4 * stride, element, item), 4 * stride);
-      positions.emplace_back(values[slot[0]], values[slot[1]], values[slot[2]]);
-      if (have_normals) normals.emplace_back(values[slot[3]], values[slot[4]], values[slot[5]]);
-    }
-    return true;
+    stride += size_of(p.type);
   }
-  if (element.name == "face" && element.properties.size() == 1) {
-    const Property& p = element.properties[0];
-    if (p.role != Role::Corners || p.count_type != Scalar::UInt8 || size_of(p.type) != 4) return false;
-    if (read_plain_triangles(element, body, positions.size(), triangles)) return true;
-    const bool is_signed = p.type == Scalar::Int32;
-    std::vector<long long> corners;
-    for (unsigned long long item = 0; item < element.count; ++item) {
-      const auto count = static_cast<unsigned char>(*body.take(1, element, item));
-      const char* raw = body.take(4ull * count, element, item);
-      corners.resize(count);
-      for (unsigned c = 0; c < count; ++c) {
-        std::uint32_t index;
-        std::memcpy(&index, raw + 4 * c, 4);
-        corners[c] = is_signed ? static_cast<long long>(static_cast<std::int32_t>(index)) : index;
-      }
-      sink->add(corners, item, triangles);
+  if (stride == 0 || body.remaining() / stride < element.count) return false;
+  const char* items = body.take(stride * element.count, element, 0);
+  positions.resize(element.count);
+  if (have_normals) normals.resize(element.count);
+  if (have_colours) colours.resize(element.count);
+  const auto value = [](const char* item, const Field& f) {
+    if (f.is_double) {
+      double v;
+      std::memcpy(&v, item + f.offset, sizeof v);
+      return v;
     }
-    return true;
+    float v;
+    std::memcpy(&v, item + f.offset, sizeof v);
+    return double(v);
+  };
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, element.count, 16384),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
+                      for (std::size_t i = range.begin(); i != range.end(); ++i) {
+                        const char* item = items + stride * i;
+                        positions[i] = Vec3(value(item, field[0]), value(item, field[1]), value(item, field[2]));
+                        if (have_normals)
+                          normals[i] = Vec3(value(item, field[3]), value(item, field[4]), value(item, field[5]));
+                        if (have_colours) {
+                          const auto code = [&](const Field& f) { return float(std::uint8_t(item[f.offset])); };
+                          colours[i] = Colour(code(field[7]), code(field[8]), code(field[9]));
+                        }
+                      }
+                    });
+  return true;
+}
+
+// Faces of one list of uchar count and 32-bit indices, read without per-value dispatch (in native
+// byte order). Same checks as the general path; false when `element` has another layout.
+bool read_plain_faces(const Element& element, BinaryBody& body, std::size_t vertex_count,
+                      std::optional<PolygonSink>& sink, std::vector<Triangle>& triangles) {
+  if (element.name != "face" || element.properties.size() != 1) return false;
+  const Property& p = element.properties[0];
+  if (p.role != Role::Corners || p.count_type != Scalar::UInt8 || size_of(p.type) != 4) return false;
+  if (read_plain_triangles(element, body, vertex_count, triangles)) return true;
+  const bool is_signed = p.type == Scalar::Int32;
+  std::vector<long long> corners;
+  for (unsigned long long item = 0; item < element.count; ++item) {
+    const auto count = static_cast<unsigned char>(*body.take(1, element, item));
+    const char* raw = body.take(4ull * count, element, item);
+    corners.resize(count);
+    for (unsigned c = 0; c < count; ++c) {
+      std::uint32_t index;
+      std::memcpy(&index, raw + 4 * c, 4);
+      corners[c] = is_signed ? static_cast<long long>(static_cast<std::int32_t>(index)) : index;
+    }
+    sink->add(corners, item, triangles);
   }
-  return false;
+  return true;
 }
 
 // A colour property's value as an sRGB code value on [0, 255]: uchar as stored, float and double
@@ -501,8 +514,9 @@ void read_body(const std::string& path, const Header& header, Body& body, PlyCon
       triangles.reserve(element.count);
     }
     if constexpr (std::is_same_v<Body, BinaryBody>) {
-      if (!body.swapped() && !(is_vertex && have_colours) &&
-          read_plain_layout(element, body, positions, out.normals, have_normals, sink, triangles)) {
+      if (!body.swapped() &&
+          (is_vertex ? read_fixed_vertices(element, body, positions, out.normals, have_normals, colours, have_colours)
+                     : read_plain_faces(element, body, positions.size(), sink, triangles))) {
         continue;
       }
     }

@@ -128,7 +128,11 @@ PointCloud read_ply_points(const std::string& path) {
   if (ply.declares_faces) {
     throw Error(fmt::format("{}: declares faces; expected a point cloud (read it as a mesh)", path));
   }
-  return PointCloud{ply.mesh.mesh.positions().to_vector(), std::move(ply.normals), ply.mesh.mesh.vertex_colours()};
+  PointCloud cloud;
+  cloud.colours = ply.mesh.mesh.vertex_colours();
+  cloud.positions = ply.mesh.mesh.release_geometry();  // moved, not copied
+  cloud.normals = std::move(ply.normals);
+  return cloud;
 }
 
 }  // namespace

@@ -1,8 +1,12 @@
 #include "roving/mpeg/mpeg_points.h"
 
 #include <fmt/format.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <numeric>
@@ -12,9 +16,13 @@
 namespace roving {
 namespace {
 
-std::array<float, 3> to_float(const Vec3& v, const std::string& name, const char* what, std::size_t i) {
+bool representable(const Vec3& v) {
   const double limit = std::numeric_limits<float>::max();
-  if (!v.allFinite() || v.cwiseAbs().maxCoeff() > limit) {
+  return std::fabs(v.x()) <= limit && std::fabs(v.y()) <= limit && std::fabs(v.z()) <= limit;  // NaN fails
+}
+
+std::array<float, 3> to_float(const Vec3& v, const std::string& name, const char* what, std::size_t i) {
+  if (!representable(v)) {
     throw Error(fmt::format("{}: {} {} is not a finite single-precision value ({}, {}, {})", name, what, i, v.x(),
                             v.y(), v.z()));
   }
@@ -42,13 +50,29 @@ MpegPoints mpeg_points(const PointCloud& cloud, const std::string& name, bool wi
       return position != other.position ? position < other.position : index < other.index;
     }
   };
+  // On all cores; the first point that is not representable (in file order) is the one named.
   std::vector<Entry> order(n);
-  for (std::size_t i = 0; i < n; ++i) order[i] = {to_float(cloud.positions[i], name, "point", i), std::uint32_t(i)};
-  std::sort(order.begin(), order.end());
+  std::atomic<std::size_t> first_bad{n};
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 65536), [&](const tbb::blocked_range<std::size_t>& range) {
+    for (std::size_t i = range.begin(); i != range.end(); ++i) {
+      const Vec3& p = cloud.positions[i];
+      if (!representable(p)) {
+        for (std::size_t seen = first_bad; i < seen && !first_bad.compare_exchange_weak(seen, i);) {
+        }
+        return;
+      }
+      order[i] = {{float(p.x()), float(p.y()), float(p.z())}, std::uint32_t(i)};
+    }
+  });
+  if (first_bad < n) to_float(cloud.positions[first_bad], name, "point", first_bad);  // throws
+  tbb::parallel_sort(order.begin(), order.end());
 
   const bool normals = with_normals && !cloud.normals.empty();
   MpegPoints points;
   points.points_read = n;
+  points.positions.reserve(n);
+  if (normals) points.normals.reserve(n);
+  if (!cloud.colours.empty()) points.colours.reserve(n);
   for (std::size_t run = 0; run < n;) {
     std::size_t end = run + 1;
     while (end < n && order[end].position == order[run].position) ++end;

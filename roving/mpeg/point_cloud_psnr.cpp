@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <nanoflann.hpp>
+#include <optional>
 #include <vector>
 
 #include "roving/core/error.h"
@@ -110,26 +111,52 @@ std::array<float, 3> ycbcr(const std::array<std::uint8_t, 3>& c) {
           float((0.5000 * r - 0.4542 * g - 0.0458 * b) / 255.0 + 0.5000)};
 }
 
-// A's normals carried onto B's points (see the header).
-std::vector<Point> normals_carried(const MpegPoints& a, const MpegPoints& b, const KdTree& b_tree,
-                                   const KdTree& a_tree) {
-  // Each A point's exactly tied nearest B points, found in parallel block by block, then added in
-  // A's order (the single-precision sums then round as pc_error's do).
-  std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>> reached((a.size() + kBlock - 1) / kBlock);
-  for_each_block(a.size(), [&](std::size_t block, std::size_t begin, std::size_t end) {
+// Each point of `from`'s nearest points in `to` (nearest_tied), kept block by block for a second
+// pass: A's points carry their normals onto B's, then A -> B's D2 and colour read the same
+// points, one search per point instead of two.
+struct Matches {
+  std::vector<double> nearest;                    // squared distance to the nearest point
+  std::vector<std::uint8_t> tied;                 // the run tied with it (at most kMaxNeighbours)
+  std::vector<std::uint8_t> equal;                // how many of the run are exactly as near
+  std::vector<std::vector<std::uint32_t>> index;  // per block: each point's run, point after point
+};
+
+Matches find_matches(const MpegPoints& from, const KdTree& to_tree, std::size_t to_size, double threshold) {
+  Matches m;
+  m.nearest.resize(from.size());
+  m.tied.resize(from.size());
+  m.equal.resize(from.size());
+  m.index.resize((from.size() + kBlock - 1) / kBlock);
+  for_each_block(from.size(), [&](std::size_t block, std::size_t begin, std::size_t end) {
     for (std::size_t i = begin; i < end; ++i) {
-      const Neighbours n = nearest_equal(b_tree, b.size(), a.positions[i]);
-      for (std::size_t k = 0; k < n.found; ++k) reached[block].emplace_back(std::uint32_t(i), n.index[k]);
+      const Neighbours n = nearest_tied(to_tree, to_size, from.positions[i], threshold);
+      // The run holds every point exactly as near (a difference of 0 is within any threshold),
+      // and so the points pc_error's own search for equals finds (nearest_equal).
+      std::size_t equal = 1;
+      while (equal < n.found && n.squared[equal] == n.squared[0]) ++equal;
+      m.nearest[i] = n.squared[0];
+      m.tied[i] = std::uint8_t(n.found);
+      m.equal[i] = std::uint8_t(equal);
+      m.index[block].insert(m.index[block].end(), n.index.begin(), n.index.begin() + n.found);
     }
   });
+  return m;
+}
+
+// A's normals carried onto B's points (see the header), from A's matches in B.
+std::vector<Point> normals_carried(const MpegPoints& a, const MpegPoints& b, const Matches& a_in_b,
+                                   const KdTree& a_tree) {
+  // Added in A's order: the single-precision sums then round as pc_error's do.
   std::vector<Point> normals(b.size(), Point{0, 0, 0});
   std::vector<int> count(b.size(), 0);
-  for (auto& pairs : reached) {
-    for (const auto& [i, j] : pairs) {
-      for (int c = 0; c < 3; ++c) normals[j][c] += a.normals[i][c];
-      ++count[j];
+  for (std::size_t block = 0; block < a_in_b.index.size(); ++block) {
+    const std::uint32_t* run = a_in_b.index[block].data();
+    for (std::size_t i = block * kBlock; i < std::min(a.size(), (block + 1) * kBlock); run += a_in_b.tied[i++]) {
+      for (std::size_t k = 0; k < a_in_b.equal[i]; ++k) {
+        for (int c = 0; c < 3; ++c) normals[run[k]][c] += a.normals[i][c];
+        ++count[run[k]];
+      }
     }
-    std::vector<std::pair<std::uint32_t, std::uint32_t>>().swap(pairs);
   }
   tbb::parallel_for(std::size_t{0}, b.size(), [&](std::size_t j) {
     if (count[j] > 0) {
@@ -145,16 +172,23 @@ std::vector<Point> normals_carried(const MpegPoints& a, const MpegPoints& b, con
 }
 
 // Each point of `from` against `to`: sums and maxima per block, then over the blocks in order.
-MpegDirection direction(const MpegPoints& from, const MpegPoints& to, const KdTree& to_tree,
+// `matches`: `from`'s points' matches where found already, else searched here.
+MpegDirection direction(const MpegPoints& from, const MpegPoints& to, const KdTree& to_tree, const Matches* matches,
                         const std::vector<Point>* to_normals, bool colour, double threshold) {
   const bool ties = to_normals || colour;  // D1 needs the nearest point alone
   std::vector<MpegDirection> blocks((from.size() + kBlock - 1) / kBlock);
   for_each_block(from.size(), [&](std::size_t block, std::size_t begin, std::size_t end) {
     MpegDirection& sum = blocks[block];
+    const std::uint32_t* run = matches ? matches->index[block].data() : nullptr;
     for (std::size_t i = begin; i < end; ++i) {
       const Point& p = from.positions[i];
       Neighbours n;
-      if (ties) {
+      if (matches) {
+        n.found = matches->tied[i];
+        n.squared[0] = matches->nearest[i];
+        std::copy_n(run, n.found, n.index.begin());
+        run += n.found;
+      } else if (ties) {
         n = nearest_tied(to_tree, to.size(), p, threshold);
       } else {
         n.found = to_tree.knnSearch(p.data(), 1, n.index.data(), n.squared.data());
@@ -299,11 +333,16 @@ MpegFigures mpeg_point_cloud_figures(const MpegPoints& a, const MpegPoints& b, c
   // B's normals for A -> B: mmetric takes B's own where it has them, pc_error carries A's over.
   std::vector<Point> carried;
   const bool own = rules.mmetric && !b.normals.empty();
-  if (figures.d2 && !own) carried = normals_carried(a, b, b_tree, a_tree);
-  const std::vector<Point>* b_normals = !figures.d2 ? nullptr : own ? &b.normals : &carried;
   const double threshold = rules.tie_threshold();
-  figures.a_to_b = direction(a, b, b_tree, b_normals, figures.colour, threshold);
-  figures.b_to_a = direction(b, a, a_tree, figures.d2 ? &a.normals : nullptr, figures.colour, threshold);
+  std::optional<Matches> a_in_b;
+  if (figures.d2 && !own) {
+    a_in_b = find_matches(a, b_tree, b.size(), threshold);
+    carried = normals_carried(a, b, *a_in_b, a_tree);
+  }
+  const std::vector<Point>* b_normals = !figures.d2 ? nullptr : own ? &b.normals : &carried;
+  figures.a_to_b = direction(a, b, b_tree, a_in_b ? &*a_in_b : nullptr, b_normals, figures.colour, threshold);
+  a_in_b.reset();
+  figures.b_to_a = direction(b, a, a_tree, nullptr, figures.d2 ? &a.normals : nullptr, figures.colour, threshold);
   return figures;
 }
 
