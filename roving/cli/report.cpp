@@ -535,7 +535,9 @@ nlohmann::json reconstruction_json(const ReconstructionFigures& f) {
        "within tau of REF; recall: REF's within tau of TEST (a no-hit is beyond); f_score = 2 P R / (P + R). "
        "normal_consistency: mean |n . n'| of a sample's normal and the other surface's at the "
        "correspondence, "
-       "each direction and their mean. Intervals (estimate, lower, upper): 95%, for area-uniform samples. "
+       "each direction and their mean. Intervals (estimate, lower, upper): 95%, for area-uniform samples; "
+       "chamfer_*_interval and f_score_interval combine the two directions' (independent samples: the delta "
+       "method). "
        "*_certified (closest semantics between surfaces): the shares of area surely and possibly within tau, "
        "every point of the surfaces bounded, not sampled (docs/reconstruction.md); f_score_certified from them."},
       {"accuracy", direction(f.accuracy)},
@@ -546,6 +548,11 @@ nlohmann::json reconstruction_json(const ReconstructionFigures& f) {
       {"chamfer_squared_sum", f.chamfer_squared_sum},
       {"normal_consistency", f.normal_consistency},
       {"thresholds", nlohmann::json::array()}};
+  const auto interval = [](const Estimate& e) { return nlohmann::json{{"lower", e.lower}, {"upper", e.upper}}; };
+  if (!std::isnan(f.chamfer_mean_estimate.lower)) {
+    json["chamfer_mean_interval"] = interval(f.chamfer_mean_estimate);
+    json["chamfer_sum_interval"] = interval(f.chamfer_sum_estimate);
+  }
   const auto bounds = [](const ReconstructionFigures::Bounds& b) {
     return nlohmann::json{{"lower", b.lower}, {"upper", b.upper}};
   };
@@ -554,6 +561,7 @@ nlohmann::json reconstruction_json(const ReconstructionFigures& f) {
                           {"precision", estimate_json(f.accuracy.within[i])},
                           {"recall", estimate_json(f.completeness.within[i])},
                           {"f_score", f.f_score[i]}};
+    if (!std::isnan(f.f_score_estimate[i].lower)) row["f_score_interval"] = interval(f.f_score_estimate[i]);
     if (!f.precision_certified.empty()) {
       row["precision_certified"] = bounds(f.precision_certified[i]);
       row["recall_certified"] = bounds(f.recall_certified[i]);
@@ -575,6 +583,10 @@ std::string reconstruction_lines(const ReconstructionFigures& f, double diagonal
   length("completeness, mean (REF to TEST)", f.completeness.mean.value);
   length("completeness, median", f.completeness.median);
   length("Chamfer, mean of the two", f.chamfer_mean);
+  if (!std::isnan(f.chamfer_mean_estimate.lower)) {
+    out += fmt::format("  {:<40} {:>14}\n", "  95% interval",
+                       fmt::format("[{:.6g}, {:.6g}]", f.chamfer_mean_estimate.lower, f.chamfer_mean_estimate.upper));
+  }
   length("Chamfer, sum of the two", f.chamfer_sum);
   out += fmt::format("  {:<40} {:>14.6g}\n", "Chamfer, squared, mean of the two", f.chamfer_squared_mean);
   out += fmt::format("  {:<40} {:>14.6g}\n", "normal consistency", f.normal_consistency);
@@ -583,6 +595,12 @@ std::string reconstruction_lines(const ReconstructionFigures& f, double diagonal
         "  {:<40} {:>14}\n",
         fmt::format("at tau = {:.6g} ({:.3g}%)", f.thresholds[i], 100 * f.thresholds[i] / diagonal),
         fmt::format("P {:.4f} R {:.4f} F {:.4f}", f.precision[i], f.recall[i], f.f_score[i]));
+    if (!std::isnan(f.f_score_estimate[i].lower)) {
+      const Estimate &p = f.accuracy.within[i], &r = f.completeness.within[i], &q = f.f_score_estimate[i];
+      out += fmt::format("  {:<40} {:>14}\n", "  95% intervals",
+                         fmt::format("P [{:.4f}, {:.4f}] R [{:.4f}, {:.4f}] F [{:.4f}, {:.4f}]", p.lower, p.upper,
+                                     r.lower, r.upper, q.lower, q.upper));
+    }
     if (!f.precision_certified.empty()) {
       const auto& p = f.precision_certified[i];
       const auto& r = f.recall_certified[i];

@@ -36,6 +36,15 @@ Estimate weighted_mean(const std::vector<double>& values, const std::vector<doub
   return {mean, mean - half, mean + half};
 }
 
+// An estimate of `value` from two independent estimates a and b with symmetric 95% intervals,
+// where d value / d a = da and d value / d b = db: the delta method's interval (the normal
+// approximation's 1.96 cancels between the half-widths).
+Estimate combined(double value, const Estimate& a, double da, const Estimate& b, double db) {
+  if (std::isnan(a.lower) || std::isnan(b.lower)) return {value, kNaN, kNaN};
+  const double half = std::hypot(da * (a.upper - a.lower) / 2, db * (b.upper - b.lower) / 2);
+  return {value, value - half, value + half};
+}
+
 DirectionFigures direction_figures(const SampleFigures& set, const std::vector<double>& thresholds,
                                    bool area_uniform) {
   const std::vector<double>& weights = *set.weights;
@@ -132,11 +141,16 @@ ReconstructionFigures reconstruction_figures(const SampleFigures& reference_to_t
                c2 = r.completeness.rms.value * r.completeness.rms.value;
   r.chamfer_mean = (a + c) / 2, r.chamfer_sum = a + c;
   r.chamfer_squared_mean = (a2 + c2) / 2, r.chamfer_squared_sum = a2 + c2;
+  r.chamfer_mean_estimate = combined(r.chamfer_mean, r.accuracy.mean, 0.5, r.completeness.mean, 0.5);
+  r.chamfer_sum_estimate = combined(r.chamfer_sum, r.accuracy.mean, 1, r.completeness.mean, 1);
   for (std::size_t i = 0; i < thresholds.size(); ++i) {
     const double p = r.accuracy.within[i].value, q = r.completeness.within[i].value;
     r.precision.push_back(p);
     r.recall.push_back(q);
     r.f_score.push_back(f_score(p, q));
+    const double sum_squared = (p + q) * (p + q);
+    r.f_score_estimate.push_back(combined(r.f_score.back(), r.accuracy.within[i], p + q > 0 ? 2 * q * q / sum_squared : 0,
+                                          r.completeness.within[i], p + q > 0 ? 2 * p * p / sum_squared : 0));
   }
   r.normal_consistency = (r.accuracy.normal_consistency.value + r.completeness.normal_consistency.value) / 2;
   return r;

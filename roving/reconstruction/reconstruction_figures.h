@@ -47,9 +47,15 @@ struct ReconstructionFigures {
   // Tanks and Temples), their sum (Occupancy Networks' L1 times 2, point-cloud-utils), and the
   // squared forms (mean of the two mean squared distances; their sum).
   double chamfer_mean = 0, chamfer_sum = 0, chamfer_squared_mean = 0, chamfer_squared_sum = 0;
+  // chamfer_mean and chamfer_sum with 95% intervals (NaN bounds where the directions have none):
+  // the two directions' samples are independent, so their half-widths add in quadrature.
+  Estimate chamfer_mean_estimate, chamfer_sum_estimate;
   // Per threshold: precision (accuracy's share within tau), recall (completeness's), and their
   // harmonic mean F (0 where both are 0).
   std::vector<double> precision, recall, f_score;
+  // Per threshold, F with its 95% interval from precision's and recall's by the delta method
+  // (independent samples; dF/dP = 2 R^2 / (P + R)^2, dF/dR = 2 P^2 / (P + R)^2).
+  std::vector<Estimate> f_score_estimate;
   double normal_consistency = 0;  // the mean of both directions'
   // Per threshold, where both surfaces are triangles measured with closest semantics: precision's
   // and recall's certified bounds as shares of area (reference_embree/certified_area_within.h) and
