@@ -17,7 +17,9 @@
 #include <sstream>
 
 #include "cli_support.h"
+#include "roving/formats/matlab_file.h"
 #include "roving/reconstruction/dtu_protocol.h"
+#include "roving/reconstruction/reconstruction_figures.h"
 #include "roving/reconstruction/greedy_thinning.h"
 
 namespace roving {
@@ -181,6 +183,115 @@ TEST(DtuProtocol, BesideTheExactFiguresWithSymmetric) {
   EXPECT_TRUE(report.contains("reconstruction"));
   EXPECT_TRUE(report.contains("dtu_protocol"));
   EXPECT_EQ(report["dtu_protocol"]["runs"].size(), 1u);
+}
+
+// One direction's rows of a --samples-out file: position, |d|, hit, weight.
+struct SampleRow {
+  Vec3 position;
+  double distance = 0, weight = 0;
+  bool hit = false;
+};
+std::vector<SampleRow> sample_rows(const std::string& csv, const std::string& direction) {
+  std::ifstream in(csv);
+  std::string line;
+  std::getline(in, line);
+  EXPECT_EQ(line.rfind("x,y,z,nx,ny,nz,d,hit,element,weight,", 0), 0u) << line;
+  std::vector<SampleRow> rows;
+  while (std::getline(in, line)) {
+    std::vector<std::string> fields;
+    std::stringstream cells(line);
+    for (std::string cell; std::getline(cells, cell, ',');) fields.push_back(cell);
+    if (fields.back() != direction) continue;
+    rows.push_back({Vec3(std::stod(fields[0]), std::stod(fields[1]), std::stod(fields[2])), std::abs(std::stod(fields[6])),
+                    std::stod(fields[9]), fields[7] == "1"});
+  }
+  return rows;
+}
+
+// The area-weighted mean |d| of the hits `inside` takes, and how many it took.
+template <typename Inside>
+std::pair<double, std::size_t> region_mean(const std::vector<SampleRow>& rows, Inside&& inside) {
+  double sum = 0, weight = 0;
+  std::size_t count = 0;
+  for (const SampleRow& r : rows) {
+    if (!r.hit || !inside(r)) continue;
+    sum += r.weight * r.distance, weight += r.weight, ++count;
+  }
+  return {sum / weight, count};
+}
+
+// With --symmetric, the exact figures where the protocol measures are the plain area-weighted means
+// over the samples in its region (TEST's observed, REF's above the plane), every distance and below
+// max_dist, checked here from the samples' own file with the mask and plane read from theirs.
+TEST(DtuProtocol, ExactFiguresAreTheMeansOverItsRegion) {
+  const std::string csv = ::testing::TempDir() + "dtu_exact_samples.csv";
+  const nlohmann::json d =
+      protocol("scan1_mesh.ply", "--protocol-runs 1 --symmetric --samples-out " + csv)["dtu_protocol"];
+  const nlohmann::json& exact = d["exact_within_region"];
+  ASSERT_TRUE(exact.is_object()) << d.dump();
+  DtuObservationMask mask;
+  const MatlabArray<std::uint8_t> observed = read_matlab_mask(kMask, "ObsMask");
+  for (int a = 0; a < 3; ++a) mask.dims[a] = observed.dims.at(a);
+  mask.observed = observed.values;
+  const MatlabArray<double> box = read_matlab_numbers(kMask, "BB");
+  for (int a = 0; a < 3; ++a) mask.box_min[a] = box.values[2 * a], mask.box_max[a] = box.values[2 * a + 1];
+  mask.resolution = read_matlab_numbers(kMask, "Res").values.at(0);
+  const MatlabArray<double> p = read_matlab_numbers(kPlane, "P");
+  const DtuRegion region(mask, {p.values[0], p.values[1], p.values[2], p.values[3]}, d["patch"].get<double>());
+  const double cap = d["max_dist"].get<double>();
+
+  const std::vector<SampleRow> test = sample_rows(csv, "B -> A"), reference = sample_rows(csv, "A -> B");
+  const auto observed_by = [&](const SampleRow& r) { return region.observed(r.position); };
+  const auto above = [&](const SampleRow& r) { return region.above(r.position); };
+  const std::size_t test_counted = std::count_if(test.begin(), test.end(), observed_by);
+  const std::size_t reference_counted = std::count_if(reference.begin(), reference.end(), above);
+  EXPECT_EQ(exact["test_samples"].get<std::size_t>(), test.size());
+  EXPECT_EQ(exact["reference_samples"].get<std::size_t>(), reference.size());
+  EXPECT_EQ(exact["test_samples_counted"].get<std::size_t>(), test_counted);
+  EXPECT_EQ(exact["reference_samples_counted"].get<std::size_t>(), reference_counted);
+  // The scene leaves samples out both ways: TEST's beyond x = 8 and its far square, REF's table.
+  EXPECT_GT(test_counted, test.size() / 2);
+  EXPECT_LT(test_counted, test.size());
+  EXPECT_LT(reference_counted, reference.size());
+
+  // The CSV prints 17 significant digits: the sums agree but for their order (relative 1e-12).
+  const auto expect_mean = [](const nlohmann::json& figures, const char* figure, std::pair<double, std::size_t> mean) {
+    const nlohmann::json& direction = figures[figure];
+    const nlohmann::json& value = direction["mean"];
+    EXPECT_NEAR(value.is_object() ? value["estimate"].get<double>() : value.get<double>(), mean.first,
+                1e-12 * mean.first)
+        << figure;
+    EXPECT_EQ(direction["hits"].get<std::size_t>(), mean.second) << figure;
+  };
+  expect_mean(exact["figures"], "accuracy", region_mean(test, observed_by));
+  expect_mean(exact["figures"], "completeness", region_mean(reference, above));
+  const auto below = [&](auto&& inside) { return [&, inside](const SampleRow& r) { return inside(r) && r.distance < cap; }; };
+  expect_mean(exact["figures_below_max_dist"], "accuracy", region_mean(test, below(observed_by)));
+  expect_mean(exact["figures_below_max_dist"], "completeness", region_mean(reference, below(above)));
+  // Every REF point above the plane has a distance below the cap but the far cluster's: as the script counts.
+  EXPECT_EQ(exact["figures_below_max_dist"]["completeness"]["hits"].get<std::size_t>(),
+            d["runs"][0]["completeness_counted"].get<std::size_t>());
+}
+
+// A region of every sample changes no figure; without --symmetric there are no exact figures.
+TEST(DtuProtocol, ARegionOfEverySampleIsNoRegion) {
+  const std::vector<double> d = {0.5, -1.5, 2.0, 0.25, 4.0}, weights = {1, 2, 1, 3, 1}, agreement = {1, 0.5, 1, 1, 0};
+  const std::vector<std::uint8_t> hit = {1, 1, 1, 1, 0}, every(5, 1), first_three = {1, 1, 1, 0, 0};
+  const ReconstructionFigures plain =
+      reconstruction_figures({&d, &hit, &weights, &agreement}, {&d, &hit, &weights, &agreement}, {1.0}, true);
+  const ReconstructionFigures all = reconstruction_figures({&d, &hit, &weights, &agreement, &every},
+                                                           {&d, &hit, &weights, &agreement, &every}, {1.0}, true);
+  EXPECT_EQ(plain.accuracy.mean.value, all.accuracy.mean.value);
+  EXPECT_EQ(plain.accuracy.mean.upper, all.accuracy.mean.upper);
+  EXPECT_EQ(plain.recall, all.recall);
+  EXPECT_EQ(plain.normal_consistency, all.normal_consistency);
+  // The first three samples: mean (0.5 + 2 * 1.5 + 2) / 4, two of four units of area within 1.
+  const ReconstructionFigures part = reconstruction_figures({&d, &hit, &weights, &agreement, &first_three},
+                                                            {&d, &hit, &weights, &agreement, &first_three}, {1.0}, true);
+  EXPECT_DOUBLE_EQ(part.accuracy.mean.value, 5.5 / 4);
+  EXPECT_DOUBLE_EQ(part.precision[0], 0.25);
+  EXPECT_EQ(part.accuracy.hits + part.accuracy.no_hits, 3u);
+  EXPECT_TRUE(protocol("scan1_mesh.ply", "--protocol-runs 1")["dtu_protocol"]["exact_within_region"].is_null());
 }
 
 TEST(DtuProtocol, BadInputGetsOneLine) {

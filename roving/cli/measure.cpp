@@ -761,6 +761,12 @@ MeasureRun measure_run(const MeasureArguments& args, std::string& stage, Progres
     progress.stage("DTU protocol");
     report.dtu = dtu_report(a, b, *plan.dtu, *dtu_files, progress.callback());
     progress.clear();
+    if (report.reconstruction) {
+      const DirectionReport &ab = report.directions[0], &ba = report.directions[1];
+      set_exact_within_region(*report.dtu, *plan.dtu, *dtu_files, {&ab.samples, &ab.result, &test_surface(b)},
+                              {&ba.samples, &ba.result, &test_surface(a)}, report.reconstruction->thresholds,
+                              ab.samples.kind.rfind("area:", 0) == 0);
+    }
   };
   if (plan.protocol_only) {
     report.protocol_only = true;

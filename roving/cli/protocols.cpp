@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "roving/core/error.h"
@@ -99,6 +100,40 @@ DtuReport dtu_report(const Model& ground_truth, const Model& reconstruction, con
   report.figures.samples = samples;
   report.seconds = watch.seconds();
   return report;
+}
+
+void set_exact_within_region(DtuReport& report, const DtuPlan& plan, const DtuFiles& files,
+                             const CorrespondenceSet& reference_to_test, const CorrespondenceSet& test_to_reference,
+                             const std::vector<double>& thresholds, bool area_uniform) {
+  const DtuRegion region(files.mask, files.plane, plan.options.patch);
+  const auto mark = [&](const SampleSet& samples, auto&& inside, std::size_t& counted, std::size_t& total) {
+    std::vector<std::uint8_t> marks(samples.size());
+    for (std::size_t k = 0; k < samples.size(); ++k) marks[k] = inside(samples.positions[k]) ? 1 : 0;
+    counted = static_cast<std::size_t>(std::count(marks.begin(), marks.end(), 1));
+    total = samples.size();
+    return marks;
+  };
+  const std::vector<std::uint8_t> above =
+      mark(*reference_to_test.samples, [&](const Vec3& p) { return region.above(p); }, report.exact_reference_counted,
+           report.exact_reference_samples);
+  const std::vector<std::uint8_t> observed =
+      mark(*test_to_reference.samples, [&](const Vec3& p) { return region.observed(p); }, report.exact_test_counted,
+           report.exact_test_samples);
+  CorrespondenceSet completeness = reference_to_test, accuracy = test_to_reference;
+  completeness.region = &above;
+  accuracy.region = &observed;
+  report.exact = reconstruction_figures(completeness, accuracy, thresholds, area_uniform);
+  const auto below_cap = [&](const CorrespondenceSet& set, std::vector<std::uint8_t> marks) {
+    for (std::size_t k = 0; k < marks.size(); ++k) {
+      marks[k] = marks[k] && set.result->hit[k] && std::abs(set.result->signed_distance[k]) < plan.options.max_dist;
+    }
+    return marks;
+  };
+  const std::vector<std::uint8_t> above_capped = below_cap(reference_to_test, above),
+                                  observed_capped = below_cap(test_to_reference, observed);
+  completeness.region = &above_capped;
+  accuracy.region = &observed_capped;
+  report.exact_below_cap = reconstruction_figures(completeness, accuracy, thresholds, area_uniform);
 }
 
 }  // namespace roving

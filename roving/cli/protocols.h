@@ -5,6 +5,7 @@
 #include <string>
 
 #include "roving/reconstruction/dtu_protocol.h"
+#include "roving/reconstruction/reconstruction_figures.h"
 #include "roving/representations/model.h"
 
 namespace roving {
@@ -18,6 +19,12 @@ struct DtuReport {
   DtuFigures figures;
   std::string obs_mask, plane;
   double seconds = 0;
+  // With --symmetric, the exact figures where the protocol measures: accuracy over TEST's samples
+  // within the box and observed, completeness over REF's above the plane, every distance counted;
+  // the same with the protocol's cap (the distances below max_dist only); how many samples each
+  // direction counted (below the cap: the figures' hits), of how many.
+  std::optional<ReconstructionFigures> exact, exact_below_cap;
+  std::size_t exact_test_counted = 0, exact_test_samples = 0, exact_reference_counted = 0, exact_reference_samples = 0;
 };
 
 // The data set's files for one scan: its observation mask and ground plane.
@@ -36,5 +43,11 @@ DtuFiles read_dtu_files(const DtuPlan& plan);
 // steps.
 DtuReport dtu_report(const Model& ground_truth, const Model& reconstruction, const DtuPlan& plan,
                      const DtuFiles& files, const ProgressFn& progress = {});
+
+// Sets report.exact from the two directions' correspondences (REF's samples measured against
+// TEST, TEST's against REF), as reconstruction_figures takes them, restricted to the protocol's region.
+void set_exact_within_region(DtuReport& report, const DtuPlan& plan, const DtuFiles& files,
+                             const CorrespondenceSet& reference_to_test, const CorrespondenceSet& test_to_reference,
+                             const std::vector<double>& thresholds, bool area_uniform);
 
 }  // namespace roving

@@ -801,6 +801,23 @@ std::string dtu_order(const DtuFigures& f) {
                             : fmt::format("shuffled with seeds {} to {}", first, first + f.runs.size() - 1);
 }
 
+// The exact figures where the protocol measures (null without --symmetric).
+nlohmann::json dtu_exact_json(const DtuReport& d) {
+  if (!d.exact) return nullptr;
+  return {{"definition",
+           "The exact figures (as under 'reconstruction') over the part of each surface the protocol measures: "
+           "accuracy over TEST's samples inside BB - patch .. BB + 2 patch whose ObsMask voxel is observed, "
+           "completeness over REF's samples above the plane P, measured against the whole other surface. figures: "
+           "every distance counted; figures_below_max_dist: only the distances below max_dist, as the protocol "
+           "counts them (what the cap hides is the difference)"},
+          {"test_samples_counted", d.exact_test_counted},
+          {"test_samples", d.exact_test_samples},
+          {"reference_samples_counted", d.exact_reference_counted},
+          {"reference_samples", d.exact_reference_samples},
+          {"figures", reconstruction_json(*d.exact)},
+          {"figures_below_max_dist", reconstruction_json(*d.exact_below_cap)}};
+}
+
 nlohmann::json dtu_json(const DtuReport& d) {
   const DtuFigures& f = d.figures;
   const DtuRun& first = f.runs.front();
@@ -848,6 +865,7 @@ nlohmann::json dtu_json(const DtuReport& d) {
           {"overall", first.overall},
           {"runs", runs},
           {"spread", spread},
+          {"exact_within_region", dtu_exact_json(d)},
           {"seconds", d.seconds}};
 }
 
@@ -876,6 +894,24 @@ std::string dtu_lines(const DtuReport& d) {
       "  ({}: {} points after thinning, {} in the box, {} observed; below max_dist: {} of the observed, {} of the "
       "ground truth above the plane)\n",
       first_label, first.thinned, first.in_box, first.observed, first.accuracy_counted, first.completeness_counted);
+  if (d.exact) {
+    const ReconstructionFigures &e = *d.exact, &capped = *d.exact_below_cap;
+    out += fmt::format(
+        "  exact, where the protocol measures (TEST's samples observed: {} of {}; REF's above the plane: {} of {}):\n",
+        d.exact_test_counted, d.exact_test_samples, d.exact_reference_counted, d.exact_reference_samples);
+    out += fmt::format("  {:<14} {:>40} {:>40}\n", "figure", "every distance [95%]", "below max_dist [95%]");
+    const auto cell = [](const Estimate& value) {
+      return std::isnan(value.lower) ? fmt::format("{:.8g}", value.value)
+                                     : fmt::format("{:.8g} [{:.6g}, {:.6g}]", value.value, value.lower, value.upper);
+    };
+    out += fmt::format("  {:<14} {:>40} {:>40}\n", "accuracy", cell(e.accuracy.mean), cell(capped.accuracy.mean));
+    out += fmt::format("  {:<14} {:>40} {:>40}\n", "completeness", cell(e.completeness.mean),
+                       cell(capped.completeness.mean));
+    out += fmt::format("  {:<14} {:>40} {:>40}\n", "overall", cell(e.chamfer_mean_estimate),
+                       cell(capped.chamfer_mean_estimate));
+    out += fmt::format("  (below max_dist: {} of TEST's observed samples, {} of REF's above the plane)\n",
+                       capped.accuracy.hits, capped.completeness.hits);
+  }
   return out;
 }
 

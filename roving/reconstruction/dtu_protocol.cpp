@@ -188,19 +188,47 @@ std::vector<Vec3> dtu_mesh_points(const TriangleMesh& mesh, const std::string& n
   return points;
 }
 
-DtuFigures dtu_figures(const std::vector<Vec3>& reconstruction, const std::vector<Vec3>& ground_truth,
-                       const DtuObservationMask& mask, const std::array<double, 4>& plane, const DtuOptions& options,
-                       const ProgressFn& progress) {
-  require_positive(options.density, "density");
-  require_positive(options.max_dist, "max_dist");
-  if (!(std::isfinite(options.patch) && options.patch >= 0)) {
-    throw Error(fmt::format("the DTU protocol's patch must be finite and >= 0; found {}", options.patch));
+DtuRegion::DtuRegion(const DtuObservationMask& mask, const std::array<double, 4>& plane, double patch)
+    : mask_(mask), plane_(plane) {
+  if (!(std::isfinite(patch) && patch >= 0)) {
+    throw Error(fmt::format("the DTU protocol's patch must be finite and >= 0; found {}", patch));
   }
   require_positive(mask.resolution, "mask resolution (Res)");
   if (mask.observed.size() != mask.dims[0] * mask.dims[1] * mask.dims[2]) {
     throw Error(fmt::format("the DTU observation mask holds {} values for its {} x {} x {} voxels",
                             mask.observed.size(), mask.dims[0], mask.dims[1], mask.dims[2]));
   }
+  for (int a = 0; a < 3; ++a) {
+    const SingleBox box = single_box(mask.box_min[a], mask.box_max[a], patch);
+    low_[a] = box.low, high_[a] = box.high, origin_[a] = box.origin;
+  }
+}
+
+bool DtuRegion::in_box(const Vec3& p) const {
+  return p[0] >= low_[0] && p[1] >= low_[1] && p[2] >= low_[2] && p[0] < high_[0] && p[1] < high_[1] && p[2] < high_[2];
+}
+
+bool DtuRegion::observed(const Vec3& p) const {
+  if (!in_box(p)) return false;
+  std::array<std::size_t, 3> cell;
+  for (int a = 0; a < 3; ++a) {
+    // np.around: halves to even, as nearbyint in the default rounding mode.
+    const double g = std::nearbyint((p[a] - origin_[a]) / mask_.resolution);
+    if (!(g >= 0 && g < double(mask_.dims[a]))) return false;
+    cell[a] = static_cast<std::size_t>(g);
+  }
+  return mask_.observed[cell[0] + mask_.dims[0] * (cell[1] + mask_.dims[1] * cell[2])] != 0;
+}
+
+bool DtuRegion::above(const Vec3& p) const {
+  return plane_[0] * p[0] + plane_[1] * p[1] + plane_[2] * p[2] + plane_[3] > 0;
+}
+
+DtuFigures dtu_figures(const std::vector<Vec3>& reconstruction, const std::vector<Vec3>& ground_truth,
+                       const DtuObservationMask& mask, const std::array<double, 4>& plane, const DtuOptions& options,
+                       const ProgressFn& progress) {
+  require_positive(options.density, "density");
+  require_positive(options.max_dist, "max_dist");
   if (reconstruction.size() > std::numeric_limits<std::uint32_t>::max() - 1) {
     throw Error(fmt::format("the DTU protocol takes at most {} points; found {}",
                             std::numeric_limits<std::uint32_t>::max() - 1, reconstruction.size()));
@@ -209,13 +237,12 @@ DtuFigures dtu_figures(const std::vector<Vec3>& reconstruction, const std::vecto
   figures.options = options;
   figures.reconstruction_points = reconstruction.size();
   figures.ground_truth_points = ground_truth.size();
+  const DtuRegion region(mask, plane, options.patch);
   std::vector<Vec3> above;
   for (const Vec3& p : ground_truth) {
-    if (plane[0] * p[0] + plane[1] * p[1] + plane[2] * p[2] + plane[3] > 0) above.push_back(p);
+    if (region.above(p)) above.push_back(p);
   }
   figures.ground_truth_above = above.size();
-  std::array<SingleBox, 3> box;
-  for (int a = 0; a < 3; ++a) box[a] = single_box(mask.box_min[a], mask.box_max[a], options.patch);
   const int runs = options.first_seed ? std::max(options.runs, 1) : 1;
   // The ground truth's tree is built on the other core while the first run thins.
   std::future<std::unique_ptr<PointTree>> building =
@@ -240,20 +267,9 @@ DtuFigures dtu_figures(const std::vector<Vec3>& reconstruction, const std::vecto
     for (std::size_t i = 0; i < keep.size(); ++i) {
       if (!keep[i]) continue;
       const Vec3& p = reconstruction[i];
-      if (!(p[0] >= box[0].low && p[1] >= box[1].low && p[2] >= box[2].low && p[0] < box[0].high &&
-            p[1] < box[1].high && p[2] < box[2].high)) {
-        continue;
-      }
+      if (!region.in_box(p)) continue;
       in_box.push_back(p);
-      std::array<std::size_t, 3> cell;
-      bool inside = true;
-      for (int a = 0; a < 3; ++a) {
-        // np.around: halves to even, as nearbyint in the default rounding mode.
-        const double g = std::nearbyint((p[a] - box[a].origin) / mask.resolution);
-        inside = inside && g >= 0 && g < double(mask.dims[a]);
-        cell[a] = inside ? static_cast<std::size_t>(g) : 0;
-      }
-      if (inside && mask.observed[cell[0] + mask.dims[0] * (cell[1] + mask.dims[1] * cell[2])]) observed.push_back(p);
+      if (region.observed(p)) observed.push_back(p);
     }
     r.in_box = in_box.size();
     r.observed = observed.size();

@@ -56,6 +56,23 @@ struct DtuFigures {
   std::vector<DtuRun> runs;  // the first is the one reported
 };
 
+// Where the protocol measures: accuracy counts the reconstruction's points within the mask's box
+// (in single precision, with `patch` below and twice it above, as the script pads it) whose voxel
+// was observed; completeness counts the ground truth's points above the plane. Throws
+// roving::Error for a patch that is not finite and >= 0, or a mask whose size is not its dims'.
+class DtuRegion {
+ public:
+  DtuRegion(const DtuObservationMask& mask, const std::array<double, 4>& plane, double patch);
+  bool in_box(const Vec3& p) const;
+  bool observed(const Vec3& p) const;  // within the box, and its voxel observed
+  bool above(const Vec3& p) const;     // P . (x, y, z, 1) > 0
+
+ private:
+  const DtuObservationMask& mask_;
+  std::array<double, 4> plane_;
+  std::array<double, 3> low_{}, high_{}, origin_{};
+};
+
 // DTUeval-python's points of a mesh: its vertices, then per face of non-zero area the points of a
 // grid of step `density` (scaled to the face's shape) strictly inside it. Throws roving::Error
 // naming `name` when they would number over 10^9 (a model in other units than the density's).

@@ -51,8 +51,16 @@ DirectionFigures direction_figures(const SampleFigures& set, const std::vector<d
   const std::size_t count = set.signed_distance->size();
   DirectionFigures f;
   std::vector<double> distance(count, 0), squared(count, 0);
-  std::vector<std::uint8_t> hit(count, 0), all(count, 1);
+  if (set.region && set.region->size() != count) {
+    throw Error(fmt::format("reconstruction figures: a region of {} samples for {} samples", set.region->size(), count));
+  }
+  // `counted`: the region's samples (every sample without one); only they enter the figures.
+  std::vector<std::uint8_t> hit(count, 0), counted(count, 1);
   for (std::size_t k = 0; k < count; ++k) {
+    if (set.region && !(*set.region)[k]) {
+      counted[k] = 0;
+      continue;
+    }
     hit[k] = (*set.hit)[k];
     distance[k] = std::abs((*set.signed_distance)[k]);
     squared[k] = distance[k] * distance[k];
@@ -81,11 +89,11 @@ DirectionFigures direction_figures(const SampleFigures& set, const std::vector<d
       break;
     }
   }
-  // The share of the whole area (no-hits included, as beyond any threshold) within each tau.
+  // The share of the area (the region's; no-hits included, as beyond any threshold) within each tau.
   for (const double tau : thresholds) {
     std::vector<double> inside(count, 0);
     for (std::size_t k = 0; k < count; ++k) inside[k] = hit[k] && distance[k] <= tau ? 1 : 0;
-    f.within.push_back(weighted_mean(inside, weights, all, area_uniform));
+    f.within.push_back(weighted_mean(inside, weights, counted, area_uniform));
   }
   // Normal consistency where the correspondence's face is known.
   f.normal_consistency = set.agreement && set.agreement->size() == count
@@ -118,7 +126,7 @@ ReconstructionFigures reconstruction_figures(const CorrespondenceSet& reference_
   const std::vector<double> forward = normal_agreement(reference_to_test),
                             backward = normal_agreement(test_to_reference);
   const auto arrays = [](const CorrespondenceSet& set, const std::vector<double>& agreement) {
-    return SampleFigures{&set.result->signed_distance, &set.result->hit, &set.samples->weights, &agreement};
+    return SampleFigures{&set.result->signed_distance, &set.result->hit, &set.samples->weights, &agreement, set.region};
   };
   return reconstruction_figures(arrays(reference_to_test, forward), arrays(test_to_reference, backward), thresholds,
                                 area_uniform);

@@ -17,10 +17,13 @@ namespace roving {
 
 // One direction's samples on `from`, measured against `to` (closest semantics for the published
 // meaning); `to`'s faces give the normal at each correspondence where the result names them.
+// `region`, where given, marks the samples the figures count (1) and leaves out the rest (0): the
+// figures are then those of that region of `from` (area-uniform samples stay uniform within it).
 struct CorrespondenceSet {
   const SampleSet* samples = nullptr;
   const DistanceResult* result = nullptr;
   const TriangleMesh* to = nullptr;
+  const std::vector<std::uint8_t>* region = nullptr;
 };
 
 // An estimate and, for area-uniform samples, its 95% interval (NaN bounds otherwise).
@@ -90,6 +93,7 @@ struct SampleFigures {
   const std::vector<std::uint8_t>* hit = nullptr;
   const std::vector<double>* weights = nullptr;
   const std::vector<double>* agreement = nullptr;
+  const std::vector<std::uint8_t>* region = nullptr;  // as CorrespondenceSet's
 };
 
 // The same figures from the per-sample arrays.

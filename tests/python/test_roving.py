@@ -83,6 +83,10 @@ def assert_same(cli, py, where="report"):
     ((os.path.join(DTU, "Points/stl/stl001_total.ply"), os.path.join(DTU, "scan1_mesh.ply")),
      {"protocol": "dtu", "dtu_obs_mask": os.path.join(DTU, "ObsMask/ObsMask1_10.mat"),
       "dtu_plane": os.path.join(DTU, "ObsMask/Plane1.mat"), "protocol_seed": 3, "protocol_runs": 2}),
+    ((os.path.join(DTU, "Points/stl/stl001_total.ply"), os.path.join(DTU, "scan1_mesh.ply")),
+     {"protocol": "dtu", "dtu_obs_mask": os.path.join(DTU, "ObsMask/ObsMask1_10.mat"),
+      "dtu_plane": os.path.join(DTU, "ObsMask/Plane1.mat"), "protocol_runs": 1, "symmetric": True,
+      "threshold": "0.5"}),
 ])
 def test_report_equals_the_clis(pair, options):
     result = roving.measure(*pair, **options)
