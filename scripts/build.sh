@@ -2,5 +2,6 @@
 # Configures and builds everything into build/ (Release).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
+source scripts/compiler-cache.sh
+cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release "${cache_options[@]}" >/dev/null
 cmake --build build --parallel "$(nproc)"

@@ -4,8 +4,9 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh package
+source scripts/compiler-cache.sh
 cmake -S . -B build-deb -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_INSTALL_PREFIX=/usr \
-  -DROVING_BUILD_TESTS=OFF -DROVING_BUILD_BENCHMARKS=OFF >/dev/null
+  -DROVING_BUILD_TESTS=OFF -DROVING_BUILD_BENCHMARKS=OFF "${cache_options[@]}" >/dev/null
 cmake --build build-deb --parallel "$(nproc)"
 # CPack's shlibs step warns (a "dev" warning) that the Python module has no soname: a Python
 # extension never has one, and only libroving belongs in the shlibs file; the warning is dropped.

@@ -6,7 +6,7 @@
 # `setup.sh slurm` Slurm, munge and GNU parallel for test-slurm.sh.
 set -euo pipefail
 packages=(
-  build-essential cmake ninja-build pkg-config
+  build-essential cmake ninja-build pkg-config ccache
   libcgal-dev libembree-dev libopenmesh-dev libeigen3-dev libtbb-dev
   libosmesa6-dev libegl-dev libegl-mesa0 libgles-dev libgl-dev
   libbenchmark-dev libgtest-dev libgmock-dev

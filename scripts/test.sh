@@ -5,4 +5,4 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh browser  # chromium: the web page is tested in a real browser
 bash scripts/build.sh
-ctest --test-dir build --output-on-failure --timeout 600 -j 1
+ctest --test-dir build --output-on-failure --timeout 600 -j "$(nproc)"
