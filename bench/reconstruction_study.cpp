@@ -123,6 +123,7 @@ ReconstructionStudy reconstruction_study(const std::vector<std::pair<std::string
   DtuOptions dtu_options;
   dtu_options.density = quick ? 1.0 : 0.2;
   dtu_options.runs = 5;
+  const double certified_piece = quick ? 1e-3 : 1e-4;  // certified bounds: the smallest piece, of the diagonal
   table.title = "Reconstruction figures: DTU's protocol against the surfaces' own";
   table.settings = fmt::format(
       "Each model scaled to longest side {:g} (millimetres, a DTU object's size) is the ground truth (REF); "
@@ -132,8 +133,9 @@ ReconstructionStudy reconstruction_study(const std::vector<std::pair<std::string
       "of {:g} mm or more left out; a mask observing everything and no ground plane, so that only the pipeline "
       "differs; the first of {} seeds' figure, then their range. Exact: every point of one surface against the "
       "other surface (Embree, closest point, {} area samples a direction, 95% interval), F-score at tau = {:g} "
-      "mm with its certified bounds (every point of the surfaces, reference_embree/certified_area_within).",
-      kLongestSide, dtu_options.density, dtu_options.max_dist, dtu_options.runs, samples, kTau);
+      "mm with its certified bounds (every point of the surfaces, reference_embree/certified_area_within, "
+      "pieces down to {:g}% of the diagonal).",
+      kLongestSide, dtu_options.density, dtu_options.max_dist, dtu_options.runs, samples, kTau, 100 * certified_piece);
   table.header = {"model",
                   "copy",
                   "triangles REF / TEST",
@@ -169,7 +171,7 @@ ReconstructionStudy reconstruction_study(const std::vector<std::pair<std::string
       const DtuFigures dtu = dtu_figures(dtu_mesh_points(copy, copy_name, dtu_options.density), truth_points,
                                          everything_observed(both), {0, 0, 0, 1}, dtu_options);
       const double dtu_seconds = watch.seconds();
-      const Exact exact = exact_figures(truth, copy, samples, 1e-4 * diagonal);
+      const Exact exact = exact_figures(truth, copy, samples, certified_piece * diagonal);
       const ReconstructionFigures& f = exact.figures;
       const DtuRun& first = dtu.runs.front();
       table.rows.push_back(
