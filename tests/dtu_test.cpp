@@ -328,13 +328,15 @@ TEST(DtuProtocol, BadInputGetsOneLine) {
   std::filesystem::remove(cut);
   // Files libmatio is not given: MATLAB 4 (a real one, scipy's format='4', and the 520 bytes on
   // which matio's MATLAB 4 reader hung clearing a buffer, found by fuzz_mat), 7.3 (HDF5), and a
-  // level 5 file whose dimensions tag declares 5.8 GB, which matio allocated, and one whose cell
-  // array declares 10^13 elements, for which it allocated too (both found by fuzz_mat).
+  // level 5 file whose dimensions tag declares 5.8 GB, which matio allocated, one whose cell
+  // array declares 10^13 elements, for which it allocated too, and one whose 17-byte array flags
+  // hid a dimensions tag of 3.2 GB from the walk over the elements (all found by fuzz_mat).
   for (const auto& [file, message] : {std::pair{"plane-v4.mat", "not a MATLAB level 5 .mat file"},
                                       {"matio-v4-timeout.mat", "not a MATLAB level 5 .mat file"},
                                       {"v7.3-header.mat", "version 0x0200 (7.3, HDF5)"},
-                                      {"matio-dims-5.8GB.mat", "declares 2913402892 bytes; 64 remain"},
-                                      {"matio-cell-1e13.mat", "a matrix declares more than 533196 elements"}}) {
+                                      {"matio-dims-5.8GB.mat", "dimensions declare 2913402892 bytes; 64 remain"},
+                                      {"matio-cell-1e13.mat", "a matrix declares more than 533196 elements"},
+                                      {"matio-flags-dims-6.4GB.mat", "dimensions declare 3227516929 bytes; 64 remain"}}) {
     const std::string path = kData + "bad/" + file;
     expect_error("measure " + pair + " --protocol dtu --dtu-obs-mask " + path + " --dtu-plane " + kPlane,
                  {file, message});
