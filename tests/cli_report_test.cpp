@@ -612,6 +612,9 @@ TEST(CliReport, JsonLayoutIsTheDocumentedOne) {
   const std::string dtu_protocol = dtu + "Points/stl/stl001_total.ply " + dtu + "scan1_mesh.ply --protocol dtu " +
                                    "--dtu-obs-mask " + dtu + "ObsMask/ObsMask1_10.mat --dtu-plane " + dtu +
                                    "ObsMask/Plane1.mat --protocol-runs 2";
+  const std::string tnt = std::string(ROVING_SOURCE_DIR) + "/tests/data/tnt/";
+  const std::string tnt_protocol = tnt + "Bench.ply " + tnt + "Bench_mesh.ply --protocol tanks-and-temples --tnt-crop " +
+                                   tnt + "Bench.json --tnt-alignment " + tnt + "Bench_trans.txt --tnt-scene Barn";
   std::set<std::string> written;
   const auto check_layout = [&](const std::string& arguments, const CliRun& run) {
     ASSERT_EQ(run.exit_code, 0) << arguments << ": " << run.err;
@@ -645,7 +648,8 @@ TEST(CliReport, JsonLayoutIsTheDocumentedOne) {
         cubes.pair + " --method cooperative --views 4x2 --resolution 64",
         teapot + " " + teapot + " --samples area:100", points + " " + cubes.small,
         cubes.small + " " + grid, grid + " " + grid + " --samples vertices", points + " " + grid + " --pcc",
-        coloured + " --pcc --samples area:500", dtu_protocol, dtu_protocol + " --symmetric"}) {
+        coloured + " --pcc --samples area:500", dtu_protocol, dtu_protocol + " --symmetric", tnt_protocol,
+        tnt_protocol + " --symmetric"}) {
     check_layout(arguments, run_cli("measure " + arguments + " --json -"));
   }
   // And the document names nothing the tool no longer writes (voxels need a .binvox: not run here).

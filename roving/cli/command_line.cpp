@@ -142,8 +142,9 @@ void add_measurement_options(CLI::App& app, MeasureArguments& args, bool& trust_
   app.add_option("--protocol", args.protocol,
                  "a benchmark's own evaluation, step by step, on REF (its ground truth) and TEST (the "
                  "reconstruction): dtu, as DTUeval-python's eval.py computes it (needs --dtu-obs-mask and "
-                 "--dtu-plane); alone, or beside the exact figures with --symmetric")
-      ->check(CLI::IsMember({"dtu"}));
+                 "--dtu-plane); tanks-and-temples, as its toolbox's EvaluateHisto computes it (needs --tnt-crop "
+                 "and --tnt-scene or --tnt-tau); alone, or beside the exact figures with --symmetric")
+      ->check(CLI::IsMember({"dtu", "tanks-and-temples"}));
   app.add_option("--dtu-obs-mask", args.dtu_obs_mask,
                  "with --protocol dtu: the scan's observation mask, the data set's ObsMask/ObsMask<scan>_10.mat");
   app.add_option("--dtu-plane", args.dtu_plane,
@@ -157,12 +158,24 @@ void add_measurement_options(CLI::App& app, MeasureArguments& args, bool& trust_
   app.add_option("--dtu-max-dist", args.dtu_max_dist,
                  "with --protocol dtu: distances at or beyond it are left out of the means (eval.py's max_dist)")
       ->capture_default_str();
+  app.add_option("--tnt-crop", args.tnt_crop,
+                 "with --protocol tanks-and-temples: the scene's crop volume, the data set's <scene>.json");
+  app.add_option("--tnt-alignment", args.tnt_alignment,
+                 "with --protocol tanks-and-temples: the 4 x 4 matrix (four rows of four numbers, as run.py's "
+                 "<scene>_trans.txt) that takes TEST onto REF, applied before everything; default: none");
+  app.add_option("--tnt-scene", args.tnt_scene,
+                 "with --protocol tanks-and-temples: the scene whose tau the toolbox's config.py sets (Barn, "
+                 "Caterpillar, Church, Courthouse, Ignatius, Meetingroom, Truck)");
+  app.add_option("--tnt-tau", args.tnt_tau,
+                 "with --protocol tanks-and-temples: tau itself, in the models' units (metres), for another scene");
+  app.add_option("--tnt-curves", args.tnt_curves,
+                 "with --protocol tanks-and-temples: write the precision and recall curves as PNG here");
   app.add_option("--protocol-seed", args.protocol_seed,
-                 "with --protocol: the first seed of the shuffle before thinning (eval.py's is unseeded), or "
+                 "with --protocol dtu: the first seed of the shuffle before thinning (eval.py's is unseeded), or "
                  "none for the points' own order")
       ->capture_default_str();
   app.add_option("--protocol-runs", args.protocol_runs,
-                 "with --protocol: runs with seeds --protocol-seed, +1, ...; the first is reported, the spread "
+                 "with --protocol dtu: runs with seeds --protocol-seed, +1, ...; the first is reported, the spread "
                  "of all beside it")
       ->check(CLI::Range(1, 1000))
       ->capture_default_str();

@@ -31,6 +31,7 @@
 #include "roving/mpeg/mpeg_points.h"
 #include "roving/mpeg/surface_psnr.h"
 #include "roving/pictures/heatmap_picture.h"
+#include "roving/pictures/precision_recall_chart.h"
 #include "roving/registry/method_registry.h"
 
 namespace roving {
@@ -147,14 +148,72 @@ std::vector<MetricValue> gate_values(const MeasureReport& report) {
 namespace {
 
 // --protocol and its options; the data set's files must exist now (they are read before the models).
-void plan_protocol(const MeasureArguments& args, MeasurePlan& plan) {
-  if (args.protocol.empty()) {
-    for (const auto& [option, given] : {std::pair{"--dtu-obs-mask", args.dtu_obs_mask}, {"--dtu-plane", args.dtu_plane}}) {
-      if (!given.empty()) throw Error(fmt::format("{}: only with --protocol dtu", option));
+// The protocol alone reports its figures: no per-sample files, pictures or pages.
+void refuse_outputs_without_symmetric(const MeasureArguments& args, const MeasurePlan& plan) {
+  if (!plan.protocol_only) return;
+  for (const auto& [option, given] :
+       {std::pair<const char*, bool>{"--ibsm", args.ibsm}, {"--samples-out", !args.samples_csv_path.empty()},
+        {"--heatmap", !args.heatmap_path.empty()}, {"--heatmap-png", !args.heatmap_png_path.empty()},
+        {"--html", !args.html_path.empty()}}) {
+    if (given) {
+      throw Error(fmt::format("{}: --protocol alone gives the protocol's figures; add --symmetric for the exact "
+                              "measurement and its outputs beside them",
+                              option));
     }
+  }
+}
+
+// --protocol tanks-and-temples: the crop file, tau by scene or given, the alignment and curves.
+TanksAndTemplesPlan plan_tanks_and_temples(const MeasureArguments& args) {
+  TanksAndTemplesPlan tnt;
+  if (args.tnt_crop.empty()) throw Error("--protocol tanks-and-temples: needs --tnt-crop (the data set's <scene>.json)");
+  for (const auto& [option, path] : {std::pair{"--tnt-crop", args.tnt_crop}, {"--tnt-alignment", args.tnt_alignment}}) {
+    if (!path.empty() && !std::ifstream(path)) throw Error(fmt::format("{}: cannot read '{}'", option, path));
+  }
+  tnt.crop = args.tnt_crop;
+  tnt.alignment = args.tnt_alignment;
+  if (args.tnt_scene.empty() == !args.tnt_tau) {
+    throw Error("--protocol tanks-and-temples: needs one of --tnt-scene (tau as the toolbox's config.py sets it) and "
+                "--tnt-tau (tau itself)");
+  }
+  if (args.tnt_tau) {
+    if (!(std::isfinite(*args.tnt_tau) && *args.tnt_tau > 0)) {
+      throw Error(fmt::format("--tnt-tau: expected a length > 0 in the models' units (metres), found {}", *args.tnt_tau));
+    }
+    tnt.options.tau = *args.tnt_tau;
+  } else {
+    const std::optional<double> tau = tanks_and_temples_tau(args.tnt_scene);
+    if (!tau) {
+      throw Error(fmt::format("--tnt-scene: '{}' has no tau in the toolbox's config.py; expected one of {}, or --tnt-tau",
+                              args.tnt_scene, tanks_and_temples_scenes()));
+    }
+    tnt.scene = args.tnt_scene;
+    tnt.options.tau = *tau;
+  }
+  tnt.options.voxel_size = tnt.options.tau / 2.0;  // run.py's dTau / 2.0
+  tnt.curves_png = args.tnt_curves;
+  return tnt;
+}
+
+void plan_protocol(const MeasureArguments& args, MeasurePlan& plan) {
+  const bool dtu_given = args.protocol == "dtu", tnt_given = args.protocol == "tanks-and-temples";
+  for (const auto& [option, given] : {std::pair{"--dtu-obs-mask", args.dtu_obs_mask}, {"--dtu-plane", args.dtu_plane}}) {
+    if (!given.empty() && !dtu_given) throw Error(fmt::format("{}: only with --protocol dtu", option));
+  }
+  for (const auto& [option, given] :
+       {std::pair{"--tnt-crop", !args.tnt_crop.empty()}, {"--tnt-alignment", !args.tnt_alignment.empty()},
+        {"--tnt-scene", !args.tnt_scene.empty()}, {"--tnt-tau", args.tnt_tau.has_value()},
+        {"--tnt-curves", !args.tnt_curves.empty()}}) {
+    if (given && !tnt_given) throw Error(fmt::format("{}: only with --protocol tanks-and-temples", option));
+  }
+  if (args.protocol.empty()) return;
+  if (args.pcc) throw Error("--protocol: not with --pcc; run MPEG's figures and the protocol as two measurements");
+  if (tnt_given) {
+    plan.tnt = plan_tanks_and_temples(args);
+    plan.protocol_only = !args.symmetric;
+    refuse_outputs_without_symmetric(args, plan);
     return;
   }
-  if (args.pcc) throw Error("--protocol: not with --pcc; run MPEG's figures and the protocol as two measurements");
   DtuPlan dtu;
   for (const auto& [option, path, target] :
        {std::tuple{"--dtu-obs-mask", args.dtu_obs_mask, &dtu.obs_mask}, {"--dtu-plane", args.dtu_plane, &dtu.plane}}) {
@@ -190,19 +249,7 @@ void plan_protocol(const MeasureArguments& args, MeasurePlan& plan) {
   }
   plan.dtu = dtu;
   plan.protocol_only = !args.symmetric;
-  if (plan.protocol_only) {
-    // The protocol alone reports its figures: no per-sample files, pictures or pages.
-    for (const auto& [option, given] :
-         {std::pair<const char*, bool>{"--ibsm", args.ibsm}, {"--samples-out", !args.samples_csv_path.empty()},
-          {"--heatmap", !args.heatmap_path.empty()}, {"--heatmap-png", !args.heatmap_png_path.empty()},
-          {"--html", !args.html_path.empty()}}) {
-      if (given) {
-        throw Error(fmt::format("{}: --protocol alone gives the protocol's figures; add --symmetric for the exact "
-                                "measurement and its outputs beside them",
-                                option));
-      }
-    }
-  }
+  refuse_outputs_without_symmetric(args, plan);
 }
 
 // --shard and --shard-out: one slice of each direction's samples, by a method whose answer at a
@@ -697,6 +744,12 @@ MeasureRun measure_run(const MeasureArguments& args, std::string& stage, Progres
     stage = fmt::format("reading the DTU data set's files {} and {}", plan.dtu->obs_mask, plan.dtu->plane);
     dtu_files = read_dtu_files(*plan.dtu);
   }
+  std::optional<TanksAndTemplesFiles> tnt_files;
+  if (plan.tnt) {
+    stage = fmt::format("reading the Tanks and Temples scene's files {}{}", plan.tnt->crop,
+                        plan.tnt->alignment.empty() ? "" : " and " + plan.tnt->alignment);
+    tnt_files = read_tanks_and_temples_files(*plan.tnt);
+  }
   // The inputs' hashes on another core while they load.
   if (plan.shard && (given_a || given_b)) {
     throw UsageError("--shard: the models must be files (a shard's part names them by path and hash for the merge)");
@@ -730,6 +783,10 @@ MeasureRun measure_run(const MeasureArguments& args, std::string& stage, Progres
     progress.stage("loading " + file_name(args.test_path));
     run.b = test_load.get();
   }
+  if (tnt_files) {
+    stage = fmt::format("aligning the test {} by {}", run.b->path(), plan.tnt->alignment);
+    align_test_model(*run.b, tnt_files->alignment);  // as the toolbox moves the reconstruction, before all else
+  }
   Model& a = *run.a;
   const Model& b = *run.b;
   report.provenance = {{"tool", tool_json()},
@@ -757,6 +814,19 @@ MeasureRun measure_run(const MeasureArguments& args, std::string& stage, Progres
     return run;
   }
   const auto run_protocol = [&] {
+    if (plan.tnt) {
+      stage = fmt::format("running the Tanks and Temples protocol on {} (ground truth) and {}", a.path(), b.path());
+      progress.stage("Tanks and Temples protocol");
+      report.tnt = tanks_and_temples_report(a, b, *plan.tnt, *tnt_files, progress.callback());
+      progress.clear();
+      if (report.reconstruction) {
+        const DirectionReport &ab = report.directions[0], &ba = report.directions[1];
+        set_exact_within_crop(*report.tnt, *tnt_files, {&ab.samples, &ab.result, &test_surface(b)},
+                              {&ba.samples, &ba.result, &test_surface(a)}, report.reconstruction->thresholds,
+                              ab.samples.kind.rfind("area:", 0) == 0);
+      }
+      return;
+    }
     stage = fmt::format("running the DTU protocol on {} (ground truth) and {}", a.path(), b.path());
     progress.stage("DTU protocol");
     report.dtu = dtu_report(a, b, *plan.dtu, *dtu_files, progress.callback());
@@ -780,7 +850,7 @@ MeasureRun measure_run(const MeasureArguments& args, std::string& stage, Progres
   if (on_described) on_described(run);
   measure_models(a, b, plan, report, progress, stage, warn, nullptr,
                  reference_only_sampled(args, plan) ? &a : nullptr);
-  if (plan.dtu) run_protocol();
+  if (plan.dtu || plan.tnt) run_protocol();
   require_gate_values(plan.gates, gate_values(report));
   report.total_seconds = total.seconds();
   return run;
@@ -850,6 +920,28 @@ void write_measure_outputs(const MeasureArguments& args, const MeasureRun& run, 
                         picture);
       outputs.back()->close_stream();
     }
+  }
+  if (report.tnt && !report.tnt->curves_png.empty()) {
+    stage = "drawing the precision and recall curves";
+    const TanksAndTemplesReport& t = *report.tnt;
+    PrecisionRecallChart chart;
+    chart.title = fmt::format("Precision and recall: {}, F-score {:.2f}%", t.scene.empty() ? file_name(run.b->path()) : t.scene,
+                              100 * t.figures.fscore);
+    chart.subtitle = fmt::format("Tanks and Temples' EvaluateHisto: tau {:.6g}, precision {:.2f}%, recall {:.2f}%",
+                                 t.figures.options.tau, 100 * t.figures.precision, 100 * t.figures.recall);
+    chart.tau = t.figures.options.tau;
+    chart.plot_stretch = t.figures.options.plot_stretch;
+    chart.edges = t.figures.edges;
+    chart.cumulative_precision = t.figures.cumulative_precision;
+    chart.cumulative_recall = t.figures.cumulative_recall;
+    if (t.exact) {
+      const auto exact = [](const Estimate& e) { return PrecisionRecallChart::Exact{e.value, e.lower, e.upper}; };
+      chart.exact_precision = exact(t.exact->accuracy.within.front());
+      chart.exact_recall = exact(t.exact->completeness.within.front());
+    }
+    outputs.push_back(std::make_unique<AtomicFile>(t.curves_png));
+    write_precision_recall_png(outputs.back()->stream(), chart);
+    outputs.back()->close_stream();
   }
   if (!args.shard_out.empty()) {
     outputs.push_back(std::make_unique<AtomicFile>(args.shard_out));

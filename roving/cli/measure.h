@@ -48,9 +48,11 @@ struct MeasureArguments {
   bool certify_thresholds = false;      // --certify-thresholds: their certified bounds too
   bool pcc = false;                     // MPEG's point-cloud figures alone (pc_error's)
   std::optional<double> pcc_resolution;  // their PSNR peak; unset: pc_error's default
-  std::string protocol;                  // "dtu": a benchmark's own evaluation (protocols.h)
+  std::string protocol;                  // "dtu", "tanks-and-temples": a benchmark's own evaluation (protocols.h)
   std::string dtu_obs_mask, dtu_plane;   // its data set's files
   double dtu_density = 0.2, dtu_patch = 60, dtu_max_dist = 20;
+  std::string tnt_crop, tnt_alignment, tnt_scene, tnt_curves;  // --protocol tanks-and-temples
+  std::optional<double> tnt_tau;
   std::string protocol_seed = "1";  // or "none": the points' own order
   int protocol_runs = 5;
   // Keep each sample's point on TEST and its barycentric coordinates (correspondence.h): Python's
@@ -89,6 +91,7 @@ struct MeasurePlan {
   bool pcc_only = false;                         // --pcc: MPEG's point-cloud figures, nothing else
   std::optional<double> pcc_resolution;          // --pcc-resolution
   std::optional<DtuPlan> dtu;                    // --protocol dtu
+  std::optional<TanksAndTemplesPlan> tnt;        // --protocol tanks-and-temples
   bool protocol_only = false;                    // --protocol without --symmetric: its figures alone
   bool correspondences = false;                  // each direction's Correspondences kept
   std::optional<Shard> shard;                    // --shard: one slice of the samples

@@ -476,8 +476,9 @@ TwoSided MeasureReport::two_sided() const {
 std::string format_header(const Model& a, const Model& b, const MeasureReport& r) {
   if (r.protocol_only) {
     return model_line("reference", a) + model_line("test", b) +
-           fmt::format("{:<10} the DTU benchmark's own evaluation (DTUeval-python's eval.py), REF its ground truth\n",
-                       "figures");
+           fmt::format("{:<10} {}, REF its ground truth\n", "figures",
+                       r.dtu ? "the DTU benchmark's own evaluation (DTUeval-python's eval.py)"
+                             : "the Tanks and Temples benchmark's own evaluation (its toolbox's EvaluateHisto)");
   }
   if (r.pcc_only) {
     return model_line("A", a) + model_line("B", b) +
@@ -915,6 +916,97 @@ std::string dtu_lines(const DtuReport& d) {
   return out;
 }
 
+std::string tnt_tau_source(const TanksAndTemplesReport& t) {
+  return t.scene.empty() ? std::string("as given by --tnt-tau") : fmt::format("{}'s, as the toolbox's config.py sets it", t.scene);
+}
+
+nlohmann::json tnt_json(const TanksAndTemplesReport& t) {
+  const TanksAndTemplesFigures& f = t.figures;
+  nlohmann::json alignment = nlohmann::json::array();
+  for (int r = 0; r < 4; ++r) alignment.push_back({t.alignment_matrix(r, 0), t.alignment_matrix(r, 1),
+                                                   t.alignment_matrix(r, 2), t.alignment_matrix(r, 3)});
+  nlohmann::json exact = nullptr;
+  if (t.exact) {
+    exact = {{"definition",
+              "The exact figures (as under 'reconstruction', the first threshold tau) over the part of each surface "
+              "inside the crop volume: precision's side (accuracy) over TEST's aligned samples inside it, recall's "
+              "(completeness) over REF's, each measured against the whole other surface, neither thinned"},
+             {"test_samples_counted", t.exact_test_counted},
+             {"test_samples", t.exact_test_samples},
+             {"reference_samples_counted", t.exact_reference_counted},
+             {"reference_samples", t.exact_reference_samples},
+             {"figures", reconstruction_json(*t.exact)}};
+  }
+  return {{"definition",
+           "Tanks and Temples evaluation as its toolbox's EvaluateHisto computes it: TEST (its points, or a mesh's "
+           "vertices) moved by the alignment, both clouds cropped to the crop volume and voxel down-sampled at "
+           "voxel_size (each occupied cube's mean point); precision = share of TEST's points whose nearest REF "
+           "point is closer than tau, recall = share of REF's points closer than tau to TEST's nearest, fscore = "
+           "2 precision recall / (precision + recall); cumulative_precision[i] and cumulative_recall[i] = share of "
+           "the distances below edges[i + 1] (at or below, for the last), edges = np.arange(0, tau * plot_stretch, "
+           "tau / 100). See docs/reconstruction.md"},
+          {"computed_as",
+           "TanksAndTemples python_toolbox/evaluation (github.com/isl-org/TanksAndTemples, 3c2c212), EvaluateHisto "
+           "step by step on Open3D 0.16's operations; run.py's registration (RANSAC and ICP) not run: the alignment "
+           "is the one given"},
+          {"scene", t.scene.empty() ? nlohmann::json(nullptr) : nlohmann::json(t.scene)},
+          {"tau", f.options.tau},
+          {"tau_source", tnt_tau_source(t)},
+          {"voxel_size", f.options.voxel_size},
+          {"plot_stretch", f.options.plot_stretch},
+          {"crop", t.crop},
+          {"alignment_file", t.alignment.empty() ? nlohmann::json(nullptr) : nlohmann::json(t.alignment)},
+          {"alignment", alignment},
+          {"reconstruction_points", f.reconstruction_points},
+          {"reconstruction_cropped", f.reconstruction_cropped},
+          {"reconstruction_thinned", f.reconstruction_thinned},
+          {"ground_truth_points", f.ground_truth_points},
+          {"ground_truth_cropped", f.ground_truth_cropped},
+          {"ground_truth_thinned", f.ground_truth_thinned},
+          {"precision_counted", f.precision_counted},
+          {"recall_counted", f.recall_counted},
+          {"precision", f.precision},
+          {"recall", f.recall},
+          {"fscore", f.fscore},
+          {"edges", f.edges},
+          {"cumulative_precision", f.cumulative_precision},
+          {"cumulative_recall", f.cumulative_recall},
+          {"curves_png", t.curves_png.empty() ? nlohmann::json(nullptr) : nlohmann::json(t.curves_png)},
+          {"exact_within_crop", exact},
+          {"seconds", t.seconds}};
+}
+
+std::string tnt_lines(const TanksAndTemplesReport& t) {
+  const TanksAndTemplesFigures& f = t.figures;
+  std::string out = fmt::format(
+      "\n  Tanks and Temples protocol (the toolbox's EvaluateHisto): tau {:.6g} ({}), voxel size {:.6g}, crop {}, "
+      "alignment {}\n",
+      f.options.tau, tnt_tau_source(t), f.options.voxel_size, t.crop, t.alignment.empty() ? "none" : t.alignment);
+  out += fmt::format("  reconstruction {} points, {} in the crop, {} after down-sampling; ground truth {}, {}, {}\n",
+                     f.reconstruction_points, f.reconstruction_cropped, f.reconstruction_thinned, f.ground_truth_points,
+                     f.ground_truth_cropped, f.ground_truth_thinned);
+  out += fmt::format("  {:<14} {:>14} {:>28}\n", "figure", "protocol", "points below tau");
+  out += fmt::format("  {:<14} {:>14.8g} {:>28}\n", "precision", f.precision,
+                     fmt::format("{} of {}", f.precision_counted, f.reconstruction_thinned));
+  out += fmt::format("  {:<14} {:>14.8g} {:>28}\n", "recall", f.recall,
+                     fmt::format("{} of {}", f.recall_counted, f.ground_truth_thinned));
+  out += fmt::format("  {:<14} {:>14.8g}\n", "F-score", f.fscore);
+  if (!t.curves_png.empty()) out += fmt::format("  curves: {}\n", t.curves_png);
+  if (t.exact) {
+    const ReconstructionFigures& e = *t.exact;
+    out += fmt::format("  exact, within the crop (TEST's samples: {} of {}; REF's: {} of {}), at tau [95%]:\n",
+                       t.exact_test_counted, t.exact_test_samples, t.exact_reference_counted, t.exact_reference_samples);
+    const auto cell = [](const Estimate& value) {
+      return std::isnan(value.lower) ? fmt::format("{:.8g}", value.value)
+                                     : fmt::format("{:.8g} [{:.6g}, {:.6g}]", value.value, value.lower, value.upper);
+    };
+    out += fmt::format("  {:<14} {:>40}\n", "precision", cell(e.accuracy.within.front()));
+    out += fmt::format("  {:<14} {:>40}\n", "recall", cell(e.completeness.within.front()));
+    out += fmt::format("  {:<14} {:>40}\n", "F-score", cell(e.f_score_estimate.front()));
+  }
+  return out;
+}
+
 // The models load at once (measure_run), so loading takes the longer of the two times.
 double loading_seconds(const MeasureReport& r) { return std::max(r.load_seconds[0], r.load_seconds[1]); }
 
@@ -922,9 +1014,9 @@ double loading_seconds(const MeasureReport& r) { return std::max(r.load_seconds[
 
 std::string format_body(const MeasureReport& r) {
   if (r.protocol_only) {
-    std::string out = dtu_lines(*r.dtu);
+    std::string out = r.dtu ? dtu_lines(*r.dtu) : tnt_lines(*r.tnt);
     out += fmt::format("  time: load {:.3f} s, protocol {:.3f} s, total {:.3f} s\n", loading_seconds(r),
-                       r.dtu->seconds, r.total_seconds);
+                       r.dtu ? r.dtu->seconds : r.tnt->seconds, r.total_seconds);
     for (const std::string& line : r.warnings) out += fmt::format("  warning: {}\n", line);
     return out;
   }
@@ -986,6 +1078,7 @@ std::string format_body(const MeasureReport& r) {
   if (r.reconstruction) out += reconstruction_lines(*r.reconstruction, r.diagonal);
   if (r.mpeg) out += mpeg_lines(*r.mpeg);
   if (r.dtu) out += dtu_lines(*r.dtu);
+  if (r.tnt) out += tnt_lines(*r.tnt);
   if (r.image_based) out += image_based_lines(*r.image_based);
   for (const DirectionReport& d : r.directions) {
     if (!d.result.gl) continue;
@@ -1053,7 +1146,8 @@ nlohmann::json to_json(const MeasureReport& r) {
   if (r.protocol_only) {
     json["method"] = "protocol";
     json["warnings"] = r.warnings;
-    json["dtu_protocol"] = dtu_json(*r.dtu);
+    if (r.dtu) json["dtu_protocol"] = dtu_json(*r.dtu);
+    if (r.tnt) json["tanks_and_temples_protocol"] = tnt_json(*r.tnt);
     json["seconds"] = {
         {"load_reference", r.load_seconds[0]}, {"load_test", r.load_seconds[1]}, {"total", r.total_seconds}};
     return json;
@@ -1118,6 +1212,7 @@ nlohmann::json to_json(const MeasureReport& r) {
   }
   if (r.mpeg) json["mpeg_pcc"] = mpeg_json(*r.mpeg);
   if (r.dtu) json["dtu_protocol"] = dtu_json(*r.dtu);
+  if (r.tnt) json["tanks_and_temples_protocol"] = tnt_json(*r.tnt);
   if (r.image_based) {
     const ImageBasedResult& ib = *r.image_based;
     json["image_based"] = {{"definition", "MPEG IBSM (mmetric 1.1.7 compare --mode ibsm)"},

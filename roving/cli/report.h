@@ -115,6 +115,7 @@ struct MeasureReport {
   bool pcc_only = false;
   // --protocol dtu: the benchmark's own figures; with protocol_only nothing else is measured.
   std::optional<DtuReport> dtu;
+  std::optional<TanksAndTemplesReport> tnt;  // --protocol tanks-and-temples
   bool protocol_only = false;
   std::optional<ShardSlice> shard;  // a shard's run: its figures are its slice's alone
   double load_seconds[2] = {0, 0};  // A (the reference), B (the test)

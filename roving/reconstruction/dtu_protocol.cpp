@@ -9,27 +9,15 @@
 #include <future>
 #include <limits>
 #include <memory>
-#include <nanoflann.hpp>
 #include <numeric>
 #include <random>
 
 #include "roving/core/error.h"
 #include "roving/reconstruction/greedy_thinning.h"
+#include "roving/reconstruction/point_tree.h"
 
 namespace roving {
 namespace {
-
-struct PointsAdaptor {
-  const std::vector<Vec3>& points;
-  std::size_t kdtree_get_point_count() const { return points.size(); }
-  double kdtree_get_pt(std::uint32_t i, std::size_t axis) const { return points[i][axis]; }
-  template <class Box>
-  bool kdtree_get_bbox(Box&) const {
-    return false;
-  }
-};
-using KdTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, PointsAdaptor>,
-                                                   PointsAdaptor, 3, std::uint32_t>;
 
 constexpr std::size_t kMaxPoints = 1000000000;
 
@@ -57,31 +45,12 @@ std::vector<std::uint32_t> visiting_rank(std::size_t count, std::optional<std::u
   return rank;
 }
 
-// A k-d tree over points that outlive it (none built over no points).
-struct PointTree {
-  explicit PointTree(const std::vector<Vec3>& points)
-      : adaptor{points}, tree(3, adaptor, {10, nanoflann::KDTreeSingleIndexAdaptorFlags::SkipInitialBuildIndex}) {
-    if (!points.empty()) tree.buildIndex();
-  }
-  PointsAdaptor adaptor;
-  KdTree tree;
-};
-
 // The mean of the nearest distances from `from` to the tree's points below max_dist, and how many were.
 std::pair<double, std::size_t> mean_nearest(const std::vector<Vec3>& from, const PointTree& to, double max_dist) {
-  if (to.adaptor.points.empty() || from.empty()) return {std::numeric_limits<double>::quiet_NaN(), 0};
-  std::vector<double> distance(from.size());
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, from.size(), 4096), [&](const auto& range) {
-    for (std::size_t i = range.begin(); i < range.end(); ++i) {
-      std::uint32_t index = 0;
-      double squared = 0;
-      to.tree.knnSearch(from[i].data(), 1, &index, &squared);
-      distance[i] = std::sqrt(squared);
-    }
-  });
+  if (to.points().empty() || from.empty()) return {std::numeric_limits<double>::quiet_NaN(), 0};
   double sum = 0;  // in order: the same figure on any number of threads
   std::size_t counted = 0;
-  for (const double d : distance) {
+  for (const double d : to.nearest_distances(from)) {
     if (d < max_dist) {
       sum += d;
       ++counted;

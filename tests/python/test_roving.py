@@ -20,6 +20,7 @@ SOURCE = os.environ["ROVING_SOURCE_DIR"]
 DATA = os.environ.get("ROVING_DATA") or os.path.join(SOURCE, "data")
 MPEG = os.path.join(SOURCE, "tests", "data", "mpeg")
 DTU = os.path.join(SOURCE, "tests", "data", "dtu")
+TNT = os.path.join(SOURCE, "tests", "data", "tnt")
 BUNNY = os.path.join(DATA, "stanford-bunny.obj")
 FANDISK = os.path.join(DATA, "fandisk.obj")
 IBSM = os.path.join(SOURCE, "tests", "ibsm")
@@ -87,6 +88,13 @@ def assert_same(cli, py, where="report"):
      {"protocol": "dtu", "dtu_obs_mask": os.path.join(DTU, "ObsMask/ObsMask1_10.mat"),
       "dtu_plane": os.path.join(DTU, "ObsMask/Plane1.mat"), "protocol_runs": 1, "symmetric": True,
       "threshold": "0.5"}),
+    ((os.path.join(TNT, "Bench.ply"), os.path.join(TNT, "Bench_points.ply")),
+     {"protocol": "tanks-and-temples", "tnt_crop": os.path.join(TNT, "Bench.json"),
+      "tnt_alignment": os.path.join(TNT, "Bench_trans.txt"), "tnt_scene": "Barn"}),
+    ((os.path.join(TNT, "Bench.ply"), os.path.join(TNT, "Bench_mesh.ply")),
+     {"protocol": "tanks-and-temples", "tnt_crop": os.path.join(TNT, "Bench.json"),
+      "tnt_alignment": os.path.join(TNT, "Bench_trans.txt"), "tnt_tau": 0.01, "symmetric": True,
+      "threshold": "0.02"}),
 ])
 def test_report_equals_the_clis(pair, options):
     result = roving.measure(*pair, **options)

@@ -1,0 +1,152 @@
+#!/usr/bin/env python3
+"""The Tanks and Temples protocol, end to end: `roving measure --protocol tanks-and-temples`
+against the toolbox's own EvaluateHisto.
+
+Each runs in its own process from the files to the figures (wall time, CPU time and peak resident
+memory from os.wait4), on the same machine, one after the other: the toolbox's EvaluateHisto and
+plot_graph, called as run.py calls them after its registration (Open3D on every core), and
+roving on every core with --tnt-curves. Checked before timed: precision, recall and F must be
+equal. The toolbox also estimates normals and writes two coloured PLY files for viewing (part of
+its time, no part of its figures); roving writes the curves' PNG, as plot_graph does.
+
+The scene is made here, Tanks-and-Temples-sized (metres, tau 0.01): the ground truth, M points on
+a sphere; the reconstruction, N points on a rippled sphere, given in its own frame with the 4 x 4
+alignment that takes it onto the ground truth; the crop volume, a polygon around the sphere
+whose height range cuts its cap. The toolbox is not part of roving:
+https://github.com/isl-org/TanksAndTemples (Debian's python3-open3d, -matplotlib).
+
+    /usr/bin/python3 bench/tnt_speed.py --roving build/roving/roving --toolbox /path/to/TanksAndTemples \\
+        --points 3000000 30000000 --out results
+"""
+import argparse
+import json
+import os
+import platform
+import sys
+import tempfile
+import time
+
+import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from dtu_speed import run, write_ply  # noqa: E402
+
+TAU = 0.01
+
+DRIVER = r"""
+import sys
+toolbox, recon, truth, trans_file, crop, out = sys.argv[1:]
+sys.path.insert(0, toolbox)
+import matplotlib
+matplotlib.use("Agg")
+import numpy as np
+import open3d as o3d
+from evaluation import EvaluateHisto
+from plot import plot_graph
+tau = %r
+pcd = o3d.io.read_point_cloud(recon)
+gt_pcd = o3d.io.read_point_cloud(truth)
+trans = np.loadtxt(trans_file)
+vol = o3d.visualization.read_selection_polygon_volume(crop)
+p, r, f, edges_s, cum_s, edges_t, cum_t = EvaluateHisto(pcd, gt_pcd, trans, vol, tau / 2.0, tau, out, 5, "Scene")
+plot_graph("Scene", f, tau, edges_s, cum_s, edges_t, cum_t, 5, out)
+print("FIGURES", repr(p), repr(r), repr(f))
+""" % TAU
+
+
+def alignment():
+    angle = 0.4
+    t = np.eye(4)
+    t[:3, :3] = [[np.cos(angle), -np.sin(angle), 0], [np.sin(angle), np.cos(angle), 0], [0, 0, 1]]
+    t[:3, 3] = [10.0, -3.0, 1.5]
+    return t
+
+
+def make_scene(folder, points, truth):
+    """The scene's files; the reconstruction's spacing about tau / 5, so that tau / 2 thins it."""
+    radius = float(np.sqrt(points * (TAU / 5) ** 2 / (4 * np.pi)))
+    def fibonacci(n, ripple):
+        i = np.arange(n) + 0.5
+        z = 1 - 2 * i / n
+        phi = np.pi * (3 - np.sqrt(5)) * i
+        r = np.sqrt(1 - z * z)
+        rr = radius + ripple * np.sin(7 * np.arccos(z)) * np.sin(5 * phi)
+        return rr[:, None] * np.stack([r * np.cos(phi), r * np.sin(phi), z], 1)
+    write_ply(f"{folder}/Scene.ply", fibonacci(truth, 0.0))
+    t = alignment()
+    recon = fibonacci(points, 0.6 * TAU)
+    inverse = np.linalg.inv(t)
+    write_ply(f"{folder}/recon.ply", recon @ inverse[:3, :3].T + inverse[:3, 3])
+    np.savetxt(f"{folder}/Scene_trans.txt", t)
+    side = 1.2 * radius
+    crop = {"class_name": "SelectionPolygonVolume", "version_major": 1, "version_minor": 0, "orthogonal_axis": "Z",
+            "axis_min": -side, "axis_max": 0.8 * radius,
+            "bounding_polygon": [[-side, -side, 0], [side, -side, 0], [side, side, 0], [0, 0.5 * side, 0],
+                                 [-side, side, 0]]}
+    json.dump(crop, open(f"{folder}/Scene.json", "w"))
+    return radius
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--roving", required=True)
+    parser.add_argument("--toolbox", help="a TanksAndTemples checkout; without it roving alone is timed")
+    parser.add_argument("--points", type=int, nargs="+", default=[3000000],
+                        help="the reconstruction's points, one scene per number")
+    parser.add_argument("--truth-ratio", type=float, default=10, help="reconstruction points per ground-truth point")
+    parser.add_argument("--out", help="a folder for tnt-speed.md; else stdout")
+    args = parser.parse_args()
+    lines = [
+        "# The Tanks and Temples protocol: roving against the toolbox's EvaluateHisto",
+        "",
+        f"Written by `bench/tnt_speed.py --points {' '.join(map(str, args.points))}` on {platform.node()} "
+        f"({os.cpu_count()} cores), {time.strftime('%Y-%m-%d')}. Each scene: a reconstruction of N points in its own "
+        f"frame with its alignment, against a ground truth of N / {args.truth_ratio:g} points, tau {TAU} m, cropped by "
+        "a polygon and a height range. One run each; precision, recall and F equal before anything is timed.",
+        "",
+        "| reconstruction | ground truth | tool | wall s | CPU s | peak RSS MiB | precision | recall | F-score |",
+        "| ---: | ---: | --- | ---: | ---: | ---: | ---: | ---: | ---: |",
+    ]
+    ratios = []
+    for points in args.points:
+        truth = int(points / args.truth_ratio)
+        with tempfile.TemporaryDirectory() as folder:
+            make_scene(folder, points, truth)
+            rows = []
+            wall, cpu, rss, _ = run([args.roving, "measure", f"{folder}/Scene.ply", f"{folder}/recon.ply",
+                                     "--protocol", "tanks-and-temples", "--tnt-crop", f"{folder}/Scene.json",
+                                     "--tnt-alignment", f"{folder}/Scene_trans.txt", "--tnt-tau", str(TAU),
+                                     "--tnt-curves", f"{folder}/curves.png", "--json", f"{folder}/report.json",
+                                     "--quiet"])
+            report = json.load(open(f"{folder}/report.json"))["tanks_and_temples_protocol"]
+            ours = [report["precision"], report["recall"], report["fscore"]]
+            rows.append(("roving measure --protocol tanks-and-temples", wall, cpu, rss, ours))
+            if args.toolbox:
+                driver = f"{folder}/driver.py"
+                open(driver, "w").write(DRIVER)
+                os.makedirs(f"{folder}/out")
+                wall, cpu, rss, out = run([sys.executable, driver, os.path.join(args.toolbox, "python_toolbox", "evaluation"),
+                                           f"{folder}/recon.ply", f"{folder}/Scene.ply", f"{folder}/Scene_trans.txt",
+                                           f"{folder}/Scene.json", f"{folder}/out"])
+                theirs = [float(v) for v in next(l for l in out.splitlines() if l.startswith("FIGURES")).split()[1:]]
+                if ours != theirs:
+                    raise SystemExit(f"roving {ours!r}, the toolbox {theirs!r}: not the same figures; nothing timed")
+                rows.append(("TanksAndTemples EvaluateHisto", wall, cpu, rss, theirs))
+                ratios.append((report["reconstruction_points"], rows[1][1] / rows[0][1], rows[1][3] / rows[0][3]))
+        for name, wall, cpu, rss, figures in rows:
+            lines.append(f"| {report['reconstruction_points']:,} | {report['ground_truth_points']:,} | {name} | "
+                         f"{wall:.1f} | {cpu:.1f} | {rss:,.0f} | " + " | ".join(f"{v:.6f}" for v in figures) + " |")
+            print(lines[-1], flush=True)
+    if ratios:
+        lines.append("")
+        for points, speed, memory in ratios:
+            lines.append(f"- {points:,} points: roving {speed:.1f}x faster, in {memory:.1f}x less memory.")
+    text = "\n".join(lines) + "\n"
+    if args.out:
+        os.makedirs(args.out, exist_ok=True)
+        open(os.path.join(args.out, "tnt-speed.md"), "w").write(text)
+    print(text)
+
+
+if __name__ == "__main__":
+    main()

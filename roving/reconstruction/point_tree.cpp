@@ -1,0 +1,55 @@
+#include "roving/reconstruction/point_tree.h"
+
+#include <tbb/parallel_for.h>
+
+#include <cmath>
+#include <limits>
+#include <nanoflann.hpp>
+
+namespace roving {
+namespace {
+
+struct PointsAdaptor {
+  const std::vector<Vec3>& points;
+  std::size_t kdtree_get_point_count() const { return points.size(); }
+  double kdtree_get_pt(std::uint32_t i, std::size_t axis) const { return points[i][axis]; }
+  template <class Box>
+  bool kdtree_get_bbox(Box&) const {
+    return false;
+  }
+};
+using KdTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, PointsAdaptor>,
+                                                   PointsAdaptor, 3, std::uint32_t>;
+
+}  // namespace
+
+struct PointTree::Index {
+  explicit Index(const std::vector<Vec3>& points)
+      : adaptor{points}, tree(3, adaptor, {10, nanoflann::KDTreeSingleIndexAdaptorFlags::SkipInitialBuildIndex}) {
+    tree.buildIndex();
+  }
+  PointsAdaptor adaptor;
+  KdTree tree;
+};
+
+PointTree::PointTree(const std::vector<Vec3>& points) : points_(points) {
+  if (!points.empty()) index_ = std::make_unique<Index>(points);
+}
+
+PointTree::~PointTree() = default;
+
+std::vector<double> PointTree::nearest_distances(const std::vector<Vec3>& from) const {
+  std::vector<double> distance(from.size(), std::numeric_limits<double>::quiet_NaN());
+  if (!index_) return distance;
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, from.size(), 4096), [&](const auto& range) {
+    for (std::size_t i = range.begin(); i < range.end(); ++i) {
+      std::uint32_t index = 0;
+      double squared = 0;
+      index_->tree.knnSearch(from[i].data(), 1, &index, &squared);
+      distance[i] = std::sqrt(squared);
+    }
+  });
+  return distance;
+}
+
+}  // namespace roving

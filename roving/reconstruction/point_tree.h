@@ -1,0 +1,33 @@
+// The nearest of a set of points to each of another's: a k-d tree (nanoflann, Debian's
+// libnanoflann-dev) over points that outlive it, searched exactly, in parallel. The protocols that
+// compare point clouds point to point (DTU's, Tanks and Temples') measure with it.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "roving/core/triangle_mesh.h"
+
+namespace roving {
+
+class PointTree {
+ public:
+  explicit PointTree(const std::vector<Vec3>& points);  // none built over no points
+  ~PointTree();
+  PointTree(const PointTree&) = delete;
+  PointTree& operator=(const PointTree&) = delete;
+
+  const std::vector<Vec3>& points() const { return points_; }
+  // The distance from each of `from` to its nearest point here, as sqrt of the squared distance
+  // summed over x, y, z in that order (Open3D's and scikit-learn's figure to the last bit); NaN
+  // for every point when the tree holds none.
+  std::vector<double> nearest_distances(const std::vector<Vec3>& from) const;
+
+ private:
+  struct Index;
+  const std::vector<Vec3>& points_;
+  std::unique_ptr<Index> index_;
+};
+
+}  // namespace roving

@@ -1,0 +1,62 @@
+#!/usr/bin/env bash
+# Records the Tanks and Temples toolbox's own figures on this folder's scene (tests/tnt_test.cpp
+# holds them):
+#   bash tests/data/tnt/record_tnt.sh /path/to/TanksAndTemples
+# (recorded at its commit 3c2c212, 2022-10-29).
+# The toolbox (github.com/isl-org/TanksAndTemples, python_toolbox/evaluation) run by Debian 12's
+# python3 with python3-open3d 0.16.1, python3-matplotlib 3.6.3 and NumPy 1.24.2. run.py's last
+# two steps are called as it calls them, untouched: EvaluateHisto(pcd, gt_pcd, trans, vol,
+# tau / 2, tau, out_dir, 5, scene), then plot_graph with what it returned; `trans` is the scene's
+# alignment file as read by np.loadtxt (run.py's registration, which refines its own alignment by
+# RANSAC and ICP, is the step before and not recorded here). The toolbox imports its registration
+# module under Open3D's old name (o3d.registration, o3d.pipelines.registration since 0.10); this
+# driver does not import it.
+set -euo pipefail
+toolbox="$(cd "$1/python_toolbox/evaluation" && pwd)"
+here="$(cd "$(dirname "$0")" && pwd)"
+out="$here/golden"
+work="$(mktemp -d)"
+trap 'rm -rf "$work"' EXIT
+mkdir -p "$out"
+commit="${TNT_COMMIT:-$(git -C "$1" rev-parse --short HEAD 2>/dev/null || echo unknown)}"  # TNT_COMMIT: for an archive of it
+record() {  # golden file, reconstruction
+  /usr/bin/python3 - "$toolbox" "$here" "$2" "$work" "$commit" >"$out/$1" <<'PY'
+import sys
+toolbox, here, ply, work, commit = sys.argv[1:]
+sys.path.insert(0, toolbox)
+import contextlib, io, os
+import matplotlib
+matplotlib.use("Agg")
+import numpy as np
+import open3d as o3d
+from evaluation import EvaluateHisto
+from plot import plot_graph
+scene, tau = "Bench", 0.01
+pcd = o3d.io.read_point_cloud(os.path.join(here, ply))
+gt_pcd = o3d.io.read_point_cloud(os.path.join(here, scene + ".ply"))
+trans = np.loadtxt(os.path.join(here, scene + "_trans.txt"))
+vol = o3d.visualization.read_selection_polygon_volume(os.path.join(here, scene + ".json"))
+with contextlib.redirect_stdout(io.StringIO()):
+    p, r, f, edges_s, cum_s, edges_t, cum_t = EvaluateHisto(pcd, gt_pcd, trans, vol, tau / 2.0, tau, work, 5, scene)
+    plot_graph(scene, f, tau, edges_s, cum_s, edges_t, cum_t, 5, work)
+print(f"# TanksAndTemples {commit} python_toolbox/evaluation, open3d {o3d.__version__}, numpy {np.__version__}, "
+      f"matplotlib {matplotlib.__version__}")
+print(f"# EvaluateHisto(read_point_cloud('{ply}'), read_point_cloud('{scene}.ply'), "
+      f"np.loadtxt('{scene}_trans.txt'), read_selection_polygon_volume('{scene}.json'), {tau / 2}, {tau}, out, 5, '{scene}')")
+print("# precision recall fscore; the points cropped and thinned (reconstruction, then ground truth) by the same")
+print("# Open3D calls; then the edges, cum_source and cum_target, one array a line, each value repr'd")
+print(repr(p), repr(r), repr(f))
+import copy
+o3d.utility.set_verbosity_level(o3d.utility.VerbosityLevel.Error)
+s = copy.deepcopy(pcd)
+s.transform(trans)
+s = vol.crop_point_cloud(s)
+t = vol.crop_point_cloud(gt_pcd)
+print(len(s.points), len(s.voxel_down_sample(tau / 2.0).points), len(t.points), len(t.voxel_down_sample(tau / 2.0).points))
+for values in (edges_s, cum_s, cum_t):
+    print(" ".join(repr(float(v)) for v in values))
+PY
+}
+record mesh.txt Bench_mesh.ply
+record points.txt Bench_points.ply
+cp "$work/PR_Bench_@d_th_0_0100.png" "$out/toolbox_curves.png"

@@ -1,0 +1,259 @@
+// The Tanks and Temples protocol (--protocol tanks-and-temples, roving/reconstruction/
+// tanks_and_temples_protocol.h) against the toolbox's own figures: tests/data/tnt/golden/ holds
+// what EvaluateHisto returned (precision, recall, F, the curves' edges and both cumulative
+// curves, each value repr'd) and the point counts after Open3D's crop and down-sampling, on the
+// scene of tests/data/tnt/make_dataset.py, recorded by record_tnt.sh with Debian 12's Open3D
+// 0.16.1 and NumPy 1.24.2; each file is headed by its command. Every step is deterministic and
+// follows the same arithmetic in the same order, so the figures are compared for equality: a
+// count off by one point moves precision by 5e-5, far above any rounding.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "cli_support.h"
+#include "roving/reconstruction/crop_volume.h"
+#include "roving/reconstruction/tanks_and_temples_protocol.h"
+#include "roving/reconstruction/voxel_down_sample.h"
+#include "sample_rows.h"
+
+namespace roving {
+namespace {
+
+using testing::cli::CliRun;
+using testing::cli::expect_error;
+using testing::cli::run_cli;
+
+const std::string kData = std::string(ROVING_SOURCE_DIR) + "/tests/data/tnt/";
+const std::string kTruth = kData + "Bench.ply";
+const std::string kScene = " --tnt-crop " + kData + "Bench.json --tnt-alignment " + kData + "Bench_trans.txt";
+
+// The golden file's rows of numbers, comment lines apart.
+std::vector<std::vector<double>> golden_rows(const std::string& name) {
+  std::ifstream in(kData + "golden/" + name);
+  EXPECT_TRUE(in) << name;
+  std::vector<std::vector<double>> rows;
+  for (std::string line; std::getline(in, line);) {
+    if (line.empty() || line[0] == '#') continue;
+    std::istringstream fields(line);
+    std::vector<double> row;
+    for (double value = 0; fields >> value;) row.push_back(value);
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+nlohmann::json protocol(const std::string& test, const std::string& options) {
+  const CliRun run = run_cli("measure " + kTruth + " " + kData + test + " --protocol tanks-and-temples" + kScene +
+                             " --json - --quiet " + options);
+  EXPECT_EQ(run.exit_code, 0) << run.err;
+  return nlohmann::json::parse(run.out.substr(run.out.find('{')));
+}
+
+void expect_the_toolboxs(const std::string& test, const std::string& golden) {
+  const std::vector<std::vector<double>> rows = golden_rows(golden);
+  ASSERT_EQ(rows.size(), 5u);
+  const nlohmann::json t = protocol(test, "--tnt-tau 0.01")["tanks_and_temples_protocol"];
+  EXPECT_EQ(t["precision"].get<double>(), rows[0].at(0));
+  EXPECT_EQ(t["recall"].get<double>(), rows[0].at(1));
+  EXPECT_EQ(t["fscore"].get<double>(), rows[0].at(2));
+  EXPECT_EQ(t["reconstruction_cropped"].get<double>(), rows[1].at(0));
+  EXPECT_EQ(t["reconstruction_thinned"].get<double>(), rows[1].at(1));
+  EXPECT_EQ(t["ground_truth_cropped"].get<double>(), rows[1].at(2));
+  EXPECT_EQ(t["ground_truth_thinned"].get<double>(), rows[1].at(3));
+  EXPECT_EQ(t["edges"].get<std::vector<double>>(), rows[2]);
+  EXPECT_EQ(t["cumulative_precision"].get<std::vector<double>>(), rows[3]);
+  EXPECT_EQ(t["cumulative_recall"].get<std::vector<double>>(), rows[4]);
+  // The scene leaves something out at every step: the crop, the down-sampling, tau both ways.
+  EXPECT_LT(rows[1][0], t["reconstruction_points"].get<double>());
+  EXPECT_LT(rows[1][1], rows[1][0]);
+  EXPECT_LT(rows[1][3], rows[1][2]);
+  EXPECT_LT(rows[0][0], 1.0);
+  EXPECT_LT(rows[0][1], 0.9);
+}
+
+TEST(TanksAndTemplesGolden, PointsAreTheToolboxs) { expect_the_toolboxs("Bench_points.ply", "points.txt"); }
+
+// A mesh is read as its vertices (Open3D's read_point_cloud): the same figures as the cloud of them.
+TEST(TanksAndTemplesGolden, MeshVerticesAreTheToolboxs) { expect_the_toolboxs("Bench_mesh.ply", "mesh.txt"); }
+
+TEST(TanksAndTemplesProtocol, TheSceneNamesItsTau) {
+  const nlohmann::json by_scene = protocol("Bench_points.ply", "--tnt-scene Barn")["tanks_and_temples_protocol"];
+  const nlohmann::json given = protocol("Bench_points.ply", "--tnt-tau 0.01")["tanks_and_temples_protocol"];
+  EXPECT_EQ(by_scene["tau"].get<double>(), 0.01);
+  EXPECT_EQ(by_scene["voxel_size"].get<double>(), 0.005);
+  EXPECT_EQ(by_scene["scene"], "Barn");
+  EXPECT_TRUE(given["scene"].is_null());
+  EXPECT_EQ(by_scene["fscore"], given["fscore"]);
+  EXPECT_EQ(protocol("Bench_points.ply", "--tnt-scene Ignatius")["tanks_and_temples_protocol"]["tau"].get<double>(),
+            0.003);
+}
+
+// Open3D's CropInPolygon: the axis range closed; a crossing counts below the point when strictly
+// below it, so a point on a left edge is outside and one on a right edge inside.
+TEST(TanksAndTemplesProtocol, TheCropIsOpen3Ds) {
+  const std::vector<Vec3> square = {{0, 0, 9}, {2, 0, 9}, {2, 2, 9}, {0, 2, 9}};
+  const CropVolume z(2, -1, 1, square, "square");
+  EXPECT_TRUE(z.contains({1, 1, 0}));
+  EXPECT_TRUE(z.contains({1, 1, 1}));     // on axis_max
+  EXPECT_TRUE(z.contains({1, 1, -1}));    // on axis_min
+  EXPECT_FALSE(z.contains({1, 1, 1.0000001}));
+  EXPECT_FALSE(z.contains({0, 1, 0}));    // on the left edge: its crossing is not below
+  EXPECT_TRUE(z.contains({2, 1, 0}));     // on the right edge
+  EXPECT_FALSE(z.contains({1, 0, 0}));    // on the bottom edge: v not above the lower vertex
+  EXPECT_TRUE(z.contains({1, 2, 0}));     // on the top edge
+  EXPECT_FALSE(z.contains({3, 1, 0}));
+  // x orthogonal: the polygon across (y, z); y orthogonal: across (x, z).
+  const CropVolume x(0, -1, 1, {{9, 0, 0}, {9, 2, 0}, {9, 2, 2}, {9, 0, 2}}, "x");
+  EXPECT_TRUE(x.contains({0.5, 1, 1}));
+  EXPECT_FALSE(x.contains({0.5, 1, 3}));
+  const CropVolume y(1, -1, 1, {{0, 9, 0}, {2, 9, 0}, {2, 9, 2}, {0, 9, 2}}, "y");
+  EXPECT_TRUE(y.contains({1, 0.5, 1}));
+  EXPECT_FALSE(y.contains({1, 2, 1}));
+  // A non-convex polygon: the notch of a U is outside.
+  const CropVolume u(2, -1, 1, {{0, 0, 0}, {3, 0, 0}, {3, 3, 0}, {2, 3, 0}, {2, 1, 0}, {1, 1, 0}, {1, 3, 0}, {0, 3, 0}},
+                     "u");
+  EXPECT_TRUE(u.contains({0.5, 2, 0}));
+  EXPECT_FALSE(u.contains({1.5, 2, 0}));
+  EXPECT_TRUE(u.contains({2.5, 2, 0}));
+}
+
+// Open3D's VoxelDownSample: cubes from half a side below the least corner; each the mean of its points.
+TEST(TanksAndTemplesProtocol, DownSamplingIsOpen3Ds) {
+  const std::vector<Vec3> points = {{0, 0, 0}, {0.4, 0, 0}, {0.6, 0, 0}, {1.4, 0, 0}, {1.6, 0.2, 0.1}};
+  // The grid starts at -0.5: cubes [-0.5, 0.5), [0.5, 1.5), [1.5, 2.5) along x.
+  const std::vector<Vec3> means = voxel_down_sample(points, 1.0);
+  ASSERT_EQ(means.size(), 3u);
+  EXPECT_EQ(means[0], Vec3((0 + 0.4) / 2.0, 0, 0));
+  EXPECT_EQ(means[1], Vec3((0.6 + 1.4) / 2.0, 0, 0));
+  EXPECT_EQ(means[2], Vec3(1.6, 0.2, 0.1));
+  EXPECT_TRUE(voxel_down_sample({}, 1.0).empty());
+  EXPECT_THROW(voxel_down_sample(points, 0), Error);
+  EXPECT_THROW(voxel_down_sample({{0, 0, 0}, {1e10, 0, 0}}, 1e-3), Error);  // an index past an int
+}
+
+// np.arange's length and values, and np.histogram's closed last bin.
+TEST(TanksAndTemplesProtocol, TheCurvesAreNumPys) {
+  const std::vector<double> edges = histogram_edges(0.003 * 5, 0.003 / 100);  // 499.99999999999994 steps
+  ASSERT_EQ(edges.size(), 500u);
+  EXPECT_EQ(edges[1], 0.003 / 100);
+  EXPECT_EQ(edges[499], 499 * (0.003 / 100));
+  const std::vector<double> shares = cumulative_shares({0.5, 1.0, 2.0, 2.0, 3.5}, {0, 1, 2});
+  ASSERT_EQ(shares.size(), 2u);
+  EXPECT_EQ(shares[0], 1 / 5.0);  // below 1: 0.5 (1.0 falls in the next bin)
+  EXPECT_EQ(shares[1], 4 / 5.0);  // the last bin closed: 2.0 twice counted
+}
+
+// With --symmetric, the exact figures within the crop are the area-weighted shares of the samples
+// inside it within tau (REF's points, TEST's face centres weighted by area), from the samples' own
+// file; TEST's samples lie where the alignment moved them.
+TEST(TanksAndTemplesProtocol, ExactFiguresAreTheSharesWithinTheCrop) {
+  const std::string csv = ::testing::TempDir() + "tnt_exact_samples.csv";
+  const nlohmann::json report =
+      protocol("Bench_mesh.ply", "--tnt-tau 0.01 --symmetric --samples-out " + csv);
+  const nlohmann::json& t = report["tanks_and_temples_protocol"];
+  const nlohmann::json& exact = t["exact_within_crop"];
+  ASSERT_TRUE(exact.is_object()) << t.dump();
+  const CropVolume crop = read_crop_volume(kData + "Bench.json");
+  const std::vector<SampleRow> test = sample_rows(csv, "B -> A"), reference = sample_rows(csv, "A -> B");
+  const auto share_within = [&](const std::vector<SampleRow>& rows, std::size_t& counted) {
+    double within = 0, area = 0;
+    counted = 0;
+    for (const SampleRow& r : rows) {
+      if (!crop.contains(r.position)) continue;
+      ++counted;
+      area += r.weight;
+      if (r.hit && r.distance < 0.01) within += r.weight;
+    }
+    return within / area;
+  };
+  std::size_t test_counted = 0, reference_counted = 0;
+  const double precision = share_within(test, test_counted), recall = share_within(reference, reference_counted);
+  EXPECT_EQ(exact["test_samples_counted"].get<std::size_t>(), test_counted);
+  EXPECT_EQ(exact["reference_samples_counted"].get<std::size_t>(), reference_counted);
+  EXPECT_LT(test_counted, test.size());
+  EXPECT_LT(reference_counted, reference.size());
+  const nlohmann::json& figures = exact["figures"];
+  const nlohmann::json& at_tau = figures["thresholds"][0];
+  EXPECT_EQ(at_tau["tau"].get<double>(), 0.01);
+  // The sums agree but for their order: relative 1e-12.
+  EXPECT_NEAR(at_tau["precision"].get<double>(), precision, 1e-12);
+  EXPECT_NEAR(at_tau["recall"].get<double>(), recall, 1e-12);
+  // The exact figures and the protocol's are two estimates of one quantity: close on this dense scene.
+  EXPECT_NEAR(at_tau["precision"].get<double>(), t["precision"].get<double>(), 0.02);
+  EXPECT_NEAR(at_tau["recall"].get<double>(), t["recall"].get<double>(), 0.03);
+  EXPECT_TRUE(protocol("Bench_mesh.ply", "--tnt-tau 0.01")["tanks_and_temples_protocol"]["exact_within_crop"].is_null());
+}
+
+TEST(TanksAndTemplesProtocol, TheCurvesArePictured) {
+  const std::string png = ::testing::TempDir() + "tnt_curves.png";
+  std::filesystem::remove(png);
+  protocol("Bench_points.ply", "--tnt-tau 0.01 --tnt-curves " + png);
+  std::ifstream in(png, std::ios::binary);
+  std::string signature(8, '\0');
+  in.read(signature.data(), 8);
+  EXPECT_EQ(signature, "\x89PNG\r\n\x1a\n");
+  std::filesystem::remove(png);
+}
+
+TEST(TanksAndTemplesProtocol, BadInputGetsOneLine) {
+  const std::string pair = kTruth + " " + kData + "Bench_points.ply";
+  const std::string run = "measure " + pair + " --protocol tanks-and-temples ";
+  expect_error(run + "--tnt-tau 0.01", {"--tnt-crop", "<scene>.json"});
+  expect_error(run + kScene, {"--tnt-scene", "--tnt-tau"});
+  expect_error(run + kScene + " --tnt-tau 0.01 --tnt-scene Barn", {"--tnt-scene", "--tnt-tau"});
+  expect_error(run + kScene + " --tnt-scene Bench", {"--tnt-scene", "'Bench'", "Barn"});
+  expect_error(run + kScene + " --tnt-tau 0", {"--tnt-tau", "found 0"});
+  expect_error(run + kScene + " --tnt-tau -1", {"--tnt-tau"});
+  expect_error(run + kScene + " --tnt-tau nan", {"--tnt-tau"});
+  expect_error(run + kScene + " --tnt-tau 1e-300", {"Bench_points.ply", "too small"});
+  expect_error(run + "--tnt-crop missing.json --tnt-tau 0.01", {"--tnt-crop", "missing.json"});
+  expect_error("measure " + pair + " --tnt-tau 0.01", {"--tnt-tau", "only with --protocol tanks-and-temples"});
+  expect_error("measure " + pair + " --protocol dtu --tnt-crop " + kData + "Bench.json", {"--tnt-crop"});
+  expect_error(run + kScene + " --tnt-tau 0.01 --html out.html", {"--html", "--symmetric"});
+  // The scene's files: a crop volume and an alignment that are not what the toolbox reads.
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "roving-tnt-bad";
+  std::filesystem::create_directories(dir);
+  const auto file = [&](const std::string& name, const std::string& text) {
+    std::ofstream((dir / name).string()) << text;
+    return (dir / name).string();
+  };
+  const std::string polygon = R"("bounding_polygon": [[0, 0, 0], [1, 0, 0], [1, 1, 0]])";
+  const std::string head = R"({"class_name": "SelectionPolygonVolume", "version_major": 1, "version_minor": 0, )";
+  for (const auto& [name, text, fragment] : {
+           std::tuple{"not-json.json", std::string("ply\nformat ascii"), "SelectionPolygonVolume"},
+           {"truncated.json", head + R"("orthogonal_axis": "Z", "axis_min": 0)", "SelectionPolygonVolume"},
+           {"class.json", R"({"class_name": "ViewTrajectory"})", "class_name"},
+           {"version.json", R"({"class_name": "SelectionPolygonVolume", "version_major": 2})", "version_major"},
+           {"axis.json", head + R"("orthogonal_axis": "W", "axis_min": 0, "axis_max": 1, )" + polygon + "}",
+            "orthogonal_axis"},
+           {"range.json", head + R"("orthogonal_axis": "Z", "axis_min": 2, "axis_max": 1, )" + polygon + "}",
+            "axis_min <= axis_max"},
+           {"no-min.json", head + R"("orthogonal_axis": "Z", "axis_max": 1, )" + polygon + "}", "'axis_min'"},
+           {"open.json",
+            head + R"("orthogonal_axis": "Z", "axis_min": 0, "axis_max": 1, "bounding_polygon": [[0, 0, 0], [1, 0, 0]]})",
+            "closed polygon of 3 or more"},
+           {"vertex.json",
+            head + R"("orthogonal_axis": "Z", "axis_min": 0, "axis_max": 1, "bounding_polygon": [[0, 0], [1, 0, 0], [1, 1, 0]]})",
+            "vertex 0"}}) {
+    expect_error(run + "--tnt-tau 0.01 --tnt-crop " + file(name, text), {name, fragment});
+  }
+  const std::string crop = " --tnt-tau 0.01 --tnt-crop " + kData + "Bench.json --tnt-alignment ";
+  for (const auto& [name, text, fragment] : {
+           std::tuple{"three-rows.txt", std::string("1 0 0 0\n0 1 0 0\n0 0 1 0\n"), "3 rows"},
+           {"five-columns.txt", std::string("1 0 0 0 0\n0 1 0 0\n0 0 1 0\n0 0 0 1\n"), "5 numbers"},
+           {"word.txt", std::string("1 0 0 0\n0 one 0 0\n0 0 1 0\n0 0 0 1\n"), "'one'"},
+           {"nan.txt", std::string("1 0 0 0\n0 nan 0 0\n0 0 1 0\n0 0 0 1\n"), "'nan'"},
+           {"projective.txt", std::string("1 0 0 0\n0 1 0 0\n0 0 1 0\n0 0 1 1\n"), "affine"},
+           {"singular.txt", std::string("1 0 0 0\n0 0 0 0\n0 0 1 0\n0 0 0 1\n"), "invertible"}}) {
+    expect_error(run + crop + file(name, text), {name, fragment});
+  }
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace roving
