@@ -45,6 +45,27 @@ def run(command):
     return wall, usage.ru_utime + usage.ru_stime, usage.ru_maxrss / 1024, text
 
 
+def add_rows(lines, rows, points, truth, number):
+    """One table row per tool: (name, wall, CPU, RSS, figures), each figure formatted by `number`."""
+    for name, wall, cpu, rss, figures in rows:
+        lines.append(f"| {points:,} | {truth:,} | {name} | {wall:.1f} | {cpu:.1f} | {rss:,.0f} | "
+                     + " | ".join(number.format(v) for v in figures) + " |")
+        print(lines[-1], flush=True)
+
+
+def write_report(lines, ratios, out, name):
+    """The ratios under the table; the page to out/name (else stdout only)."""
+    if ratios:
+        lines.append("")
+        for points, speed, memory in ratios:
+            lines.append(f"- {points:,} points: roving {speed:.1f}x faster, in {memory:.1f}x less memory.")
+    text = "\n".join(lines) + "\n"
+    if out:
+        os.makedirs(out, exist_ok=True)
+        open(os.path.join(out, name), "w").write(text)
+    print(text)
+
+
 def write_ply(path, vertices, faces=None):
     with open(path, "wb") as f:
         header = f"ply\nformat binary_little_endian 1.0\nelement vertex {len(vertices)}\n"
@@ -117,7 +138,10 @@ def main():
     for points in args.points:
         truth = int(points / args.truth_ratio)
         with tempfile.TemporaryDirectory() as folder:
-            recon, triangles = make_scene(folder, points, truth, density)
+            # In a process of its own: a child's peak RSS counts its parent's at the fork (Linux copies
+            # the high-water mark), so this process stays small while the scene's arrays are made.
+            run([sys.executable, __file__, "--make-scene", folder, str(points), str(truth), str(density)])
+            recon = f"{folder}/recon_mesh.ply"
             mask, plane = f"{folder}/ObsMask/ObsMask1_10.mat", f"{folder}/ObsMask/Plane1.mat"
             rows = []
             wall, cpu, rss, out = run([args.roving, "measure", f"{folder}/Points/stl/stl001_total.ply", recon,
@@ -139,20 +163,12 @@ def main():
                         raise SystemExit(f"{name}: roving {a!r}, eval.py {b!r}: not the same figure; nothing timed")
                 rows.append(("DTUeval-python eval.py", wall, cpu, rss, theirs))
                 ratios.append((report["reconstruction_points"], rows[1][1] / rows[0][1], rows[1][3] / rows[0][3]))
-        for name, wall, cpu, rss, figures in rows:
-            lines.append(f"| {report['reconstruction_points']:,} | {report['ground_truth_points']:,} | {name} | {wall:.1f} | "
-                         f"{cpu:.1f} | {rss:,.0f} | " + " | ".join(f"{v:.9g}" for v in figures) + " |")
-        print(lines[-1], flush=True)
-    if ratios:
-        lines.append("")
-        for points, speed, memory in ratios:
-            lines.append(f"- {points:,} points: roving {speed:.1f}x faster, in {memory:.1f}x less memory.")
-    text = "\n".join(lines) + "\n"
-    if args.out:
-        os.makedirs(args.out, exist_ok=True)
-        open(os.path.join(args.out, "dtu-speed.md"), "w").write(text)
-    print(text)
+        add_rows(lines, rows, report["reconstruction_points"], report["ground_truth_points"], "{:.9g}")
+    write_report(lines, ratios, args.out, "dtu-speed.md")
 
 
 if __name__ == "__main__":
-    main()
+    if sys.argv[1:2] == ["--make-scene"]:
+        make_scene(sys.argv[2], int(sys.argv[3]), int(sys.argv[4]), float(sys.argv[5]))
+    else:
+        main()

@@ -147,7 +147,6 @@ std::vector<MetricValue> gate_values(const MeasureReport& report) {
 
 namespace {
 
-// --protocol and its options; the data set's files must exist now (they are read before the models).
 // The protocol alone reports its figures: no per-sample files, pictures or pages.
 void refuse_outputs_without_symmetric(const MeasureArguments& args, const MeasurePlan& plan) {
   if (!plan.protocol_only) return;
@@ -195,6 +194,7 @@ TanksAndTemplesPlan plan_tanks_and_temples(const MeasureArguments& args) {
   return tnt;
 }
 
+// --protocol and its options; the data set's files must exist now (they are read before the models).
 void plan_protocol(const MeasureArguments& args, MeasurePlan& plan) {
   const bool dtu_given = args.protocol == "dtu", tnt_given = args.protocol == "tanks-and-temples";
   for (const auto& [option, given] : {std::pair{"--dtu-obs-mask", args.dtu_obs_mask}, {"--dtu-plane", args.dtu_plane}}) {

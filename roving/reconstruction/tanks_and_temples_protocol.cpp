@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <memory>
 
 #include "roving/core/error.h"
 #include "roving/reconstruction/point_tree.h"
@@ -49,18 +50,13 @@ std::vector<double> cumulative_shares(std::vector<double> distances, const std::
 
 namespace {
 
-// The points inside the crop volume, in their order.
-std::vector<Vec3> cropped(const std::vector<Vec3>& points, const CropVolume& crop) {
+// Which points are inside the crop volume.
+std::vector<std::uint8_t> inside_crop(const std::vector<Vec3>& points, const CropVolume& crop) {
   std::vector<std::uint8_t> inside(points.size());
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, points.size(), 1 << 14), [&](const auto& range) {
     for (std::size_t i = range.begin(); i < range.end(); ++i) inside[i] = crop.contains(points[i]) ? 1 : 0;
   });
-  std::vector<Vec3> kept;
-  kept.reserve(static_cast<std::size_t>(std::count(inside.begin(), inside.end(), 1)));
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    if (inside[i]) kept.push_back(points[i]);
-  }
-  return kept;
+  return inside;
 }
 
 std::size_t count_below(const std::vector<double>& distances, double tau) {
@@ -90,18 +86,14 @@ TanksAndTemplesFigures tanks_and_temples_figures(const std::vector<Vec3>& recons
     if (progress) progress("protocol steps", done, kSteps);
   };
   step(0);
-  std::vector<Vec3> source, target;
-  tbb::parallel_invoke(
-      [&] {
-        const std::vector<Vec3> inside = cropped(reconstruction, crop);
-        f.reconstruction_cropped = inside.size();
-        source = voxel_down_sample(inside, options.voxel_size, names[0]);
-      },
-      [&] {
-        const std::vector<Vec3> inside = cropped(ground_truth, crop);
-        f.ground_truth_cropped = inside.size();
-        target = voxel_down_sample(inside, options.voxel_size, names[1]);
-      });
+  // Each cloud cropped (a mark per point, not a copy) and down-sampled.
+  const auto thinned = [&](const std::vector<Vec3>& points, const std::string& name, std::size_t& cropped) {
+    const std::vector<std::uint8_t> inside = inside_crop(points, crop);
+    cropped = static_cast<std::size_t>(std::count(inside.begin(), inside.end(), 1));
+    return voxel_down_sample(points, options.voxel_size, name, &inside);
+  };
+  const std::vector<Vec3> source = thinned(reconstruction, names[0], f.reconstruction_cropped);
+  const std::vector<Vec3> target = thinned(ground_truth, names[1], f.ground_truth_cropped);
   f.reconstruction_thinned = source.size();
   f.ground_truth_thinned = target.size();
   step(1);
@@ -109,16 +101,13 @@ TanksAndTemplesFigures tanks_and_temples_figures(const std::vector<Vec3>& recons
     step(kSteps);
     return f;
   }
-  std::vector<double> precision_distances, recall_distances;
-  {
-    const PointTree target_tree(target);
-    precision_distances = target_tree.nearest_distances(source);
-  }
+  // nanoflann builds a tree on one core: the two at once.
+  std::unique_ptr<PointTree> source_tree, target_tree;
+  tbb::parallel_invoke([&] { source_tree = std::make_unique<PointTree>(source); },
+                       [&] { target_tree = std::make_unique<PointTree>(target); });
   step(2);
-  {
-    const PointTree source_tree(source);
-    recall_distances = source_tree.nearest_distances(target);
-  }
+  std::vector<double> precision_distances = target_tree->nearest_distances(source);
+  std::vector<double> recall_distances = source_tree->nearest_distances(target);
   f.precision_counted = count_below(precision_distances, options.tau);
   f.recall_counted = count_below(recall_distances, options.tau);
   f.precision = static_cast<double>(f.precision_counted) / static_cast<double>(source.size());

@@ -1,6 +1,9 @@
 #include "roving/reconstruction/voxel_down_sample.h"
 
 #include <fmt/format.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
+#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <cmath>
@@ -11,16 +14,106 @@
 #include "roving/core/error.h"
 
 namespace roving {
+namespace {
 
-std::vector<Vec3> voxel_down_sample(const std::vector<Vec3>& points, double voxel_size, const std::string& name) {
+struct Cube {
+  Vec3 sum = Vec3::Zero();
+  std::uint32_t count = 0;
+};
+
+// A cube's three indices, as Open3D computes them.
+struct CubeIndex {
+  int x, y, z;
+  bool operator==(const CubeIndex& o) const { return x == o.x && y == o.y && z == o.z; }
+};
+
+CubeIndex cube_of(const Vec3& p, const Vec3& grid_low, double voxel_size) {
+  const Vec3 r = (p - grid_low) / voxel_size;
+  return {static_cast<int>(std::floor(r[0])), static_cast<int>(std::floor(r[1])), static_cast<int>(std::floor(r[2]))};
+}
+
+std::uint64_t mix(std::uint64_t h) {  // splitmix64's finaliser
+  h = (h ^ (h >> 30)) * 0xBF58476D1CE4E5B9ull;
+  h = (h ^ (h >> 27)) * 0x94D049BB133111EBull;
+  return h ^ (h >> 31);
+}
+
+// Cubes by a key of 63 bits, open addressing with linear probing: one probe or two per point
+// where std::unordered_map chases a node.
+class CubeTable {
+ public:
+  // The cube of `key` (a new one, zero, where it is the first time).
+  Cube& operator[](std::uint64_t key) {
+    if (2 * (cubes_.size() + 1) > keys_.size()) grow();
+    const std::size_t mask = keys_.size() - 1;
+    for (std::size_t slot = mix(key) & mask;; slot = (slot + 1) & mask) {
+      if (keys_[slot] == key) return cubes_[index_[slot]];
+      if (keys_[slot] == kEmpty) {
+        keys_[slot] = key;
+        index_[slot] = static_cast<std::uint32_t>(cubes_.size());
+        return cubes_.emplace_back();
+      }
+    }
+  }
+  const std::vector<Cube>& cubes() const { return cubes_; }
+  // Each cube's key and its place in cubes().
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> keys() const {
+    std::vector<std::pair<std::uint64_t, std::uint32_t>> out;
+    out.reserve(cubes_.size());
+    for (std::size_t s = 0; s < keys_.size(); ++s) {
+      if (keys_[s] != kEmpty) out.emplace_back(keys_[s], index_[s]);
+    }
+    return out;
+  }
+
+ private:
+  static constexpr std::uint64_t kEmpty = ~std::uint64_t{0};
+  void grow() {
+    std::vector<std::uint64_t> keys(std::max<std::size_t>(1024, 2 * keys_.size()), kEmpty);
+    std::vector<std::uint32_t> index(keys.size());
+    const std::size_t mask = keys.size() - 1;
+    for (std::size_t s = 0; s < keys_.size(); ++s) {
+      if (keys_[s] == kEmpty) continue;
+      std::size_t slot = mix(keys_[s]) & mask;
+      while (keys[slot] != kEmpty) slot = (slot + 1) & mask;
+      keys[slot] = keys_[s];
+      index[slot] = index_[s];
+    }
+    keys_.swap(keys);
+    index_.swap(index);
+  }
+  std::vector<std::uint64_t> keys_;
+  std::vector<std::uint32_t> index_;
+  std::vector<Cube> cubes_;
+};
+
+// The 21 low bits of `v` spread to every third bit (for a Morton code of three).
+std::uint64_t spread(std::uint64_t v) {
+  v &= 0x1FFFFF;
+  v = (v | v << 32) & 0x1F00000000FFFFull;
+  v = (v | v << 16) & 0x1F0000FF0000FFull;
+  v = (v | v << 8) & 0x100F00F00F00F00Full;
+  v = (v | v << 4) & 0x10C30C30C30C30C3ull;
+  v = (v | v << 2) & 0x1249249249249249ull;
+  return v;
+}
+
+}  // namespace
+
+std::vector<Vec3> voxel_down_sample(const std::vector<Vec3>& points, double voxel_size, const std::string& name,
+                                    const std::vector<std::uint8_t>* keep) {
   if (!(std::isfinite(voxel_size) && voxel_size > 0)) {
     throw Error(fmt::format("{}: voxel down-sampling: voxel size {}; expected a length > 0", name, voxel_size));
   }
-  if (points.empty()) return {};
-  Vec3 low = points[0], high = points[0];
-  for (const Vec3& p : points) {
-    low = low.cwiseMin(p);
-    high = high.cwiseMax(p);
+  const auto kept = [&](std::size_t i) { return !keep || (*keep)[i]; };
+  std::size_t first = 0;
+  while (first < points.size() && !kept(first)) ++first;
+  if (first == points.size()) return {};
+  Vec3 low = points[first], high = points[first];
+  for (std::size_t i = first; i < points.size(); ++i) {
+    if (!kept(i)) continue;
+    low = low.cwiseMin(points[i]);
+    high = high.cwiseMax(points[i]);
   }
   const Vec3 half = Vec3::Constant(voxel_size) * 0.5;
   const Vec3 grid_low = low - half, grid_high = high + half;
@@ -29,39 +122,66 @@ std::vector<Vec3> voxel_down_sample(const std::vector<Vec3>& points, double voxe
                             "index would not fit an int)",
                             name, voxel_size, (grid_high - grid_low).maxCoeff()));
   }
-  struct Cube {
-    Vec3 sum = Vec3::Zero();
-    std::uint32_t count = 0;
+  const auto means_of = [](const std::vector<Cube>& cubes, std::vector<Vec3>& means) {
+    for (const Cube& cube : cubes) means.push_back(cube.sum / double(cube.count));
   };
-  std::vector<Cube> cubes;
-  // A cube by its three indices (each may be any int, so they are hashed, not packed).
-  struct Key {
-    int x, y, z;
-    bool operator==(const Key& o) const { return x == o.x && y == o.y && z == o.z; }
-  };
-  struct KeyHash {
-    std::size_t operator()(const Key& k) const {
-      std::uint64_t h = static_cast<std::uint32_t>(k.x);
-      h = h * 0x9E3779B97F4A7C15ull ^ static_cast<std::uint32_t>(k.y);
-      h = h * 0x9E3779B97F4A7C15ull ^ static_cast<std::uint32_t>(k.z);
-      return static_cast<std::size_t>(h ^ (h >> 29));
-    }
-  };
-  std::unordered_map<Key, std::uint32_t, KeyHash> cube_of;
-  cube_of.reserve(points.size() / 4 + 16);
-  for (const Vec3& p : points) {
-    const Vec3 r = (p - grid_low) / voxel_size;
-    const Key key{static_cast<int>(std::floor(r[0])), static_cast<int>(std::floor(r[1])),
-                  static_cast<int>(std::floor(r[2]))};
-    const auto [it, added] = cube_of.try_emplace(key, static_cast<std::uint32_t>(cubes.size()));
-    if (added) cubes.emplace_back();
-    Cube& cube = cubes[it->second];
-    cube.sum += p;
-    ++cube.count;
-  }
   std::vector<Vec3> means;
-  means.reserve(cubes.size());
-  for (const Cube& cube : cubes) means.push_back(cube.sum / double(cube.count));
+  const CubeIndex last = cube_of(high, grid_low, voxel_size);
+  constexpr int kBits = 21;
+  if (std::max({last.x, last.y, last.z}) >= (1 << kBits)) {
+    // Over 2 million cubes along an axis: keyed by the three ints whole (slower, never on a scene).
+    struct Hash {
+      std::size_t operator()(const CubeIndex& k) const {
+        return mix((std::uint64_t(std::uint32_t(k.x)) << 32 | std::uint32_t(k.y)) ^ (std::uint64_t(std::uint32_t(k.z)) << 16));
+      }
+    };
+    std::unordered_map<CubeIndex, std::uint32_t, Hash> index;
+    std::vector<Cube> cubes;
+    for (std::size_t i = first; i < points.size(); ++i) {
+      if (!kept(i)) continue;
+      const auto [it, added] = index.try_emplace(cube_of(points[i], grid_low, voxel_size), std::uint32_t(cubes.size()));
+      if (added) cubes.emplace_back();
+      cubes[it->second].sum += points[i];
+      ++cubes[it->second].count;
+    }
+    means_of(cubes, means);
+    return means;
+  }
+  // Each core takes the cubes whose hash falls to it and reads every point in order, so that each
+  // cube's sum is in the points' order whatever the number of cores.
+  const int parts = std::clamp(tbb::this_task_arena::max_concurrency(), 1, 16);
+  std::vector<CubeTable> tables(parts);
+  tbb::parallel_for(0, parts, [&](int part) {
+    CubeTable& table = tables[part];
+    for (std::size_t i = first; i < points.size(); ++i) {
+      if (!kept(i)) continue;
+      const CubeIndex c = cube_of(points[i], grid_low, voxel_size);
+      const std::uint64_t key = std::uint64_t(c.x) | std::uint64_t(c.y) << kBits | std::uint64_t(c.z) << (2 * kBits);
+      if (static_cast<int>((mix(key) >> 40) % parts) != part) continue;
+      Cube& cube = table[key];
+      cube.sum += points[i];
+      ++cube.count;
+    }
+  });
+  // Out in Morton order of the cubes: neighbours in space are neighbours in memory, so that the
+  // k-d trees built on the means and the searches from them run from cache (on 30 M points the
+  // protocol takes 9.9 s where it took 12.6 s in the order of the points).
+  struct Entry {
+    std::uint64_t morton;
+    const Cube* cube;
+  };
+  std::vector<Entry> entries;
+  for (const CubeTable& table : tables) {
+    for (const auto& [key, index] : table.keys()) {
+      const std::uint64_t low = (1u << kBits) - 1;
+      entries.push_back({spread(key & low) | spread(key >> kBits & low) << 1 | spread(key >> (2 * kBits)) << 2,
+                         &table.cubes()[index]});
+    }
+  }
+  tbb::parallel_sort(entries.begin(), entries.end(), [](const Entry& a, const Entry& b) { return a.morton < b.morton; });
+  means.resize(entries.size());
+  tbb::parallel_for(std::size_t(0), entries.size(),
+                    [&](std::size_t k) { means[k] = entries[k].cube->sum / double(entries[k].cube->count); });
   return means;
 }
 
