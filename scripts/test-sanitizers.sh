@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Builds everything with AddressSanitizer + UndefinedBehaviorSanitizer into build-asan/ and runs
+# Builds what the tests run with AddressSanitizer + UndefinedBehaviorSanitizer into build-asan/ and runs
 # the test suite there (the benchmark check too: it drives every method); any report fails.
 set -euo pipefail
 cd "$(dirname "$0")/.."
