@@ -791,10 +791,11 @@ ReconstructionStudy reconstruction_table(Bench& bench) {
 }
 
 void write_reconstruction_page(Bench& bench, const ReconstructionStudy& study, const fs::path& out) {
-  write_study_page(bench, "Reconstruction figures: DTU's protocol against the surfaces' own",
+  write_study_page(bench, "Reconstruction figures: DTU's and Tanks and Temples' protocols against the surfaces' own",
                    "How far the figures reconstruction papers publish (DTU's evaluation: points, thinning, nearest "
-                   "points, a distance cap) are from the distances between the surfaces themselves, with their "
-                   "intervals and certified bounds ([docs/reconstruction.md]({docs}/reconstruction.md)).",
+                   "points, a distance cap; Tanks and Temples': points, voxel means, nearest points, shares below "
+                   "tau) are from the distances between the surfaces themselves, with their intervals and certified "
+                   "bounds ([docs/reconstruction.md]({docs}/reconstruction.md)).",
                    study.tables, study.notes, out / "reconstruction.md");
 }
 
