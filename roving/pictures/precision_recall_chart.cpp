@@ -152,7 +152,10 @@ void write_precision_recall_png(std::FILE* out, const PrecisionRecallChart& char
   if (chart.exact_precision) {
     legend_line(cr.get(), lx, ly += 26, 1.0, 0.55, 0.55, "exact precision", true);
     legend_line(cr.get(), lx, ly += 22, 0.55, 0.65, 1.0, "exact recall", true);
-    text(cr.get(), lx, ly += 20, 11, "at tau, 95% interval");
+    // Name the whisker only where one is drawn (an interval needs samples; some runs have none).
+    const bool whiskers = !std::isnan(chart.exact_precision->lower) ||
+                          (chart.exact_recall && !std::isnan(chart.exact_recall->lower));
+    text(cr.get(), lx, ly += 20, 11, whiskers ? "at tau, 95% interval" : "at tau");
   }
   cairo_surface_flush(canvas.get());
   const cairo_status_t status = cairo_surface_write_to_png_stream(canvas.get(), write_to, out);
