@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cstring>
 #include <cmath>
 #include <limits>
 #include <numeric>
@@ -43,63 +44,114 @@ MpegPoints mpeg_points(const PointCloud& cloud, const std::string& name, bool wi
                             cloud.colours.size(), n));
   }
   // Lexicographic order of the single-precision coordinates, equal points in file order: pc_error's.
+  // Sorted as integers: each coordinate's bits turned to keep float's order (-0 taken as +0, which
+  // float's == merges and which changes no distance), then the point's index.
   struct Entry {
-    std::array<float, 3> position;
-    std::uint32_t index;
+    std::uint64_t xy, z_index;
     bool operator<(const Entry& other) const {
-      return position != other.position ? position < other.position : index < other.index;
+      return xy != other.xy ? xy < other.xy : z_index < other.z_index;
     }
+    bool same_position(const Entry& other) const { return xy == other.xy && z_index >> 32 == other.z_index >> 32; }
+    std::uint32_t index() const { return std::uint32_t(z_index); }
+  };
+  const auto ordered = [](double v) {
+    const float f = float(v) + 0.0f;
+    std::uint32_t bits;
+    std::memcpy(&bits, &f, sizeof bits);
+    return std::uint64_t(bits & 0x80000000u ? ~bits : bits | 0x80000000u);
+  };
+  const auto coordinate = [](std::uint64_t key) {
+    const std::uint32_t k = std::uint32_t(key), bits = k & 0x80000000u ? k & 0x7fffffffu : ~k;
+    float f;
+    std::memcpy(&f, &bits, sizeof f);
+    return f;
   };
   // On all cores; the first point that is not representable (in file order) is the one named.
   std::vector<Entry> order(n);
   std::atomic<std::size_t> first_bad{n};
+  const auto note_bad = [&](std::size_t i) {
+    for (std::size_t seen = first_bad; i < seen && !first_bad.compare_exchange_weak(seen, i);) {
+    }
+  };
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 65536), [&](const tbb::blocked_range<std::size_t>& range) {
     for (std::size_t i = range.begin(); i != range.end(); ++i) {
       const Vec3& p = cloud.positions[i];
       if (!representable(p)) {
-        for (std::size_t seen = first_bad; i < seen && !first_bad.compare_exchange_weak(seen, i);) {
-        }
+        note_bad(i);
         return;
       }
-      order[i] = {{float(p.x()), float(p.y()), float(p.z())}, std::uint32_t(i)};
+      order[i] = {ordered(p.x()) << 32 | ordered(p.y()), ordered(p.z()) << 32 | i};
     }
   });
   if (first_bad < n) to_float(cloud.positions[first_bad], name, "point", first_bad);  // throws
   tbb::parallel_sort(order.begin(), order.end());
 
+  // Runs of equal points, found and merged block by block on all cores: each block merges the runs
+  // that begin in it, into the places counted before it.
+  constexpr std::size_t kBlock = 65536;
+  const std::size_t blocks = (n + kBlock - 1) / kBlock;
+  std::vector<std::size_t> first_run(blocks + 1, 0);
+  tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t b) {
+    std::size_t count = 0;
+    for (std::size_t k = b * kBlock; k < std::min(n, (b + 1) * kBlock); ++k) {
+      count += k == 0 || !order[k].same_position(order[k - 1]);
+    }
+    first_run[b + 1] = count;
+  });
+  std::partial_sum(first_run.begin(), first_run.end(), first_run.begin());
+  const std::size_t runs = first_run.back();
+
+  // A normal that is used must be finite; the first such in sorted order is the one named.
   const bool normals = with_normals && !cloud.normals.empty();
+  std::atomic<std::size_t> first_bad_normal{n};
+  const auto normal_at = [&](std::size_t k) {
+    const Vec3& normal = cloud.normals[order[k].index()];
+    if (!representable(normal)) {
+      for (std::size_t seen = first_bad_normal; k < seen && !first_bad_normal.compare_exchange_weak(seen, k);) {
+      }
+    }
+    return std::array<float, 3>{float(normal.x()), float(normal.y()), float(normal.z())};
+  };
   MpegPoints points;
   points.points_read = n;
-  points.positions.reserve(n);
-  if (normals) points.normals.reserve(n);
-  if (!cloud.colours.empty()) points.colours.reserve(n);
-  for (std::size_t run = 0; run < n;) {
-    std::size_t end = run + 1;
-    while (end < n && order[end].position == order[run].position) ++end;
-    const std::uint32_t first = order[run].index;
-    points.positions.push_back(order[run].position);
-    if (normals && average_normals) {
-      std::array<float, 3> sum = {0, 0, 0};  // in single precision, in the sorted order, as mmetric
-      for (std::size_t k = run; k < end; ++k) {
-        const std::array<float, 3> n = to_float(cloud.normals[order[k].index], name, "normal", order[k].index);
-        for (int c = 0; c < 3; ++c) sum[c] += n[c];
+  points.positions.resize(runs);
+  if (normals) points.normals.resize(runs);
+  if (!cloud.colours.empty()) points.colours.resize(runs);
+  tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t b) {
+    std::size_t out = first_run[b];
+    std::size_t run = b * kBlock;
+    while (run < n && run > 0 && order[run].same_position(order[run - 1])) ++run;  // the block before's
+    for (const std::size_t stop = std::min(n, (b + 1) * kBlock); run < stop; ++out) {
+      std::size_t end = run + 1;
+      while (end < n && order[end].same_position(order[run])) ++end;
+      points.positions[out] = {coordinate(order[run].xy >> 32), coordinate(order[run].xy),
+                               coordinate(order[run].z_index >> 32)};
+      if (normals && average_normals) {
+        std::array<float, 3> sum = {0, 0, 0};  // in single precision, in the sorted order, as mmetric
+        for (std::size_t k = run; k < end; ++k) {
+          const std::array<float, 3> normal = normal_at(k);
+          for (int c = 0; c < 3; ++c) sum[c] += normal[c];
+        }
+        for (int c = 0; c < 3; ++c) sum[c] /= float(end - run);
+        points.normals[out] = sum;
+      } else if (normals) {
+        points.normals[out] = normal_at(run);
       }
-      for (int c = 0; c < 3; ++c) sum[c] /= float(end - run);
-      points.normals.push_back(sum);
-    } else if (normals) {
-      points.normals.push_back(to_float(cloud.normals[first], name, "normal", first));
-    }
-    if (!cloud.colours.empty()) {
-      // pc_error sums the 8-bit values and divides as integers: the mean, truncated.
-      long sum[3] = {0, 0, 0};
-      for (std::size_t k = run; k < end; ++k) {
-        for (int c = 0; c < 3; ++c) sum[c] += std::lround(std::clamp(cloud.colours[order[k].index][c], 0.0f, 255.0f));
+      if (!cloud.colours.empty()) {
+        // pc_error sums the 8-bit values and divides as integers: the mean, truncated.
+        long sum[3] = {0, 0, 0};
+        for (std::size_t k = run; k < end; ++k) {
+          for (int c = 0; c < 3; ++c) sum[c] += std::lround(std::clamp(cloud.colours[order[k].index()][c], 0.0f, 255.0f));
+        }
+        const long count = long(end - run);
+        points.colours[out] = {std::uint8_t(sum[0] / count), std::uint8_t(sum[1] / count), std::uint8_t(sum[2] / count)};
       }
-      const long count = long(end - run);
-      points.colours.push_back({std::uint8_t(sum[0] / count), std::uint8_t(sum[1] / count),
-                                std::uint8_t(sum[2] / count)});
+      run = end;
     }
-    run = end;
+  });
+  if (first_bad_normal < n) {  // throws
+    const std::uint32_t i = order[first_bad_normal].index();
+    to_float(cloud.normals[i], name, "normal", i);
   }
   return points;
 }
