@@ -14,6 +14,8 @@
 #include <sstream>
 
 #include "cli_support.h"
+#include "roving/core/error.h"
+#include "roving/mpeg/mpeg_points.h"
 
 namespace roving {
 namespace {
@@ -288,6 +290,32 @@ TEST(PcErrorFigures, PsnrFloorsGate) {
   const CliRun unknown = run_cli("measure " + pair + " --fail-below usiad=1");
   EXPECT_EQ(unknown.exit_code, 2);
   EXPECT_NE(unknown.err.find("expected a metric among mpeg_d1_psnr"), std::string::npos) << unknown.err;
+}
+
+// pc_error's merging of equal points: lexicographic order of the float coordinates, -0 equal to
+// +0 as float's == has it, the first normal in file order (a NaN one behind it is never read),
+// colours summed and divided as integers.
+TEST(MpegPoints, EqualPointsMergeAsPcErrorMergesThem) {
+  PointCloud cloud;
+  cloud.positions = {{1, 0, 0}, {-0.0, 2, 0}, {0, 2, 0}, {0, -1, 5}, {1, 0, 0}, {1, 0, 1e-9}};
+  const double nan = std::nan("");
+  cloud.normals = {{1, 0, 0}, {0, 1, 0}, {nan, 0, 0}, {0, 0, 1}, {0, -1, 0}, {0, 0, -1}};
+  cloud.colours = {{10, 20, 30}, {0, 0, 0}, {255, 255, 254}, {7, 8, 9}, {11, 21, 32}, {1, 2, 3}};
+  const MpegPoints points = mpeg_points(cloud, "six.ply", true);
+  ASSERT_EQ(points.size(), 4u);
+  EXPECT_EQ(points.points_read, 6u);
+  using P = std::array<float, 3>;
+  EXPECT_EQ(points.positions, (std::vector<P>{{0, -1, 5}, {0, 2, 0}, {1, 0, 0}, {1, 0, 1e-9f}}));
+  EXPECT_EQ(points.normals, (std::vector<P>{{0, 0, 1}, {0, 1, 0}, {1, 0, 0}, {0, 0, -1}}));
+  using C = std::array<std::uint8_t, 3>;
+  EXPECT_EQ(points.colours, (std::vector<C>{{7, 8, 9}, {127, 127, 127}, {10, 20, 31}, {1, 2, 3}}));
+  // mmetric's merging averages the normals instead, so there the NaN one is read and named.
+  try {
+    mpeg_points(cloud, "six.ply", true, true);
+    ADD_FAILURE() << "a NaN normal that is averaged was accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("six.ply: normal 2"), std::string::npos) << e.what();
+  }
 }
 
 TEST(PcErrorFigures, BadInputIsOneLine) {
