@@ -80,8 +80,9 @@ def write_ply(path, vertices, faces=None):
             f.write(rows.tobytes())
 
 
-def make_scene(folder, points, truth, density):
-    """Files laid out as DTU's data set (scan 1), and the reconstruction; returns its path."""
+def make_scene(folder, points, truth, density, triangles=0):
+    """Files laid out as DTU's data set (scan 1), and the reconstruction (about `triangles` faces
+    where given); returns its path."""
     # eval.py makes about one point per density^2 of area: a sphere of that area.
     radius = float(np.sqrt(points * density * density / (4 * np.pi)))
     i = np.arange(truth) + 0.5
@@ -91,8 +92,8 @@ def make_scene(folder, points, truth, density):
     os.makedirs(f"{folder}/Points/stl", exist_ok=True)
     os.makedirs(f"{folder}/ObsMask", exist_ok=True)
     write_ply(f"{folder}/Points/stl/stl001_total.ply", radius * np.stack([r * np.cos(phi), r * np.sin(phi), z], 1))
-    # Faces about 10 density steps across: 50 samples each.
-    rings = max(8, int(np.pi * radius / (10 * density)))
+    # Faces about 10 density steps across (50 samples each), or as many as asked: 4 rings^2.
+    rings = max(8, int(np.sqrt(triangles / 4)) if triangles else int(np.pi * radius / (10 * density)))
     segments = 2 * rings
     t, p = np.meshgrid(np.linspace(0, np.pi, rings + 1)[1:-1], np.linspace(0, 2 * np.pi, segments, endpoint=False),
                        indexing="ij")
@@ -120,14 +121,19 @@ def main():
     parser.add_argument("--points", type=int, nargs="+", default=[3000000],
                         help="the reconstruction's points before thinning, one scene per number")
     parser.add_argument("--truth-ratio", type=float, default=10, help="reconstruction points per ground-truth point")
+    parser.add_argument("--triangles", type=int, default=0,
+                        help="the reconstruction mesh's triangles (else faces 10 sampling steps across); "
+                             "writes dtu-speed-dense-mesh.md")
     parser.add_argument("--out", help="a folder for dtu-speed.md; else stdout")
     args = parser.parse_args()
     density = 0.2
+    mesh = f"a reconstruction mesh of about {args.triangles:,} triangles" if args.triangles else "a reconstruction mesh"
     lines = [
         "# The DTU protocol: roving against DTUeval-python",
         "",
-        f"Written by `bench/dtu_speed.py --points {' '.join(map(str, args.points))}` on {platform.node()} "
-        f"({os.cpu_count()} cores), {time.strftime('%Y-%m-%d')}. Each scene: a reconstruction mesh that eval.py samples "
+        f"Written by `bench/dtu_speed.py --points {' '.join(map(str, args.points))}"
+        + (f" --triangles {args.triangles} --truth-ratio {args.truth_ratio:g}" if args.triangles else "")
+        + f"` on {platform.node()} ({os.cpu_count()} cores), {time.strftime('%Y-%m-%d')}. Each scene: {mesh} that eval.py samples "
         f"into about N points, against a ground truth of N / {args.truth_ratio:g} points. One run each, in the points' "
         "own order; the figures agree to 1e-9 relative before anything is timed.",
         "",
@@ -140,7 +146,8 @@ def main():
         with tempfile.TemporaryDirectory() as folder:
             # In a process of its own: a child's peak RSS counts its parent's at the fork (Linux copies
             # the high-water mark), so this process stays small while the scene's arrays are made.
-            run([sys.executable, __file__, "--make-scene", folder, str(points), str(truth), str(density)])
+            run([sys.executable, __file__, "--make-scene", folder, str(points), str(truth), str(density),
+                 str(args.triangles)])
             recon = f"{folder}/recon_mesh.ply"
             mask, plane = f"{folder}/ObsMask/ObsMask1_10.mat", f"{folder}/ObsMask/Plane1.mat"
             rows = []
@@ -164,11 +171,11 @@ def main():
                 rows.append(("DTUeval-python eval.py", wall, cpu, rss, theirs))
                 ratios.append((report["reconstruction_points"], rows[1][1] / rows[0][1], rows[1][3] / rows[0][3]))
         add_rows(lines, rows, report["reconstruction_points"], report["ground_truth_points"], "{:.9g}")
-    write_report(lines, ratios, args.out, "dtu-speed.md")
+    write_report(lines, ratios, args.out, "dtu-speed-dense-mesh.md" if args.triangles else "dtu-speed.md")
 
 
 if __name__ == "__main__":
     if sys.argv[1:2] == ["--make-scene"]:
-        make_scene(sys.argv[2], int(sys.argv[3]), int(sys.argv[4]), float(sys.argv[5]))
+        make_scene(sys.argv[2], int(sys.argv[3]), int(sys.argv[4]), float(sys.argv[5]), int(sys.argv[6]))
     else:
         main()
