@@ -30,6 +30,12 @@ std::array<float, 3> to_float(const Vec3& v, const std::string& name, const char
   return {float(v.x()), float(v.y()), float(v.z())};
 }
 
+// Lowers `least` to `value` where that is smaller, from any thread.
+void keep_least(std::atomic<std::size_t>& least, std::size_t value) {
+  for (std::size_t seen = least; value < seen && !least.compare_exchange_weak(seen, value);) {
+  }
+}
+
 }  // namespace
 
 MpegPoints mpeg_points(const PointCloud& cloud, const std::string& name, bool with_normals, bool average_normals) {
@@ -69,15 +75,11 @@ MpegPoints mpeg_points(const PointCloud& cloud, const std::string& name, bool wi
   // On all cores; the first point that is not representable (in file order) is the one named.
   std::vector<Entry> order(n);
   std::atomic<std::size_t> first_bad{n};
-  const auto note_bad = [&](std::size_t i) {
-    for (std::size_t seen = first_bad; i < seen && !first_bad.compare_exchange_weak(seen, i);) {
-    }
-  };
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 65536), [&](const tbb::blocked_range<std::size_t>& range) {
     for (std::size_t i = range.begin(); i != range.end(); ++i) {
       const Vec3& p = cloud.positions[i];
       if (!representable(p)) {
-        note_bad(i);
+        keep_least(first_bad, i);
         return;
       }
       order[i] = {ordered(p.x()) << 32 | ordered(p.y()), ordered(p.z()) << 32 | i};
@@ -106,10 +108,7 @@ MpegPoints mpeg_points(const PointCloud& cloud, const std::string& name, bool wi
   std::atomic<std::size_t> first_bad_normal{n};
   const auto normal_at = [&](std::size_t k) {
     const Vec3& normal = cloud.normals[order[k].index()];
-    if (!representable(normal)) {
-      for (std::size_t seen = first_bad_normal; k < seen && !first_bad_normal.compare_exchange_weak(seen, k);) {
-      }
-    }
+    if (!representable(normal)) keep_least(first_bad_normal, k);
     return std::array<float, 3>{float(normal.x()), float(normal.y()), float(normal.z())};
   };
   MpegPoints points;
