@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -210,6 +211,89 @@ TEST(CliShard, BadMergesGetOneLineAndNoReport) {
   const double minus_one = -1;
   std::memcpy(&negative[bytes.size() - sizeof minus_one], &minus_one, sizeof minus_one);
   expect_error("merge " + p0 + " " + p1 + " " + folder.file("negative.part", negative) + out, {"sample area -1", "damaged"});
+  EXPECT_FALSE(fs::exists(report));
+}
+
+// One process, a reference too large to hold: `measure --chunk N` reads, samples and measures a
+// binary PLY REF N faces at a time. Its report is the one the whole reference gives, every figure
+// bit for bit (the same samples, folded into the statistics in the same order).
+
+std::string file_bytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// Igea (134,345 vertices and 268,686 triangles of binary PLY) and where its body starts.
+struct Igea {
+  std::string path = roving::testing::data_file("igea.ply");
+  std::string bytes = file_bytes(path);
+  std::size_t body = bytes.find("end_header\n") + 11;
+  std::size_t faces = body + 134345 * 12;
+};
+
+TEST(CliStreamed, ReferenceReadInChunksGivesTheWholeReport) {
+  const Folder folder;
+  const Igea igea;
+  // TEST: Igea's vertices moved by up to 0.3% of its size, smoothly, so that d varies.
+  std::string moved = igea.bytes;
+  for (std::size_t v = 0; v < 134345; ++v) {
+    float xyz[3];
+    std::memcpy(xyz, &moved[igea.body + 12 * v], sizeof xyz);
+    xyz[0] += 3e-4f * std::sin(70.0f * xyz[1]);
+    xyz[2] += 3e-4f * std::cos(70.0f * xyz[0]);
+    std::memcpy(&moved[igea.body + 12 * v], xyz, sizeof xyz);
+  }
+  const std::string test = folder.file("moved.ply", moved);
+  const std::string report = folder.file("report.json");
+  for (const char* options : {"", "--semantics nearest", "--method cgal --semantics closest --hausdorff-bound none",
+                              "--method v2p-aabb --hausdorff-bound none --histogram-bins 7"}) {
+    const std::string pair = fmt::format("measure {} {} {} --quiet --json -", igea.path, test, options);
+    const CliRun whole = run_cli(pair + " --chunk 0");
+    ASSERT_EQ(whole.exit_code, 0) << whole.err;
+    const nlohmann::json one = nlohmann::json::parse(whole.out);
+    EXPECT_FALSE(one["samples"].contains("streamed"));
+    // 1,000 faces a time, and blocks that cut TriangleMesh's 4,096-face blocks of area sums.
+    for (const std::size_t chunk : {std::size_t{1000}, std::size_t{3 * 4096 + 1}}) {
+      const CliRun run = run_cli(fmt::format("{} --chunk {}", pair, chunk));
+      ASSERT_EQ(run.exit_code, 0) << run.err;
+      nlohmann::json streamed = nlohmann::json::parse(run.out);
+      ASSERT_TRUE(streamed["samples"].contains("streamed")) << options;
+      EXPECT_EQ(streamed["samples"]["streamed"]["chunk_faces"], chunk);
+      EXPECT_EQ(streamed["samples"]["streamed"]["chunks"], (268686 + chunk - 1) / chunk);
+      streamed["samples"].erase("streamed");
+      SCOPED_TRACE(fmt::format("{} --chunk {}", options, chunk));
+      expect_same_report(one, streamed);
+    }
+  }
+  // More faces per block than Igea has, or what needs REF whole: read whole.
+  for (const char* options : {"--chunk 300000", "--chunk 1000 --symmetric", "--chunk 1000 --samples vertices",
+                              "--chunk 1000 --semantics closest", "--chunk 1000 --method roving"}) {
+    const CliRun run = run_cli(fmt::format("measure {} {} {} --quiet --json -", igea.path, test, options));
+    ASSERT_EQ(run.exit_code, 0) << options << run.err;
+    EXPECT_EQ(run.out.find("\"streamed\""), std::string::npos) << options;
+  }
+}
+
+// A streamed REF is checked as read_ply checks a whole one: one line naming the file and the
+// face or vertex, and no report written.
+TEST(CliStreamed, BadStreamedReferenceGetsOneLine) {
+  const Folder folder;
+  const Igea igea;
+  const std::string report = folder.file("report.json");
+  const auto measure = [&](const std::string& name, const std::string& bytes) {
+    return fmt::format("measure {} {} --chunk 1000 --json {}", folder.file(name, bytes), igea.path, report);
+  };
+  std::string quad = igea.bytes;
+  quad[igea.faces + 13 * 5000] = 4;  // face 5000 declares 4 corners in a file sized for triangles
+  expect_error(measure("quad.ply", quad), {"quad.ply", "face 5000 has 4 corners", "expected a triangle"});
+  std::string far_index = igea.bytes;
+  const std::int32_t beyond = 134345;
+  std::memcpy(&far_index[igea.faces + 13 * 7 + 1 + 4], &beyond, sizeof beyond);
+  expect_error(measure("index.ply", far_index), {"index.ply", "face 7 refers to vertex 134345", "[0, 134345)"});
+  std::string not_finite = igea.bytes;
+  const float nan = std::nanf("");
+  std::memcpy(&not_finite[igea.body + 12 * 42 + 4], &nan, sizeof nan);
+  expect_error(measure("nan.ply", not_finite), {"nan.ply", "vertex 42 has a non-finite coordinate"});
   EXPECT_FALSE(fs::exists(report));
 }
 

@@ -276,6 +276,13 @@ std::unique_ptr<CommandLine> make_command_line() {
       "one process gives");
   measure->add_option("--shard-out", args.shard_out,
                       "with --shard: the part to write (17 bytes per sample per direction, 25 with --symmetric, 24 more for colour; and the models' description)");
+  measure->add_option(
+             "--chunk", args.chunk,
+             "a binary PLY REF with more faces than this is read, sampled and measured this many faces at a time, "
+             "in bounded memory with the same figures, where nothing asked for needs it whole (one direction, face "
+             "samples, an exact or nearest-point method, no certified bound, per-sample output or picture); 0: "
+             "always read whole")
+      ->capture_default_str();
   measure->add_option("--samples-out", args.samples_csv_path, "write one CSV row per sample");
   measure->add_option(
       "--heatmap", args.heatmap_path,

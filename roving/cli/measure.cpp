@@ -418,6 +418,7 @@ MeasurePlan plan_measurement(const MeasureArguments& args) {
   }
   plan_protocol(args, plan);
   plan_shard(args, plan);
+  plan.chunk_faces = args.chunk;
   return plan;
 }
 
@@ -558,7 +559,7 @@ void measure_point_clouds(const Model& a, const Model& b, const MeasurePlan& pla
 
 void measure_models(const Model& a, const Model& b, MeasurePlan& plan, MeasureReport& report,
                     Progress& progress, std::string& stage, const WarnFn& warn, const SampleSet* samples_of_a,
-                    Model* releasable_a) {
+                    Model* releasable_a, TriangleStream* streamed_a) {
   warn(alignment_warnings(a, b, plan.options.max_error));
   if (has_colour(a) != has_colour(b)) {
     const Model& coloured = has_colour(a) ? a : b;
@@ -566,7 +567,7 @@ void measure_models(const Model& a, const Model& b, MeasurePlan& plan, MeasureRe
     warn({fmt::format("colour: {} has colour but {} has none; no colour figures", coloured.path(),
                       plain.path())});
   }
-  warn(orientation_warnings(a));
+  if (!streamed_a) warn(orientation_warnings(a));  // it reads every triangle at once
   if (plan.symmetric) warn(orientation_warnings(b));
 
   if (plan.shard) report.shard = ShardSlice{*plan.shard, report.warnings};  // the models' warnings alone
@@ -594,49 +595,72 @@ void measure_models(const Model& a, const Model& b, MeasurePlan& plan, MeasureRe
     if (plan.shard && spec.kind == SampleSpec::Kind::Area) {  // a mesh draws only its slice
       std::tie(spec.first, spec.last) = plan.shard->range(spec.count);
     }
-    // area:auto measures again with more samples until USiAD's interval is as narrow as asked.
-    for (int round = 1;; ++round) {
-      if (reference == &a && samples_of_a && !spec.automatic) {
-        d.samples = *samples_of_a;
-      } else if (reference == releasable_a && !spec.automatic) {
-        d.samples = reference_samples_releasing(*releasable_a, spec);
-      } else {
-        d.samples = reference_samples(*reference, spec);
-      }
-      if (plan.shard) {  // this shard's slice of the pair's samples: the same samples whatever N
-        const std::size_t total = spec.kind == SampleSpec::Kind::Area ? spec.count : d.samples.size();
-        const auto [first, last] = plan.shard->range(total);
-        d.slice_first = first;
-        d.slice_total = total;
-        if (first == last) {
-          throw Error(fmt::format("--shard {}/{}: this slice of {}'s {} samples is empty; use at most {} shards",
-                                  plan.shard->index, plan.shard->count, reference->path(), total, total));
-        }
-        // A mesh's area samples come drawn as the slice already; all others are sliced here.
-        if (d.samples.size() != last - first) d.samples = d.samples.slice(first, last);
-      }
-      stage = fmt::format("measuring {} samples against {} triangles with {}", d.samples.size(),
+    if (reference == &a && streamed_a) {  // REF a block of faces at a time (streamed_measurement.h)
+      stage = fmt::format("measuring {} {} faces at a time against {} triangles with {}", a.path(), plan.chunk_faces,
                           test_mesh.triangle_count(), plan.method->name());
-      progress.stage(fmt::format("{}measuring", d.label.empty() ? "" : d.label + ": "));
-      d.result = measure_distances(*plan.method, test_mesh, d.samples, plan.options);
-      d.statistics = compute_statistics(d.result.signed_distance, d.result.hit, d.samples.weights,
-                                        plan.options.max_error, plan.histogram_bins);
-      if (d.samples.kind.rfind("area:", 0) == 0 && d.samples.size() >= 2) {
-        d.intervals = sampling_intervals(d.result.signed_distance, d.result.hit, plan.options.max_error);
+      progress.stage("measuring");
+      validate_options(*plan.method, plan.options);
+      d.result.build_seconds = plan.method->build(test_mesh);
+      const TriangleMesh& m = a.mesh.mesh;
+      StreamedResult streamed = measure_streamed(*streamed_a, *plan.method, plan.options, plan.histogram_bins,
+                                                 plan.chunk_faces, m.triangle_count() - m.degenerate_triangle_count(),
+                                                 progress.callback());
+      plan.method->release();
+      d.samples = std::move(streamed.samples);
+      d.result.query_seconds = streamed.query_seconds;
+      d.statistics = streamed.statistics;
+      d.signs = streamed.signs;
+      d.heatmap_range = streamed.heatmap_range;
+      d.chunk_faces = plan.chunk_faces;
+      d.chunks = streamed.chunks;
+    } else {
+      // area:auto measures again with more samples until USiAD's interval is as narrow as asked.
+      for (int round = 1;; ++round) {
+        if (reference == &a && samples_of_a && !spec.automatic) {
+          d.samples = *samples_of_a;
+        } else if (reference == releasable_a && !spec.automatic) {
+          d.samples = reference_samples_releasing(*releasable_a, spec);
+        } else {
+          d.samples = reference_samples(*reference, spec);
+        }
+        if (plan.shard) {  // this shard's slice of the pair's samples: the same samples whatever N
+          const std::size_t total = spec.kind == SampleSpec::Kind::Area ? spec.count : d.samples.size();
+          const auto [first, last] = plan.shard->range(total);
+          d.slice_first = first;
+          d.slice_total = total;
+          if (first == last) {
+            throw Error(fmt::format("--shard {}/{}: this slice of {}'s {} samples is empty; use at most {} shards",
+                                    plan.shard->index, plan.shard->count, reference->path(), total, total));
+          }
+          // A mesh's area samples come drawn as the slice already; all others are sliced here.
+          if (d.samples.size() != last - first) d.samples = d.samples.slice(first, last);
+        }
+        stage = fmt::format("measuring {} samples against {} triangles with {}", d.samples.size(),
+                            test_mesh.triangle_count(), plan.method->name());
+        progress.stage(fmt::format("{}measuring", d.label.empty() ? "" : d.label + ": "));
+        d.result = measure_distances(*plan.method, test_mesh, d.samples, plan.options);
+        d.statistics = compute_statistics(d.result.signed_distance, d.result.hit, d.samples.weights,
+                                          plan.options.max_error, plan.histogram_bins);
+        if (d.samples.kind.rfind("area:", 0) == 0 && d.samples.size() >= 2) {
+          d.intervals = sampling_intervals(d.result.signed_distance, d.result.hit, plan.options.max_error);
+        }
+        if (!spec.automatic) break;
+        auto& aim = *d.auto_sampling;
+        aim.rounds = round;
+        aim.target = plan.precision->percent_of_diagonal
+                         ? plan.precision->value / 100 * d.intervals->usiad.estimate
+                         : plan.precision->value;
+        aim.reached = (d.intervals->usiad.upper - d.intervals->usiad.lower) / 2;
+        aim.met = aim.reached <= aim.target;
+        if (aim.met || spec.count >= kAutoMaxSamples || round == 5) break;
+        // The half-width shrinks as 1 / sqrt(N): the N that reaches the target, with 10% to spare.
+        const double ratio = aim.target > 0 ? aim.reached / aim.target : 10.0;
+        spec.count = static_cast<std::size_t>(
+            std::min<double>(kAutoMaxSamples, std::ceil(spec.count * ratio * ratio * 1.1)));
       }
-      if (!spec.automatic) break;
-      auto& aim = *d.auto_sampling;
-      aim.rounds = round;
-      aim.target = plan.precision->percent_of_diagonal
-                       ? plan.precision->value / 100 * d.intervals->usiad.estimate
-                       : plan.precision->value;
-      aim.reached = (d.intervals->usiad.upper - d.intervals->usiad.lower) / 2;
-      aim.met = aim.reached <= aim.target;
-      if (aim.met || spec.count >= kAutoMaxSamples || round == 5) break;
-      // The half-width shrinks as 1 / sqrt(N): the N that reaches the target, with 10% to spare.
-      const double ratio = aim.target > 0 ? aim.reached / aim.target : 10.0;
-      spec.count = static_cast<std::size_t>(
-          std::min<double>(kAutoMaxSamples, std::ceil(spec.count * ratio * ratio * 1.1)));
+      d.signs = sign_counts(d.result);
+      d.heatmap_range = plan.heatmap_range ? plan.heatmap_range->resolve(report.diagonal)
+                                           : default_heatmap_range(d.result, report.max_error);
     }
     if (plan.hausdorff_bound && reference->type != ModelType::Points) {
       stage = fmt::format("bounding the Hausdorff distance from {} to {}", reference->path(), test->path());
@@ -666,8 +690,6 @@ void measure_models(const Model& a, const Model& b, MeasurePlan& plan, MeasureRe
                                     plan.options.semantics);
       d.colour = compute_colour_statistics(*d.colour_pairs, d.result.hit);
     }
-    d.heatmap_range = plan.heatmap_range ? plan.heatmap_range->resolve(report.diagonal)
-                                         : default_heatmap_range(d.result, report.max_error);
     std::vector<std::string> found = result_warnings(d.statistics, plan.options.semantics);
     for (std::string& line : found) line = (d.label.empty() ? "" : d.label + ": ") + line;
     warn(found);
@@ -723,6 +745,34 @@ bool reference_only_sampled(const MeasureArguments& args, const MeasurePlan& pla
          args.html_path.empty();
 }
 
+// REF's file, to be read a block of faces at a time, where it is a binary PLY of plain triangles
+// with more faces than --chunk and nothing asked for needs it whole: one direction of face samples
+// by a method that measures each sample alone (not a GL method, whose views see all samples), and
+// no output that reads REF or every sample after the measurement.
+std::unique_ptr<TriangleStream> reference_stream(const MeasureArguments& args, const MeasurePlan& plan) {
+  const bool wanted = plan.chunk_faces > 0 && reference_only_sampled(args, plan) && !plan.pcc_only && !plan.dtu &&
+                      !plan.tnt && !plan.shard && !plan.correspondences && plan.thresholds.empty() &&
+                      args.samples_csv_path.empty() && plan.sample_spec.kind == SampleSpec::Kind::Faces &&
+                      !is_gl_method(args.method) &&
+                      (!plan.reference_type || *plan.reference_type == ModelType::Mesh) &&
+                      std::filesystem::path(args.reference_path).extension() == ".ply";
+  if (!wanted) return nullptr;
+  const std::optional<PlyTriangleLayout> layout = ply_triangle_layout(args.reference_path);
+  if (!layout || layout->face_count <= plan.chunk_faces) return nullptr;
+  return std::make_unique<TriangleStream>(args.reference_path, *layout);
+}
+
+// The model a streamed REF stands as in the report: what its whole mesh would say of itself.
+std::unique_ptr<Model> streamed_model(TriangleStream& stream, std::size_t chunk_faces) {
+  StreamedReference summary = summarise(stream, chunk_faces);
+  auto model = std::make_unique<Model>();
+  model->type = ModelType::Mesh;
+  model->mesh.path = stream.path();
+  model->mesh.mesh = std::move(summary.summary);
+  model->mesh.dropped_repeated_vertex_faces = summary.dropped_repeated_vertex_faces;
+  return model;
+}
+
 }  // namespace
 
 MeasureRun measure_run(const MeasureArguments& args, std::string& stage, Progress& progress,
@@ -768,8 +818,13 @@ MeasureRun measure_run(const MeasureArguments& args, std::string& stage, Progres
     });
   }
   const Stopwatch watch;
+  const std::unique_ptr<TriangleStream> stream = given_a ? nullptr : reference_stream(args, plan);
   if (given_a) {
     run.a = std::move(given_a);
+  } else if (stream) {
+    stage = fmt::format("reading the reference {} {} faces at a time", args.reference_path, plan.chunk_faces);
+    progress.stage("reading " + file_name(args.reference_path));
+    run.a = streamed_model(*stream, plan.chunk_faces);
   } else {
     stage = fmt::format("loading the reference {}", args.reference_path);
     progress.stage("loading " + file_name(args.reference_path));
@@ -849,7 +904,7 @@ MeasureRun measure_run(const MeasureArguments& args, std::string& stage, Progres
   describe_pair(a, b, plan, report);
   if (on_described) on_described(run);
   measure_models(a, b, plan, report, progress, stage, warn, nullptr,
-                 reference_only_sampled(args, plan) ? &a : nullptr);
+                 reference_only_sampled(args, plan) ? &a : nullptr, stream.get());
   if (plan.dtu || plan.tnt) run_protocol();
   require_gate_values(plan.gates, gate_values(report));
   report.total_seconds = total.seconds();

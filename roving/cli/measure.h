@@ -17,6 +17,7 @@
 #include "roving/formats/heatmap.h"
 #include "roving/gl_methods/gl_methods.h"
 #include "roving/gl_methods/image_based.h"
+#include "roving/streaming/streamed_measurement.h"
 
 namespace roving {
 
@@ -61,6 +62,9 @@ struct MeasureArguments {
   // --shard I/N: only the I-th of N slices of the samples, written as a part to --shard-out for
   // `roving merge` (merge.h).
   std::string shard, shard_out;
+  // --chunk FACES: a binary PLY REF with more faces than this is read, sampled and measured this
+  // many faces at a time (where nothing asked for needs it whole); 0: always read whole.
+  std::size_t chunk = kDefaultChunkFaces;
   // The words of the command line that decide the figures (REF, TEST and every option given but
   // the outputs'): a shard's part records them, and a merge plans from them. Set by the parse.
   std::vector<std::string> figure_arguments;
@@ -95,6 +99,7 @@ struct MeasurePlan {
   bool protocol_only = false;                    // --protocol without --symmetric: its figures alone
   bool correspondences = false;                  // each direction's Correspondences kept
   std::optional<Shard> shard;                    // --shard: one slice of the samples
+  std::size_t chunk_faces = kDefaultChunkFaces;  // --chunk
 };
 
 // A bad option value or combination on the command line: the tool exits 2, as for a parse error.
@@ -141,10 +146,11 @@ void describe_pair(const Model& a, const Model& b, MeasurePlan& plan, MeasureRep
 // `report` but for its provenance and load times; warnings go to `warn` as found. `samples_of_a`,
 // when given, are a's samples already made (a batch reuses them across pairs). `releasable_a`,
 // when given, is `a` itself, whose geometry nothing reads once it is sampled: it gives it up
-// then, so that the query runs without it.
+// then, so that the query runs without it. `streamed_a`, when given, is a's file read a block of
+// faces at a time, `a` its summary (streamed_model).
 void measure_models(const Model& a, const Model& b, MeasurePlan& plan, MeasureReport& report,
                     Progress& progress, std::string& stage, const WarnFn& warn, const SampleSet* samples_of_a,
-                    Model* releasable_a = nullptr);
+                    Model* releasable_a = nullptr, TriangleStream* streamed_a = nullptr);
 
 // Every value a --fail-above gate can check: each direction's statistics, and the two-sided
 // summary.

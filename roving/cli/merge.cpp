@@ -346,6 +346,7 @@ MergedReport merge_parts(const std::vector<std::string>& paths, const std::strin
     DirectionReport& d = r.directions[i];
     d.statistics = compute_statistics(d.result.signed_distance, d.result.hit, d.samples.weights, r.max_error,
                                       plan.histogram_bins);
+    d.signs = sign_counts(d.result);
     if (d.samples.kind.rfind("area:", 0) == 0 && d.result.hit.size() >= 2) {
       d.intervals = sampling_intervals(d.result.signed_distance, d.result.hit, r.max_error);
     }

@@ -274,8 +274,7 @@ std::string samples_line(const SampleSet& samples, std::size_t count, std::uint6
   return out;
 }
 
-nlohmann::json sign_counts_json(const DistanceResult& result) {
-  const SignCounts c = sign_counts(result);
+nlohmann::json sign_counts_json(const SignCounts& c) {
   return {{"positive", c.positive}, {"negative", c.negative}, {"zero", c.zero}};
 }
 
@@ -306,10 +305,11 @@ nlohmann::json direction_json(const DirectionReport& d, const MeasureReport& r) 
         {"below", s.histogram.below},
         {"above", s.histogram.above}}},
       {"seconds", {{"build", d.result.build_seconds}, {"query", d.result.query_seconds}}},
-      {"signs", sign_counts_json(d.result)},
+      {"signs", sign_counts_json(d.signs)},
       {"heatmap_range", d.heatmap_range},
   };
   if (d.result.gl) json["gl"] = gl_json(*d.result.gl);
+  if (d.chunks) json["samples"]["streamed"] = {{"chunk_faces", d.chunk_faces}, {"chunks", d.chunks}};
   if (d.colour) {
     json["colour"] = colour_json(*d.colour);
     json["colour"]["test_colour"] = d.result.colour_source;
@@ -1029,8 +1029,11 @@ std::string format_body(const MeasureReport& r) {
   }
   std::string out;
   for (const DirectionReport& d : r.directions) {
-    out += fmt::format("{:<10} {}{}\n", "samples", d.label.empty() ? "" : d.label + ": ",
-                       samples_line(d.samples, d.statistics.sample_count, r.seed));
+    out += fmt::format("{:<10} {}{}{}\n", "samples", d.label.empty() ? "" : d.label + ": ",
+                       samples_line(d.samples, d.statistics.sample_count, r.seed),
+                       d.chunks ? fmt::format(" (REF read and measured {} faces at a time, {} blocks)", d.chunk_faces,
+                                              d.chunks)
+                                : "");
   }
   out += "\n";
   // A column pair per direction: model units and / diagonal.

@@ -36,7 +36,11 @@ struct DirectionReport {
   SampleSet samples;
   DistanceResult result;
   Statistics statistics;
+  SignCounts signs;   // of the hits' d
   std::string label;  // "A -> B" with --symmetric, empty otherwise
+  // Where REF was read, sampled and measured a block of faces at a time (streamed_measurement.h):
+  // its faces per block and the blocks; 0 where it was read whole.
+  std::size_t chunk_faces = 0, chunks = 0;
   // The certified one-sided Hausdorff distance of the reference's surface from the test's, where
   // asked (closest semantics, or --symmetric) and the reference is a surface.
   std::optional<HausdorffInterval> hausdorff;

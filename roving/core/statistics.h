@@ -5,6 +5,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "roving/core/running_moments.h"
+
 namespace roving {
 
 struct Histogram {
@@ -38,6 +40,32 @@ struct Statistics {
   // Percentiles of |d| over all samples, a no-hit as h (nearest-rank).
   double p50 = 0, p90 = 0, p95 = 0, p99 = 0;
   Histogram histogram;  // of signed d over the hits, [-h, h]
+};
+
+// compute_statistics fed one sample at a time, in sample order: the same sums in the same order, so
+// a run measured a chunk at a time gets the figures of the whole run bit for bit. It keeps |d|
+// per sample (8 bytes, for the exact percentiles) and nothing else per sample.
+class StatisticsAccumulator {
+ public:
+  // `max_error` = h (> 0 and finite; throws roving::Error otherwise). `expected` reserves |d|'s room.
+  explicit StatisticsAccumulator(double max_error, std::size_t histogram_bins = 64, std::size_t expected = 0);
+  // A sample's signed d (read only where `hit`) and the area it stands for.
+  void add(double signed_distance, bool hit, double weight);
+  std::size_t count() const { return magnitudes_.size(); }
+  // The statistics of every sample added; throws roving::Error when there is none.
+  Statistics finish();
+
+ private:
+  double max_error_, bin_width_;
+  Statistics s_;
+  std::vector<double> magnitudes_;
+  // Kahan-free but in double with per-term magnitudes ~h: relative error ~ n * 1e-16, negligible.
+  double sum_ = 0, sum_abs_ = 0, sum_sq_ = 0;
+  // Variances by Welford's update: no cancellation (E[d^2] - E[d]^2 lost all digits when the
+  // spread is small against the mean), and exactly 0 for equal values.
+  RunningMoments signed_spread_, unsigned_spread_;
+  double w_sum_ = 0, w_d_ = 0, w_abs_ = 0, w_sq_ = 0;
+  double hit_sum_ = 0, hit_abs_ = 0;
 };
 
 // `signed_distance` and `hit` per sample, `weights` per sample (area, may be empty for uniform),

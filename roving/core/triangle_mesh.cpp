@@ -17,6 +17,14 @@ TriangleMesh::TriangleMesh(std::vector<Vec3> positions, std::vector<Triangle> tr
                            const std::string& source)
     : TriangleMesh(SharedArray<Vec3>(std::move(positions)), SharedArray<Triangle>(std::move(triangles)), source) {}
 
+TriangleMesh::TriangleMesh(const Summary& summary)
+    : vertex_count_(summary.vertices),
+      triangle_count_(summary.triangles),
+      unreferenced_vertices_(summary.unreferenced_vertices),
+      degenerate_triangles_(summary.degenerate_triangles),
+      bounding_box_(summary.box),
+      total_area_(summary.area) {}
+
 TriangleMesh::TriangleMesh(SharedArray<Vec3> positions, SharedArray<Triangle> triangles, const std::string& source)
     : positions_(std::move(positions)),
       triangles_(std::move(triangles)),
@@ -34,7 +42,7 @@ TriangleMesh::TriangleMesh(SharedArray<Vec3> positions, SharedArray<Triangle> tr
   // Indices, areas and degenerate faces on all cores (at 10 M triangles this pass and the first
   // touch of its memory were most of a load), in fixed blocks whose sums are added in order, so
   // that the total area does not depend on the threads.
-  constexpr std::size_t kBlock = 4096;
+  constexpr std::size_t kBlock = kAreaBlock;
   const std::size_t blocks = (triangles_.size() + kBlock - 1) / kBlock;
   std::vector<double> block_area(blocks, 0.0);
   std::vector<std::size_t> block_degenerate(blocks, 0);

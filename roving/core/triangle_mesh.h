@@ -43,6 +43,17 @@ class TriangleMesh {
   TriangleMesh() = default;
   TriangleMesh(std::vector<Vec3> positions, std::vector<Triangle> triangles,
                const std::string& source = "mesh");
+  // What reports name of a mesh whose geometry is read elsewhere a block at a time (streaming/),
+  // as a mesh is after release_geometry(): its counts, box and area alone.
+  struct Summary {
+    std::size_t vertices = 0, triangles = 0, unreferenced_vertices = 0, degenerate_triangles = 0;
+    BoundingBox box;
+    double area = 0;
+  };
+  explicit TriangleMesh(const Summary& summary);
+  // Faces whose areas are summed together before the blocks' sums are added in order: the total
+  // area is the same whatever the threads (and a streamed pass can sum it alike).
+  static constexpr std::size_t kAreaBlock = 4096;
   // The same from arrays that may be a caller's memory (shared_array.h), read in place.
   TriangleMesh(SharedArray<Vec3> positions, SharedArray<Triangle> triangles, const std::string& source = "mesh");
 

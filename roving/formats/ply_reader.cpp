@@ -635,4 +635,44 @@ bool ply_declares_no_faces(const std::string& path) {
   return true;
 }
 
+std::optional<PlyTriangleLayout> ply_triangle_layout(const std::string& path) {
+  const FileBytes file(path, "a .ply model");
+  Header header = parse_header(path, file.bytes());
+  assign_roles(path, header);
+  if (header.encoding != Encoding::BinaryLittle || header.elements.size() != 2) return std::nullopt;
+  const Element &vertex = header.elements[0], &face = header.elements[1];
+  if (vertex.name != "vertex" || face.name != "face" || face.properties.size() != 1) return std::nullopt;
+  const Property& corners = face.properties[0];
+  if (corners.role != Role::Corners || corners.count_type != Scalar::UInt8 ||
+      (corners.type != Scalar::Int32 && corners.type != Scalar::UInt32)) {
+    return std::nullopt;
+  }
+  PlyTriangleLayout layout;
+  std::optional<Scalar> coordinate_type;
+  for (const Property& p : vertex.properties) {
+    if (p.is_list || p.role == Role::Red || p.role == Role::Green || p.role == Role::Blue) return std::nullopt;
+    const int axis = p.role == Role::X ? 0 : p.role == Role::Y ? 1 : p.role == Role::Z ? 2 : -1;
+    if (axis >= 0) {
+      if ((p.type != Scalar::Float32 && p.type != Scalar::Float64) || (coordinate_type && *coordinate_type != p.type)) {
+        return std::nullopt;
+      }
+      coordinate_type = p.type;
+      layout.coordinate_offset[axis] = layout.vertex_stride;
+    }
+    layout.vertex_stride += size_of(p.type);
+  }
+  if (!coordinate_type) return std::nullopt;  // read_ply names what is missing
+  layout.coordinates_double = *coordinate_type == Scalar::Float64;
+  layout.indices_signed = corners.type == Scalar::Int32;
+  layout.vertex_count = vertex.count;
+  layout.face_count = face.count;
+  layout.vertices_at = header.body_offset;
+  const unsigned long long body = file.size() - header.body_offset;
+  // Counts beyond what the file could hold fail read_ply's checks, not this product.
+  if (vertex.count > body / layout.vertex_stride || face.count > body / 13) return std::nullopt;
+  layout.faces_at = layout.vertices_at + vertex.count * layout.vertex_stride;
+  if (layout.faces_at + 13 * face.count != file.size()) return std::nullopt;
+  return layout;
+}
+
 }  // namespace roving

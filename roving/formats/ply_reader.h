@@ -1,6 +1,8 @@
 // Strict PLY reader (ASCII, binary little- and big-endian): meshes and point clouds.
 #pragma once
 
+#include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -25,5 +27,23 @@ PlyContents read_ply(const std::string& path);
 
 // Reads only the header: true when it declares no face (or zero faces): a point cloud.
 bool ply_declares_no_faces(const std::string& path);
+
+// Where a binary PLY of plain triangles keeps its vertices and faces, so that its faces can be
+// read a block at a time (triangle_stream.h) rather than all at once.
+struct PlyTriangleLayout {
+  std::size_t vertex_count = 0, face_count = 0;
+  std::uint64_t vertices_at = 0, faces_at = 0;  // byte offsets in the file
+  std::size_t vertex_stride = 0;                // bytes per vertex
+  std::size_t coordinate_offset[3] = {0, 0, 0};  // x, y, z within a vertex
+  bool coordinates_double = false;               // else float
+  bool indices_signed = false;                   // int32, else uint32
+};
+
+// The layout of `path` when it is a little-endian binary PLY whose elements are a vertex of
+// fixed-size properties (x, y and z float or double; no colour) followed by a face of one list of
+// a uchar count and 32-bit indices, and whose size is exactly that of its header with every face
+// a triangle; nullopt for any other file (read it whole with read_ply). Only the header is read;
+// its errors are read_ply's.
+std::optional<PlyTriangleLayout> ply_triangle_layout(const std::string& path);
 
 }  // namespace roving

@@ -1,0 +1,48 @@
+// A reference measured a block of its faces at a time, read from its file as they are needed
+// (triangle_stream.h), so that a measurement's memory is TEST's search structure, REF's
+// vertices, one block and 8 bytes a sample (|d|, for the exact percentiles), not the whole
+// reference and its samples (about 85 bytes a triangle). Every figure is the one the whole
+// reference gives, bit for bit: the same samples, measured alike, folded into the statistics in
+// the same order.
+#pragma once
+
+#include <cstddef>
+
+#include "roving/core/distance_method.h"
+#include "roving/core/sample_set.h"
+#include "roving/core/statistics.h"
+#include "roving/core/triangle_mesh.h"
+#include "roving/formats/triangle_stream.h"
+
+namespace roving {
+
+// Faces of REF read, sampled and measured at a time unless --chunk says otherwise: 2^22 faces
+// hold about 300 MB of samples while they are measured.
+constexpr std::size_t kDefaultChunkFaces = std::size_t{1} << 22;
+
+// What TriangleMesh derives from the whole mesh, found in one pass over the stream: the same
+// counts, box and area (summed in TriangleMesh's blocks and order), and the faces dropped for
+// repeating a vertex.
+struct StreamedReference {
+  TriangleMesh summary;
+  std::size_t dropped_repeated_vertex_faces = 0;
+};
+StreamedReference summarise(TriangleStream& stream, std::size_t chunk_faces);
+
+struct StreamedResult {
+  Statistics statistics;
+  SampleSet samples;  // the kind and the skipped faces; no per-sample arrays
+  SignCounts signs;
+  double heatmap_range = 0;  // default_heatmap_range's: the 99th percentile of the hits' |d|
+  std::size_t chunks = 0;
+  double query_seconds = 0;
+};
+
+// Measures REF's face samples (make_samples' "faces", in its order) against the TEST `method`
+// was built for, `chunk_faces` of the file's faces at a time; `progress` hears of the samples
+// done of `expected_samples`. Throws roving::Error where REF gives no sample.
+StreamedResult measure_streamed(TriangleStream& stream, DistanceMethod& method, const DistanceOptions& options,
+                                std::size_t histogram_bins, std::size_t chunk_faces, std::size_t expected_samples,
+                                const ProgressFn& progress = {});
+
+}  // namespace roving
