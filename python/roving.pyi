@@ -63,6 +63,7 @@ def measure(
     json: Optional[str] = ...,
     shard: Optional[str] = ...,
     shard_out: Optional[str] = ...,
+    chunk: Optional[int] = ...,  # taken, but Python reads REF whole: its per_sample arrays need every sample
     samples_out: Optional[str] = ...,
     heatmap: Optional[str] = ...,
     heatmap_png: Optional[str] = ...,

@@ -615,6 +615,7 @@ TEST(CliReport, JsonLayoutIsTheDocumentedOne) {
   const std::string tnt = std::string(ROVING_SOURCE_DIR) + "/tests/data/tnt/";
   const std::string tnt_protocol = tnt + "Bench.ply " + tnt + "Bench_mesh.ply --protocol tanks-and-temples --tnt-crop " +
                                    tnt + "Bench.json --tnt-alignment " + tnt + "Bench_trans.txt --tnt-scene Barn";
+  const std::string igea = roving::testing::data_file("igea.ply");  // binary PLY, read a block at a time
   std::set<std::string> written;
   const auto check_layout = [&](const std::string& arguments, const CliRun& run) {
     ASSERT_EQ(run.exit_code, 0) << arguments << ": " << run.err;
@@ -649,7 +650,7 @@ TEST(CliReport, JsonLayoutIsTheDocumentedOne) {
         teapot + " " + teapot + " --samples area:100", points + " " + cubes.small,
         cubes.small + " " + grid, grid + " " + grid + " --samples vertices", points + " " + grid + " --pcc",
         coloured + " --pcc --samples area:500", dtu_protocol, dtu_protocol + " --symmetric", tnt_protocol,
-        tnt_protocol + " --symmetric"}) {
+        tnt_protocol + " --symmetric", igea + " " + igea + " --chunk 100000"}) {
     check_layout(arguments, run_cli("measure " + arguments + " --json -"));
   }
   // And the document names nothing the tool no longer writes (voxels need a .binvox: not run here).
