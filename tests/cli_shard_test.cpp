@@ -274,6 +274,42 @@ TEST(CliStreamed, ReferenceReadInChunksGivesTheWholeReport) {
   }
 }
 
+// What the whole mesh says of itself, found by the streamed pass alike: faces repeating a vertex
+// dropped and counted, zero-area faces skipped, unreferenced vertices left out of the box.
+TEST(CliStreamed, SummaryCountsWhatTheWholeMeshCounts) {
+  const Folder folder;
+  const Igea igea;
+  std::string bytes = igea.bytes;
+  const auto set_face = [&](std::size_t face, std::int32_t a, std::int32_t b, std::int32_t c) {
+    const std::int32_t corners[3] = {a, b, c};
+    std::memcpy(&bytes[igea.faces + 13 * face + 1], corners, sizeof corners);
+  };
+  set_face(100, 7, 7, 8);         // repeats a vertex: dropped
+  set_face(5000, 9, 10, 9);       // and another
+  set_face(200000, 11, 12, 13);   // made zero-area below: vertex 13 on vertex 11
+  std::memcpy(&bytes[igea.body + 12 * 13], &bytes[igea.body + 12 * 11], 12);
+  // Two vertices no face uses, far outside: the box must not reach them.
+  const std::string header = "element vertex 134345";
+  bytes.replace(bytes.find(header), header.size(), "element vertex 134347");
+  const float far[6] = {100, 100, 100, -100, -100, -100};  // after the last vertex (the header kept its size)
+  bytes.insert(igea.faces, reinterpret_cast<const char*>(far), sizeof far);
+  const std::string ref = folder.file("odd.ply", bytes);
+  const std::string pair = fmt::format("measure {} {} --quiet --json -", ref, igea.path);
+  const CliRun whole = run_cli(pair + " --chunk 0");
+  ASSERT_EQ(whole.exit_code, 0) << whole.err;
+  const CliRun run = run_cli(pair + " --chunk 4095");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const nlohmann::json one = nlohmann::json::parse(whole.out);
+  nlohmann::json streamed = nlohmann::json::parse(run.out);
+  EXPECT_EQ(one["reference"]["dropped_repeated_vertex_faces"], 2);
+  EXPECT_EQ(one["reference"]["unreferenced_vertices"], 2);
+  EXPECT_GE(one["samples"]["skipped_degenerate_faces"], 1);  // and any other face on the edge 11-13
+  EXPECT_LT(one["reference"]["diagonal"].get<double>(), 1);
+  ASSERT_TRUE(streamed["samples"].contains("streamed"));
+  streamed["samples"].erase("streamed");
+  expect_same_report(one, streamed);
+}
+
 // A streamed REF is checked as read_ply checks a whole one: one line naming the file and the
 // face or vertex, and no report written.
 TEST(CliStreamed, BadStreamedReferenceGetsOneLine) {

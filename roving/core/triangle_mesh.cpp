@@ -58,7 +58,7 @@ TriangleMesh::TriangleMesh(SharedArray<Vec3> positions, SharedArray<Triangle> tr
         continue;
       }
       const FaceShape shape = face_shape(f);
-      block_area[block] += 0.5 * shape.twice_area;
+      block_area[block] += shape.area();
       block_degenerate[block] += shape.degenerate;
     }
   });
@@ -91,9 +91,10 @@ TriangleMesh::TriangleMesh(SharedArray<Vec3> positions, SharedArray<Triangle> tr
 
 TriangleMesh::FaceShape TriangleMesh::face_shape(std::size_t face) const {
   const Triangle& t = triangles_[face];
-  const Vec3& a = positions_[t[0]];
-  const Vec3& b = positions_[t[1]];
-  const Vec3& c = positions_[t[2]];
+  return shape_of(positions_[t[0]], positions_[t[1]], positions_[t[2]]);
+}
+
+TriangleMesh::FaceShape TriangleMesh::shape_of(const Vec3& a, const Vec3& b, const Vec3& c) {
   FaceShape shape;
   shape.cross = (b - a).cross(c - a);
   shape.twice_area = shape.cross.norm();
@@ -106,12 +107,11 @@ TriangleMesh::FaceShape TriangleMesh::face_shape(std::size_t face) const {
 }
 
 Vec3 TriangleMesh::face_normal(std::size_t face) const {
-  const FaceShape shape = face_shape(face);
-  return shape.degenerate ? Vec3::Zero() : Vec3(shape.cross / shape.twice_area);
+  return face_shape(face).normal();
 }
 
 double TriangleMesh::face_area(std::size_t face) const {
-  return 0.5 * face_shape(face).twice_area;
+  return face_shape(face).area();
 }
 
 std::vector<Vec3> TriangleMesh::vertex_normals(std::vector<double>* third_areas) const {

@@ -87,7 +87,7 @@ class TriangleMesh {
 
   Vec3 centroid(std::size_t face) const {
     const Triangle& t = triangles_[face];
-    return (positions_[t[0]] + positions_[t[1]] + positions_[t[2]]) / 3.0;
+    return centroid_of(positions_[t[0]], positions_[t[1]], positions_[t[2]]);
   }
 
   // Per-vertex colours (empty: the model has none). set_vertex_colours throws roving::Error naming
@@ -105,12 +105,19 @@ class TriangleMesh {
   // The same mesh with every position mapped p -> scale * (p - origin).
   TriangleMesh transformed(const Vec3& origin, double scale) const;
 
- private:
+  // A face from its corners a, b, c, by the arithmetic every face normal, area, centroid and face
+  // sample uses, for faces read a block at a time and never held as a mesh (streaming/).
   struct FaceShape {
     Vec3 cross;  // (b - a) x (c - a)
     double twice_area;
     bool degenerate;
+    Vec3 normal() const { return degenerate ? Vec3::Zero() : Vec3(cross / twice_area); }
+    double area() const { return 0.5 * twice_area; }
   };
+  static FaceShape shape_of(const Vec3& a, const Vec3& b, const Vec3& c);
+  static Vec3 centroid_of(const Vec3& a, const Vec3& b, const Vec3& c) { return (a + b + c) / 3.0; }
+
+ private:
   FaceShape face_shape(std::size_t face) const;
 
   SharedArray<Vec3> positions_;

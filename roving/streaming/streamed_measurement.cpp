@@ -2,28 +2,56 @@
 #include "streamed_measurement.h"
 
 #include <fmt/format.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 #include <cmath>
 
 #include "roving/core/error.h"
-#include "roving/core/stopwatch.h"
 #include "roving/formats/heatmap.h"
 
 namespace roving {
 namespace {
 
-// The block's triangles as a mesh of their own, three corners each, so that its centroids, normals
-// and areas are computed from the same coordinates as the whole mesh's.
-TriangleMesh block_mesh(const TriangleStream& stream, const std::vector<Triangle>& triangles) {
-  std::vector<Vec3> corners;
-  corners.reserve(3 * triangles.size());
-  std::vector<Triangle> faces(triangles.size());
+// Each triangle's shape, on all cores, by TriangleMesh's own arithmetic.
+std::vector<TriangleMesh::FaceShape> shapes_of(const TriangleStream& stream, const std::vector<Triangle>& triangles) {
+  std::vector<TriangleMesh::FaceShape> shapes(triangles.size());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, triangles.size(), 4096),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
+                      for (std::size_t f = range.begin(); f != range.end(); ++f) {
+                        const Triangle& t = triangles[f];
+                        shapes[f] = TriangleMesh::shape_of(stream.position(t[0]), stream.position(t[1]),
+                                                           stream.position(t[2]));
+                      }
+                    });
+  return shapes;
+}
+
+// The block's face samples as make_samples makes them of the whole mesh (sample_set.cpp): a
+// sample per face that is not degenerate, at its centroid, with its normal and area, in order.
+SampleSet face_samples(const TriangleStream& stream, const std::vector<Triangle>& triangles) {
+  const std::vector<TriangleMesh::FaceShape> shapes = shapes_of(stream, triangles);
+  std::vector<std::size_t> kept;
+  kept.reserve(triangles.size());
   for (std::size_t f = 0; f < triangles.size(); ++f) {
-    for (int c = 0; c < 3; ++c) corners.push_back(stream.position(triangles[f][c]));
-    const int first = static_cast<int>(3 * f);
-    faces[f] = {first, first + 1, first + 2};
+    if (!shapes[f].degenerate) kept.push_back(f);
   }
-  return TriangleMesh(std::move(corners), std::move(faces), stream.path());
+  SampleSet samples;
+  samples.skipped_degenerate_faces = triangles.size() - kept.size();
+  samples.positions.resize(kept.size());
+  samples.normals.resize(kept.size());
+  samples.weights.resize(kept.size());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, kept.size(), 4096),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
+                      for (std::size_t k = range.begin(); k != range.end(); ++k) {
+                        const Triangle& t = triangles[kept[k]];
+                        samples.positions[k] = TriangleMesh::centroid_of(
+                            stream.position(t[0]), stream.position(t[1]), stream.position(t[2]));
+                        samples.normals[k] = shapes[kept[k]].normal();
+                        samples.weights[k] = shapes[kept[k]].area();
+                      }
+                    });
+  return samples;
 }
 
 }  // namespace
@@ -39,10 +67,9 @@ StreamedReference summarise(TriangleStream& stream, std::size_t chunk_faces) {
     for (const Triangle& t : triangles) {
       for (const int corner : t) referenced[corner] = true;
     }
-    const TriangleMesh block = block_mesh(stream, triangles);
-    summary.degenerate_triangles += block.degenerate_triangle_count();
-    for (std::size_t f = 0; f < block.triangle_count(); ++f) {
-      block_area += block.face_area(f);
+    for (const TriangleMesh::FaceShape& shape : shapes_of(stream, triangles)) {
+      summary.degenerate_triangles += shape.degenerate;
+      block_area += shape.area();
       if (++summary.triangles % TriangleMesh::kAreaBlock == 0) {
         summary.area += block_area;
         block_area = 0;
@@ -76,14 +103,10 @@ StreamedResult measure_streamed(TriangleStream& stream, DistanceMethod& method, 
   stream.rewind();
   while (stream.next(chunk_faces, triangles)) {
     ++result.chunks;
-    if (triangles.empty()) continue;
-    const TriangleMesh block = block_mesh(stream, triangles);
-    if (block.degenerate_triangle_count() == block.triangle_count()) {
-      result.samples.skipped_degenerate_faces += block.triangle_count();
-      continue;
-    }
-    const SampleSet samples = make_samples(block, SampleSpec());
+    SampleSet samples = face_samples(stream, triangles);
     result.samples.skipped_degenerate_faces += samples.skipped_degenerate_faces;
+    if (samples.size() == 0) continue;
+    samples.kind = result.samples.kind;
     const DistanceResult measured = method.measure(samples, options);
     result.query_seconds += measured.query_seconds;
     for (std::size_t k = 0; k < samples.size(); ++k) {

@@ -16,9 +16,9 @@
 
 namespace roving {
 
-// Faces of REF read, sampled and measured at a time unless --chunk says otherwise: 2^22 faces
-// hold about 300 MB of samples while they are measured.
-constexpr std::size_t kDefaultChunkFaces = std::size_t{1} << 22;
+// Faces of REF read, sampled and measured at a time unless --chunk says otherwise: a block of 2^20
+// faces holds about 100 MB (its triangles, samples and distances) while it is measured.
+constexpr std::size_t kDefaultChunkFaces = std::size_t{1} << 20;
 
 // What TriangleMesh derives from the whole mesh, found in one pass over the stream: the same
 // counts, box and area (summed in TriangleMesh's blocks and order), and the faces dropped for

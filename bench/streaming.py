@@ -1,0 +1,158 @@
+#!/usr/bin/env python3
+"""One pair of any size on one machine: `roving measure` with REF read a block of faces at a time.
+
+Measures the bunny split to 10^7 and 10^8 triangles (REF) against the 1.5 M-triangle TEST, first-hit
+and closest (the distances alone: --hausdorff-bound none), each in its own process so that its peak
+resident memory is its own (os.wait4's ru_maxrss): streamed (the default, `--chunk` 2^20 faces a block)
+and read whole (`--chunk 0`). Checked before reported: the streamed report's figures equal the whole
+one's, every field but the times and how it ran. Writes results/streaming.md with wall time, peak RSS,
+bytes per REF triangle and samples/s, and the two goals: peak RSS <= 2.5 GB at 10^8, and the 10^8
+wall within 1.15x of the 10^7 wall scaled by the triangles (linear).
+
+The pairs come from roving-datasets (made here when missing):
+    python3 bench/streaming.py --roving build/roving/roving --datasets build/datasets_gen/roving-datasets \\
+        --data build/datasets-streaming --out results
+"""
+import argparse
+import json
+import os
+import platform
+import subprocess
+import sys
+import tempfile
+import time
+
+GOAL_RSS = 2.5e9  # bytes, at 10^8 triangles
+GOAL_LINEAR = 1.15  # the 10^8 wall over the 10^7 wall times the triangles' ratio
+
+# (name, REF file, semantics arguments, modes)
+RUNS = [
+    ("10^7", "scaling/ref-n12.ply", "first-hit", [], ["streamed", "whole"]),
+    ("10^7", "scaling/ref-n12.ply", "closest", ["--semantics", "closest"], ["streamed", "whole"]),
+    ("10^8", "scaling-large/ref-n38.ply", "first-hit", [], ["streamed", "whole"]),
+    ("10^8", "scaling-large/ref-n38.ply", "closest", ["--semantics", "closest"], ["streamed"]),
+]
+TEST = "scaling/test-n12.ply"
+INCIDENTAL = {"seconds", "command_line", "provenance", "streamed", "tool"}
+
+
+def measure(roving, ref, test, arguments):
+    """One `roving measure` process: (report, peak RSS bytes, wall seconds)."""
+    with tempfile.NamedTemporaryFile(suffix=".json", delete=False) as out:
+        report_path = out.name
+    command = [roving, "measure", ref, test, "--json", report_path, "--quiet", "--hausdorff-bound", "none"] + arguments
+    start = time.monotonic()
+    process = subprocess.Popen(command, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+    _, status, usage = os.wait4(process.pid, 0)
+    wall = time.monotonic() - start
+    if os.waitstatus_to_exitcode(status) != 0:
+        raise RuntimeError(f"{' '.join(command)} failed: {process.stderr.read().decode().strip()}")
+    with open(report_path) as file:
+        report = json.load(file)
+    os.unlink(report_path)
+    return report, usage.ru_maxrss * 1024, wall
+
+
+def figures(report):
+    """The report without the fields that say how long or how it ran."""
+    if isinstance(report, dict):
+        return {k: figures(v) for k, v in report.items() if k not in INCIDENTAL}
+    if isinstance(report, list):
+        return [figures(v) for v in report]
+    return report
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--roving", default="build/roving/roving")
+    parser.add_argument("--datasets", default="build/datasets_gen/roving-datasets", help="roving-datasets, to make the pairs")
+    parser.add_argument("--data", default="build/datasets-streaming", help="folder of the pairs (made when missing)")
+    parser.add_argument("--out", default="results")
+    args = parser.parse_args()
+    for flag, path in (("--scaling", TEST), ("--scaling-large", RUNS[-1][1])):
+        if not os.path.exists(os.path.join(args.data, path)):
+            print(f"making the pairs: roving-datasets {flag}", file=sys.stderr)
+            subprocess.run([args.datasets, flag, "--out", args.data], check=True, stdout=subprocess.DEVNULL)
+
+    rows, failures = [], []
+    for size, ref, semantics, arguments, modes in RUNS:
+        reports = {}
+        for mode in modes:
+            report, rss, wall = measure(args.roving, os.path.join(args.data, ref), os.path.join(args.data, TEST),
+                                        arguments + (["--chunk", "0"] if mode == "whole" else []))
+            if (mode == "streamed") != ("streamed" in report["samples"]):
+                failures.append(f"{size} {semantics} {mode}: the report says the reference was "
+                                f"{'read whole' if mode == 'streamed' else 'streamed'}")
+            reports[mode] = report
+            rows.append({"size": size, "semantics": semantics, "mode": mode, "wall": wall, "rss": rss,
+                         "triangles": report["reference"]["triangles"], "samples": report["samples"]["count"],
+                         "load": report["seconds"]["load_reference"], "query": report["seconds"]["query"],
+                         "usiad": report["statistics"]["usiad"]})
+            print(f"{size} {semantics} {mode}: {wall:.1f} s, {rss / 2**20:.0f} MiB", file=sys.stderr)
+        if len(reports) == 2 and figures(reports["streamed"]) != figures(reports["whole"]):
+            failures.append(f"{size} {semantics}: the streamed report's figures differ from the whole one's")
+    write_markdown(rows, failures, args)
+    if failures:
+        print("\n".join(failures), file=sys.stderr)
+        return 1
+    return 0
+
+
+def write_markdown(rows, failures, args):
+    def row_of(size, semantics, mode):
+        return next((r for r in rows if (r["size"], r["semantics"], r["mode"]) == (size, semantics, mode)), None)
+
+    lines = [
+        "# One pair of any size: REF streamed a block of faces at a time",
+        "",
+        "Produced by `python3 bench/streaming.py` (pairs from `roving-datasets --scaling` and `--scaling-large`).",
+        "REF: the normalised bunny with every triangle split into 12^2 (10^7 triangles) and 38^2 (10^8); TEST:",
+        "its 10,459-triangle decimation, perturbed by 0.5% of the diagonal, split into 12^2 (1.5 M triangles).",
+        "Face samples (one per REF triangle), h = 5% of the diagonal, Embree, `--hausdorff-bound none`. Each run",
+        "is its own `roving measure` process; peak RSS is its `ru_maxrss`. *streamed*: the default, REF read,",
+        "sampled and measured 2^20 faces at a time (`--chunk`, docs/measuring.md); *whole*: `--chunk 0`, REF",
+        "loaded and sampled at once. Checked before reported: each streamed report's figures equal the whole",
+        "one's (every JSON field but the times).",
+        "",
+        f"Machine: {platform.machine()}, {os.cpu_count()} cores, {platform.platform()}.",
+        "",
+        "| REF | semantics | REF read | wall s | load REF s | query s | samples/s (wall) | peak RSS MiB "
+        "| bytes / REF triangle |",
+        "|---|---|---|---|---|---|---|---|---|",
+    ]
+    for r in rows:
+        lines.append(f"| {r['size']} ({r['triangles']:,}) | {r['semantics']} | {r['mode']} | {r['wall']:.1f} "
+                     f"| {r['load']:.1f} | {r['query']:.1f} | {r['samples'] / r['wall']:.3g} | {r['rss'] / 2**20:,.0f} "
+                     f"| {r['rss'] / r['triangles']:.1f} |")
+    lines += ["", "Goals at 10^8 (streamed):", ""]
+    for semantics in ("first-hit", "closest"):
+        small, large = row_of("10^7", semantics, "streamed"), row_of("10^8", semantics, "streamed")
+        if not (small and large):
+            continue
+        linear = large["wall"] / (small["wall"] * large["triangles"] / small["triangles"])
+        lines.append(f"- {semantics}: peak RSS {large['rss'] / 1e9:.2f} GB (goal <= {GOAL_RSS / 1e9:.1f}: "
+                     f"{'met' if large['rss'] <= GOAL_RSS else '**missed**'}); wall {large['wall']:.1f} s against "
+                     f"{small['wall']:.1f} s x {large['triangles'] / small['triangles']:.2f} = {linear:.2f}x linear "
+                     f"(goal <= {GOAL_LINEAR}: {'met' if linear <= GOAL_LINEAR else '**missed**'}).")
+    whole, streamed = row_of("10^8", "first-hit", "whole"), row_of("10^8", "first-hit", "streamed")
+    if whole and streamed:
+        lines.append(f"- Against reading REF whole at 10^8 (first-hit): {whole['wall'] / streamed['wall']:.2f}x the "
+                     f"speed in {whole['rss'] / streamed['rss']:.1f}x less memory.")
+    lines += [
+        "",
+        "What a streamed run holds: TEST's search structure, REF's vertices as the file stores them (12 bytes",
+        "each in float), one block of faces with its samples and distances (about 100 MB at 2^20 faces), and",
+        "per sample 12 bytes: |d| in double for the exact percentiles and |d| in float for the heat-map range",
+        "the JSON reports. GL methods read REF whole: their viewpoint sampling draws every sample's views at",
+        "once (docs/measuring.md says which options need REF whole).",
+        "",
+        "Checks: " + ("every streamed report equals the whole one's figures." if not failures else
+                      "**FAILED**: " + "; ".join(failures)),
+        "",
+    ]
+    with open(os.path.join(args.out, "streaming.md"), "w") as file:
+        file.write("\n".join(lines))
+
+
+if __name__ == "__main__":
+    sys.exit(main())
