@@ -763,8 +763,8 @@ std::unique_ptr<TriangleStream> reference_stream(const MeasureArguments& args, c
 }
 
 // The model a streamed REF stands as in the report: what its whole mesh would say of itself.
-std::unique_ptr<Model> streamed_model(TriangleStream& stream, std::size_t chunk_faces) {
-  StreamedReference summary = summarise(stream, chunk_faces);
+std::unique_ptr<Model> streamed_model(TriangleStream& stream, std::size_t chunk_faces, const ProgressFn& progress) {
+  StreamedReference summary = summarise(stream, chunk_faces, progress);
   auto model = std::make_unique<Model>();
   model->type = ModelType::Mesh;
   model->mesh.path = stream.path();
@@ -824,7 +824,7 @@ MeasureRun measure_run(const MeasureArguments& args, std::string& stage, Progres
   } else if (stream) {
     stage = fmt::format("reading the reference {} {} faces at a time", args.reference_path, plan.chunk_faces);
     progress.stage("reading " + file_name(args.reference_path));
-    run.a = streamed_model(*stream, plan.chunk_faces);
+    run.a = streamed_model(*stream, plan.chunk_faces, progress.callback());
   } else {
     stage = fmt::format("loading the reference {}", args.reference_path);
     progress.stage("loading " + file_name(args.reference_path));

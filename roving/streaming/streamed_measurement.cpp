@@ -5,6 +5,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "roving/core/error.h"
@@ -56,14 +57,16 @@ SampleSet face_samples(const TriangleStream& stream, const std::vector<Triangle>
 
 }  // namespace
 
-StreamedReference summarise(TriangleStream& stream, std::size_t chunk_faces) {
+StreamedReference summarise(TriangleStream& stream, std::size_t chunk_faces, const ProgressFn& progress) {
   TriangleMesh::Summary summary;
   summary.vertices = stream.vertex_count();
   std::vector<bool> referenced(stream.vertex_count(), false);
   std::vector<Triangle> triangles;
   double block_area = 0;  // TriangleMesh's current block of kAreaBlock faces
   stream.rewind();
-  while (stream.next(chunk_faces, triangles)) {
+  for (std::size_t read = 0; stream.next(chunk_faces, triangles);) {
+    read = std::min(read + chunk_faces, stream.face_count());
+    if (progress) progress("faces", read, stream.face_count());
     for (const Triangle& t : triangles) {
       for (const int corner : t) referenced[corner] = true;
     }

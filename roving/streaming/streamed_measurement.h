@@ -27,7 +27,8 @@ struct StreamedReference {
   TriangleMesh summary;
   std::size_t dropped_repeated_vertex_faces = 0;
 };
-StreamedReference summarise(TriangleStream& stream, std::size_t chunk_faces);
+// `progress` hears of the file's faces read.
+StreamedReference summarise(TriangleStream& stream, std::size_t chunk_faces, const ProgressFn& progress = {});
 
 struct StreamedResult {
   Statistics statistics;
