@@ -557,6 +557,31 @@ void measure_point_clouds(const Model& a, const Model& b, const MeasurePlan& pla
   progress.clear();
 }
 
+namespace {
+
+// One direction with REF read a block of faces at a time (streamed_measurement.h), `a` its summary.
+void measure_streamed_direction(const Model& a, const TriangleMesh& test_mesh, TriangleStream& stream,
+                                MeasurePlan& plan, Progress& progress, std::string& stage, DirectionReport& d) {
+  stage = fmt::format("measuring {} {} faces at a time against {} triangles with {}", a.path(), plan.chunk_faces,
+                      test_mesh.triangle_count(), plan.method->name());
+  progress.stage("measuring");
+  validate_options(*plan.method, plan.options);
+  d.result.build_seconds = plan.method->build(test_mesh);
+  const TriangleMesh& m = a.mesh.mesh;
+  StreamedResult streamed = measure_streamed(stream, *plan.method, plan.options, plan.histogram_bins, plan.chunk_faces,
+                                             m.triangle_count() - m.degenerate_triangle_count(), progress.callback());
+  plan.method->release();
+  d.samples = std::move(streamed.samples);
+  d.result.query_seconds = streamed.query_seconds;
+  d.statistics = streamed.statistics;
+  d.signs = streamed.signs;
+  d.heatmap_range = streamed.heatmap_range;
+  d.chunk_faces = plan.chunk_faces;
+  d.chunks = streamed.chunks;
+}
+
+}  // namespace
+
 void measure_models(const Model& a, const Model& b, MeasurePlan& plan, MeasureReport& report,
                     Progress& progress, std::string& stage, const WarnFn& warn, const SampleSet* samples_of_a,
                     Model* releasable_a, TriangleStream* streamed_a) {
@@ -595,24 +620,8 @@ void measure_models(const Model& a, const Model& b, MeasurePlan& plan, MeasureRe
     if (plan.shard && spec.kind == SampleSpec::Kind::Area) {  // a mesh draws only its slice
       std::tie(spec.first, spec.last) = plan.shard->range(spec.count);
     }
-    if (reference == &a && streamed_a) {  // REF a block of faces at a time (streamed_measurement.h)
-      stage = fmt::format("measuring {} {} faces at a time against {} triangles with {}", a.path(), plan.chunk_faces,
-                          test_mesh.triangle_count(), plan.method->name());
-      progress.stage("measuring");
-      validate_options(*plan.method, plan.options);
-      d.result.build_seconds = plan.method->build(test_mesh);
-      const TriangleMesh& m = a.mesh.mesh;
-      StreamedResult streamed = measure_streamed(*streamed_a, *plan.method, plan.options, plan.histogram_bins,
-                                                 plan.chunk_faces, m.triangle_count() - m.degenerate_triangle_count(),
-                                                 progress.callback());
-      plan.method->release();
-      d.samples = std::move(streamed.samples);
-      d.result.query_seconds = streamed.query_seconds;
-      d.statistics = streamed.statistics;
-      d.signs = streamed.signs;
-      d.heatmap_range = streamed.heatmap_range;
-      d.chunk_faces = plan.chunk_faces;
-      d.chunks = streamed.chunks;
+    if (reference == &a && streamed_a) {  // REF a block of faces at a time
+      measure_streamed_direction(a, test_mesh, *streamed_a, plan, progress, stage, d);
     } else {
       // area:auto measures again with more samples until USiAD's interval is as narrow as asked.
       for (int round = 1;; ++round) {
