@@ -37,7 +37,7 @@ TriangleStream::TriangleStream(const std::string& path, const PlyTriangleLayout&
   for (std::size_t first = 0; first < layout.vertex_count; first += kBlock) {
     const std::size_t count = std::min(kBlock, layout.vertex_count - first);
     buffer_.resize(count * layout.vertex_stride);
-    read_at(file_, path, layout.vertices_at + first * layout.vertex_stride, buffer_.data(), buffer_.size());
+    read_at(file_.get(), path, layout.vertices_at + first * layout.vertex_stride, buffer_.data(), buffer_.size());
     for (std::size_t i = 0; i < count; ++i) {
       const char* item = buffer_.data() + i * layout.vertex_stride;
       double xyz[3];
@@ -59,10 +59,6 @@ TriangleStream::TriangleStream(const std::string& path, const PlyTriangleLayout&
   }
 }
 
-TriangleStream::~TriangleStream() {
-  if (file_) std::fclose(file_);
-}
-
 Vec3 TriangleStream::position(int vertex) const {
   const std::size_t at = 3 * static_cast<std::size_t>(vertex);
   if (layout_.coordinates_double) return {double_positions_[at], double_positions_[at + 1], double_positions_[at + 2]};
@@ -75,7 +71,7 @@ bool TriangleStream::next(std::size_t count, std::vector<Triangle>& triangles) {
   count = std::min(count, layout_.face_count - next_face_);
   constexpr std::size_t kItem = 1 + 3 * 4;
   buffer_.resize(count * kItem);
-  read_at(file_, path_, layout_.faces_at + next_face_ * kItem, buffer_.data(), buffer_.size());
+  read_at(file_.get(), path_, layout_.faces_at + next_face_ * kItem, buffer_.data(), buffer_.size());
   triangles.reserve(count);
   for (std::size_t i = 0; i < count; ++i) {
     const std::size_t face = next_face_ + i;

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdio>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -18,9 +19,6 @@ class TriangleStream {
   // Reads the vertices; throws roving::Error naming `path` on a non-finite coordinate or a read
   // that fails.
   TriangleStream(const std::string& path, const PlyTriangleLayout& layout);
-  ~TriangleStream();
-  TriangleStream(const TriangleStream&) = delete;
-  TriangleStream& operator=(const TriangleStream&) = delete;
 
   const std::string& path() const { return path_; }
   std::size_t vertex_count() const { return layout_.vertex_count; }
@@ -39,7 +37,10 @@ class TriangleStream {
  private:
   std::string path_;
   PlyTriangleLayout layout_;
-  std::FILE* file_ = nullptr;
+  struct CloseFile {
+    void operator()(std::FILE* file) const { std::fclose(file); }
+  };
+  std::unique_ptr<std::FILE, CloseFile> file_;  // closed however the constructor ends
   std::vector<float> float_positions_;    // x y z per vertex, where the file stores float
   std::vector<double> double_positions_;  // or double
   std::vector<char> buffer_;
