@@ -24,20 +24,46 @@ HausdorffInterval certified_hausdorff(const TriangleMesh& a, const TriangleMesh&
 
 HausdorffInterval certified_hausdorff(const TriangleMesh& a, const TriangleMesh& b, double max_gap,
                                       std::size_t first, std::size_t last) {
-  if (a.triangle_count() == 0 || b.triangle_count() == 0) {
+  if (a.triangle_count() == 0) {
+    throw Error("certified Hausdorff distance: expected two meshes with triangles, found an empty one");
+  }
+  CertifiedHausdorff bound(b, max_gap);
+  bound.add(a, first, last);
+  return bound.interval();
+}
+
+CertifiedHausdorff::CertifiedHausdorff(const TriangleMesh& b, double max_gap) : max_gap_(max_gap) {
+  if (b.triangle_count() == 0) {
     throw Error("certified Hausdorff distance: expected two meshes with triangles, found an empty one");
   }
   if (!(max_gap > 0) || !std::isfinite(max_gap)) {
     throw Error(fmt::format("--hausdorff-bound: expected a positive finite gap, found {}", max_gap));
+  }
+  const Stopwatch watch;
+  closest_ = std::make_unique<ClosestPoints>(b);
+  result_.seconds = watch.seconds();
+}
+
+CertifiedHausdorff::~CertifiedHausdorff() = default;
+
+HausdorffInterval CertifiedHausdorff::interval() const {
+  if (!added_) throw Error("certified Hausdorff distance: no triangles of A were given");
+  return result_;
+}
+
+void CertifiedHausdorff::add(const TriangleMesh& a, std::size_t first, std::size_t last) {
+  if (a.triangle_count() == 0) {
+    throw Error("certified Hausdorff distance: expected two meshes with triangles, found an empty one");
   }
   if (first > last || last > a.triangle_count()) {
     throw Error(fmt::format("certified Hausdorff distance: triangles [{}, {}) are not within A's {}", first, last,
                             a.triangle_count()));
   }
   const Stopwatch watch;
-  HausdorffInterval result;
-  const ClosestPoints closest(b);
-
+  const ClosestPoints& closest = *closest_;
+  const double max_gap = max_gap_;
+  HausdorffInterval& result = result_;
+  added_ = true;
   // Every vertex of A's triangles: its distance to B (a lower bound), its closest triangle (a candidate).
   const auto& positions = a.positions();
   const auto& triangles = a.triangles();
@@ -53,7 +79,8 @@ HausdorffInterval certified_hausdorff(const TriangleMesh& a, const TriangleMesh&
   tbb::parallel_for(std::size_t{0}, positions.size(), [&](std::size_t v) {
     if (used[v]) at_vertex[v] = closest.query(positions[v]);
   });
-  result.distance_queries = whole ? positions.size() : static_cast<std::size_t>(std::count(used.begin(), used.end(), true));
+  result.distance_queries +=
+      whole ? positions.size() : static_cast<std::size_t>(std::count(used.begin(), used.end(), true));
   const auto raise_lower = [&](const Vec3& x, const ClosestPoints::Found& f) {
     if (f.distance > result.lower) result.lower = f.distance, result.lower_point = x, result.lower_closest = f.point;
   };
@@ -104,9 +131,9 @@ HausdorffInterval certified_hausdorff(const TriangleMesh& a, const TriangleMesh&
       for (Piece& child : four) keep(std::move(child));
     }
   }
-  result.upper = std::max({result.lower, settled, heap.empty() ? 0.0 : heap.front().upper});
-  result.seconds = watch.seconds();
-  return result;
+  // The parts before this one were settled within the gap of a lower bound no larger than today's.
+  result.upper = std::max({result.upper, result.lower, settled, heap.empty() ? 0.0 : heap.front().upper});
+  result.seconds += watch.seconds();
 }
 
 }  // namespace roving

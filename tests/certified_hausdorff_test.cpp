@@ -95,6 +95,33 @@ TEST(CertifiedHausdorff, ContainsCgalsValueAndExceedsEverySampledDistance) {
   }
 }
 
+// A given in parts against one B (a streamed reference's blocks): the interval still holds the
+// truth within the gap, here a whole run's own; all of A as one part is the whole run, exactly.
+TEST(CertifiedHausdorff, PartsOfAHoldTheWholeRunsValue) {
+  const TriangleMesh bunny = roving::normalised(roving::testing::bunny());
+  const TriangleMesh coarse = roving::decimate_quadric(bunny, 800);
+  const double gap = 1e-4 * bunny.bounding_box().diagonal();
+  const HausdorffInterval whole = roving::certified_hausdorff(bunny, coarse, gap);
+  roving::CertifiedHausdorff parts(coarse, gap);
+  const std::size_t n = bunny.triangle_count();
+  const std::size_t cuts[] = {0, n / 7, n / 2, n - 1, n};  // parts of unequal sizes, one a single triangle
+  for (std::size_t k = 0; k + 1 < std::size(cuts); ++k) parts.add(bunny, cuts[k], cuts[k + 1]);
+  const HausdorffInterval h = parts.interval();
+  EXPECT_LE(h.upper - h.lower, gap * (1 + 1e-12));
+  EXPECT_LE(h.lower, whole.upper);
+  EXPECT_LE(whole.lower, h.upper);
+  EXPECT_NEAR((h.lower_point - h.lower_closest).norm(), h.lower, 1e-12);
+
+  roving::CertifiedHausdorff one(coarse, gap);
+  EXPECT_THROW(one.interval(), roving::Error);  // nothing added yet
+  one.add(bunny);
+  EXPECT_EQ(one.interval().lower, whole.lower);
+  EXPECT_EQ(one.interval().upper, whole.upper);
+  EXPECT_EQ(one.interval().distance_queries, whole.distance_queries);
+  EXPECT_THROW(one.add(bunny, 5, n + 1), roving::Error);
+  EXPECT_THROW(one.add(TriangleMesh()), roving::Error);
+}
+
 TEST(CertifiedAreaWithin, ClosedForms) {
   // Every point of the inner cube is 0.3 from the outer one: none within 0.2, all within 0.4.
   const roving::AreaWithin w = roving::certified_area_within(box(1), box(1.3), {0.2, 0.4}, 1e-3, 0, 12);
@@ -157,6 +184,8 @@ TEST(CertifiedHausdorff, RefusesEmptyMeshesAndBadGaps) {
   EXPECT_THROW(roving::certified_hausdorff(TriangleMesh(), box(1), 1e-3), roving::Error);
   EXPECT_THROW(roving::certified_hausdorff(box(1), box(1), 0), roving::Error);
   EXPECT_THROW(roving::certified_hausdorff(box(1), box(1), std::nan("")), roving::Error);
+  EXPECT_THROW(roving::CertifiedHausdorff(TriangleMesh(), 1e-3), roving::Error);
+  EXPECT_THROW(roving::CertifiedHausdorff(box(1), -1), roving::Error);
 }
 
 }  // namespace

@@ -33,6 +33,8 @@
 #include "roving/pictures/heatmap_picture.h"
 #include "roving/pictures/precision_recall_chart.h"
 #include "roving/registry/method_registry.h"
+#include "roving/reference_embree/certified_hausdorff.h"
+#include "roving/streaming/mesh_blocks.h"
 
 namespace roving {
 namespace {
@@ -561,7 +563,8 @@ namespace {
 
 // One direction with REF read a block of faces at a time (streamed_measurement.h), `a` its summary.
 void measure_streamed_direction(const Model& a, const TriangleMesh& test_mesh, TriangleStream& stream,
-                                MeasurePlan& plan, Progress& progress, std::string& stage, DirectionReport& d) {
+                                MeasurePlan& plan, double hausdorff_bound, Progress& progress, std::string& stage,
+                                DirectionReport& d) {
   stage = fmt::format("measuring {} {} faces at a time against {} triangles with {}", a.path(), plan.chunk_faces,
                       test_mesh.triangle_count(), plan.method->name());
   progress.stage("measuring");
@@ -578,6 +581,19 @@ void measure_streamed_direction(const Model& a, const TriangleMesh& test_mesh, T
   d.heatmap_range = streamed.heatmap_range;
   d.chunk_faces = plan.chunk_faces;
   d.chunks = streamed.chunks;
+  if (plan.hausdorff_bound) {  // a pass of its own: TEST's closest-point structure, REF's blocks as meshes
+    stage = fmt::format("bounding the Hausdorff distance from {} to {}, {} faces at a time", a.path(),
+                        d.test->path(), plan.chunk_faces);
+    progress.stage("certified Hausdorff");
+    CertifiedHausdorff bound(test_mesh, hausdorff_bound);
+    MeshBlocks blocks(stream, plan.chunk_faces);
+    const ProgressFn tell = progress.callback();
+    for (TriangleMesh block; blocks.next(block);) {
+      if (block.triangle_count() > 0) bound.add(block);
+      if (tell) tell("faces", blocks.faces_read(), stream.face_count());
+    }
+    d.hausdorff = bound.interval();
+  }
 }
 
 }  // namespace
@@ -620,8 +636,9 @@ void measure_models(const Model& a, const Model& b, MeasurePlan& plan, MeasureRe
     if (plan.shard && spec.kind == SampleSpec::Kind::Area) {  // a mesh draws only its slice
       std::tie(spec.first, spec.last) = plan.shard->range(spec.count);
     }
-    if (reference == &a && streamed_a) {  // REF a block of faces at a time
-      measure_streamed_direction(a, test_mesh, *streamed_a, plan, progress, stage, d);
+    const bool streamed = reference == &a && streamed_a;
+    if (streamed) {  // REF a block of faces at a time, its certified bound too
+      measure_streamed_direction(a, test_mesh, *streamed_a, plan, report.hausdorff_bound, progress, stage, d);
     } else {
       // area:auto measures again with more samples until USiAD's interval is as narrow as asked.
       for (int round = 1;; ++round) {
@@ -671,7 +688,7 @@ void measure_models(const Model& a, const Model& b, MeasurePlan& plan, MeasureRe
       d.heatmap_range = plan.heatmap_range ? plan.heatmap_range->resolve(report.diagonal)
                                            : default_heatmap_range(d.result, report.max_error);
     }
-    if (plan.hausdorff_bound && reference->type != ModelType::Points) {
+    if (plan.hausdorff_bound && reference->type != ModelType::Points && !streamed) {
       stage = fmt::format("bounding the Hausdorff distance from {} to {}", reference->path(), test->path());
       progress.stage(fmt::format("{}certified Hausdorff", d.label.empty() ? "" : d.label + ": "));
       const TriangleMesh& surface = test_surface(*reference);
@@ -746,10 +763,11 @@ nlohmann::json input_json(const std::string& role, const std::string& path, cons
 namespace {
 
 // Whether nothing after sampling reads REF's geometry: one direction, sampled once, and no figure
-// or output that measures or draws REF itself (the certified Hausdorff bound, colour, IBSM, heat
-// maps, the web page).
-bool reference_only_sampled(const MeasureArguments& args, const MeasurePlan& plan) {
-  return !plan.symmetric && !plan.sample_spec.automatic && !plan.hausdorff_bound && !plan.options.colour &&
+// or output that measures or draws REF itself (colour, IBSM, heat maps, the web page, and unless
+// `blocks_bound_it`, the certified Hausdorff bound, which a streamed REF's blocks give).
+bool reference_only_sampled(const MeasureArguments& args, const MeasurePlan& plan, bool blocks_bound_it = false) {
+  return !plan.symmetric && !plan.sample_spec.automatic && (!plan.hausdorff_bound || blocks_bound_it) &&
+         !plan.certify_thresholds && !plan.options.colour &&
          !plan.image_based && args.heatmap_path.empty() && args.heatmap_png_path.empty() &&
          args.html_path.empty();
 }
@@ -759,7 +777,7 @@ bool reference_only_sampled(const MeasureArguments& args, const MeasurePlan& pla
 // by a method that measures each sample alone (not a GL method, whose views see all samples), and
 // no output that reads REF or every sample after the measurement.
 std::unique_ptr<TriangleStream> reference_stream(const MeasureArguments& args, const MeasurePlan& plan) {
-  const bool wanted = plan.chunk_faces > 0 && reference_only_sampled(args, plan) && !plan.pcc_only && !plan.dtu &&
+  const bool wanted = plan.chunk_faces > 0 && reference_only_sampled(args, plan, true) && !plan.pcc_only && !plan.dtu &&
                       !plan.tnt && !plan.shard && !plan.correspondences && plan.thresholds.empty() &&
                       args.samples_csv_path.empty() && plan.sample_spec.kind == SampleSpec::Kind::Faces &&
                       !is_gl_method(args.method) &&

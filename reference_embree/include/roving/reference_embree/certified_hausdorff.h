@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstddef>
+#include <memory>
 
 #include "roving/core/triangle_mesh.h"
 
@@ -35,5 +36,33 @@ HausdorffInterval certified_hausdorff(const TriangleMesh& a, const TriangleMesh&
 // shard prunes with is its own).
 HausdorffInterval certified_hausdorff(const TriangleMesh& a, const TriangleMesh& b, double max_gap,
                                       std::size_t first, std::size_t last);
+
+class ClosestPoints;
+
+// A given a part at a time against one B (a reference read a block of faces at a time): B's search
+// structure is built once and each part bounded as a shard's share is, pruning with the largest
+// lower bound of the parts before it. After the last part, interval() holds h(A, B) within max_gap
+// as the shards' merged interval does (its ends may differ from one whole run's within that width).
+// One part that is all of A gives certified_hausdorff's interval exactly.
+class CertifiedHausdorff {
+ public:
+  // Throws roving::Error on an empty B or a gap that is not positive and finite.
+  CertifiedHausdorff(const TriangleMesh& b, double max_gap);
+  ~CertifiedHausdorff();
+  CertifiedHausdorff(const CertifiedHausdorff&) = delete;
+  CertifiedHausdorff& operator=(const CertifiedHausdorff&) = delete;
+
+  // A's triangles [first, last); throws roving::Error on an empty A or a range outside it.
+  void add(const TriangleMesh& a, std::size_t first, std::size_t last);
+  void add(const TriangleMesh& a) { add(a, 0, a.triangle_count()); }
+  // The interval over the parts added; throws roving::Error where none was.
+  HausdorffInterval interval() const;
+
+ private:
+  std::unique_ptr<ClosestPoints> closest_;
+  double max_gap_ = 0;
+  bool added_ = false;
+  HausdorffInterval result_;
+};
 
 }  // namespace roving
