@@ -4,6 +4,8 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -140,6 +142,76 @@ TEST(CliBatch, ReconstructionFiguresInTheSummary) {
   std::stringstream page;
   page << index.rdbuf();
   EXPECT_NE(page.str().find("f_score"), std::string::npos);
+}
+
+// The benchmarks' protocols per pair: a manifest naming each pair's data set files (relative to
+// it, as the models are), each report the one `measure --protocol` gives, the figures in the
+// summary and the index; the command line's --protocol for pairs that share their files.
+TEST(CliBatch, ProtocolsPerPairAreMeasuresOwn) {
+  const Folder folder;
+  const std::string source = std::string(ROVING_SOURCE_DIR) + "/tests/data/";
+  const std::string manifest = folder.file(
+      "protocols.csv",
+      "reference,test,protocol,dtu_obs_mask,dtu_plane,tnt_crop,tnt_alignment,tnt_tau\n"
+      "dtu/Points/stl/stl001_total.ply,dtu/scan1_mesh.ply,dtu,dtu/ObsMask/ObsMask1_10.mat,dtu/ObsMask/Plane1.mat,,,\n"
+      "tnt/Bench.ply,tnt/Bench_points.ply,tanks-and-temples,,,tnt/Bench.json,tnt/Bench_trans.txt,0.01\n");
+  std::filesystem::create_symlink(source + "dtu", folder.path / "dtu");
+  std::filesystem::create_symlink(source + "tnt", folder.path / "tnt");
+  const std::string out = (folder.path / "results").string();
+  const CliRun run = run_cli("batch " + manifest + " --html --quiet --out " + out);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const auto figures_of = [](const std::string& command, const char* protocol) {
+    const CliRun one = run_cli(command + " --json - --quiet");
+    EXPECT_EQ(one.exit_code, 0) << one.err;
+    return nlohmann::json::parse(one.out)[protocol];
+  };
+  const nlohmann::json dtu = figures_of(
+      "measure " + source + "dtu/Points/stl/stl001_total.ply " + source + "dtu/scan1_mesh.ply --protocol dtu " +
+          "--dtu-obs-mask " + source + "dtu/ObsMask/ObsMask1_10.mat --dtu-plane " + source + "dtu/ObsMask/Plane1.mat",
+      "dtu_protocol");
+  const nlohmann::json tnt = figures_of("measure " + source + "tnt/Bench.ply " + source +
+                                            "tnt/Bench_points.ply --protocol tanks-and-temples --tnt-crop " + source +
+                                            "tnt/Bench.json --tnt-alignment " + source + "tnt/Bench_trans.txt --tnt-tau 0.01",
+                                        "tanks_and_temples_protocol");
+  const auto rows = read_csv(out + "/summary.csv");
+  ASSERT_EQ(rows.size(), 3u);
+  const auto cell = [&](int row, const std::string& name) { return std::stod(rows[row][column_of(rows, name)]); };
+  for (const char* figure : {"accuracy", "completeness", "overall"}) {
+    EXPECT_EQ(cell(1, std::string("dtu_") + figure), dtu[figure].get<double>()) << figure;
+  }
+  EXPECT_EQ(cell(2, "tnt_tau"), 0.01);
+  EXPECT_EQ(cell(2, "tnt_precision"), tnt["precision"].get<double>());
+  EXPECT_EQ(cell(2, "tnt_recall"), tnt["recall"].get<double>());
+  EXPECT_EQ(cell(2, "tnt_f_score"), tnt["fscore"].get<double>());
+  EXPECT_EQ(rows[1][column_of(rows, "tnt_precision")], "");  // each pair its own protocol's columns
+  EXPECT_EQ(rows[2][column_of(rows, "dtu_overall")], "");
+  std::ifstream index(out + "/index.html");
+  std::stringstream page;
+  page << index.rdbuf();
+  EXPECT_NE(page.str().find("dtu_overall"), std::string::npos);
+  EXPECT_NE(page.str().find("tnt_f_score"), std::string::npos);
+
+  // One scene's files on the command line, for every pair of the list.
+  const std::string same = folder.file("same.csv", "reference,test\ntnt/Bench.ply,tnt/Bench_points.ply\n"
+                                                    "tnt/Bench.ply,tnt/Bench_mesh.ply\n");
+  const CliRun shared = run_cli("batch " + same + " --protocol tanks-and-temples --tnt-crop " + source +
+                                "tnt/Bench.json --tnt-alignment " + source + "tnt/Bench_trans.txt --tnt-tau 0.01 --quiet"
+                                " --out " + (folder.path / "shared").string());
+  ASSERT_EQ(shared.exit_code, 0) << shared.err;
+  const auto shared_rows = read_csv((folder.path / "shared").string() + "/summary.csv");
+  ASSERT_EQ(shared_rows.size(), 3u);
+  EXPECT_EQ(std::stod(shared_rows[1][column_of(shared_rows, "tnt_f_score")]), tnt["fscore"].get<double>());
+
+  // A protocol no one knows, a file that is not there, one picture for many pairs: one line.
+  expect_error("batch " + folder.file("unknown.csv", "reference,test,protocol\ntnt/Bench.ply,tnt/Bench_points.ply,eth3d\n") +
+                   " --out " + out,
+               {"pair 0", "protocol", "expected dtu or tanks-and-temples", "'eth3d'"});
+  expect_error("batch " + folder.file("nomask.csv", "reference,test,protocol,dtu_obs_mask,dtu_plane\n"
+                                                    "a.ply,b.ply,dtu,gone.mat,dtu/ObsMask/Plane1.mat\n") + " --out " + out,
+               {"pair 0", "--dtu-obs-mask", "gone.mat"});
+  expect_error("batch " + same + " --protocol tanks-and-temples --tnt-crop " + source + "tnt/Bench.json --tnt-tau 0.01 "
+                   "--tnt-curves c.png --out " + out,
+               {"--tnt-curves", "not in batch"});
 }
 
 TEST(CliBatch, TwoShardsTogetherEqualOneRun) {

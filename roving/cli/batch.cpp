@@ -32,9 +32,12 @@ namespace {
 namespace fs = std::filesystem;
 
 // The manifest columns a pair may set, and the option each stands for.
-const std::vector<std::string> kPairColumns = {"method",     "semantics", "samples",
-                                               "seed",       "max_error", "views",
-                                               "resolution", "backend",   "camera_geometry"};
+const std::vector<std::string> kPairColumns = {
+    "method",     "semantics", "samples",  "seed",         "max_error",  "views",         "resolution",
+    "backend",    "camera_geometry",       "protocol",     "dtu_obs_mask", "dtu_plane",   "tnt_crop",
+    "tnt_alignment", "tnt_scene", "tnt_tau"};
+// The columns that name a file: relative to the manifest, as the models are.
+const std::vector<std::string> kFileColumns = {"dtu_obs_mask", "dtu_plane", "tnt_crop", "tnt_alignment"};
 
 struct Pair {
   std::size_t index = 0;  // in the list, 0-based
@@ -127,7 +130,9 @@ std::vector<Pair> read_manifest(const std::string& path) {
     check_columns(where, row);
     Pair pair{pairs.size(), resolve(folder, row["reference"]), resolve(folder, row["test"]), {}};
     for (const auto& [column, value] : row) {
-      if (column != "reference" && column != "test" && !value.empty()) pair.options[column] = value;
+      if (column == "reference" || column == "test" || value.empty()) continue;
+      const bool file = std::find(kFileColumns.begin(), kFileColumns.end(), column) != kFileColumns.end();
+      pair.options[column] = file ? resolve(folder, value) : value;
     }
     pairs.push_back(std::move(pair));
   }
@@ -191,6 +196,22 @@ MeasureArguments arguments_for(const Pair& pair, const MeasureArguments& default
     if (column == "views") a.views = value;
     if (column == "backend") a.backend = value;
     if (column == "camera_geometry") a.camera_geometry = value;
+    if (column == "protocol") {
+      if (value != "dtu" && value != "tanks-and-temples") {
+        throw Error(fmt::format("protocol: expected dtu or tanks-and-temples, found '{}'", value));
+      }
+      a.protocol = value;
+    }
+    if (column == "dtu_obs_mask") a.dtu_obs_mask = value;
+    if (column == "dtu_plane") a.dtu_plane = value;
+    if (column == "tnt_crop") a.tnt_crop = value;
+    if (column == "tnt_alignment") a.tnt_alignment = value;
+    if (column == "tnt_scene") a.tnt_scene = value;
+    if (column == "tnt_tau") {
+      double tau = 0;
+      if (!parse_number(value, tau)) throw Error(fmt::format("tnt_tau: expected a number, found '{}'", value));
+      a.tnt_tau = tau;
+    }
     if (column == "resolution" || column == "seed") {
       long long number = 0;
       if (!parse_number(value, number) || number < 0) {
@@ -205,7 +226,9 @@ MeasureArguments arguments_for(const Pair& pair, const MeasureArguments& default
 
 // What decides a pair's result: its inputs' bytes and every option. Two runs, or two shards,
 // with the same key would write the same report.
-std::string pair_key(const MeasureArguments& a, const std::string& reference_sha, const std::string& test_sha) {
+// `protocol_files`: what identifies a protocol's data set files (their sha256), empty without one.
+std::string pair_key(const MeasureArguments& a, const std::string& reference_sha, const std::string& test_sha,
+                     const std::string& protocol_files) {
   std::string identity = fmt::format(
       "{}|{}|method={}|semantics={}|samples={}|seed={}|max_error={}|views={}|resolution={}|backend={}|"
       "camera_geometry={}|symmetric={}|ref_type={}|test_type={}|bins={}|hausdorff_bound={}",
@@ -216,6 +239,11 @@ std::string pair_key(const MeasureArguments& a, const std::string& reference_sha
   if (a.ibsm) identity += fmt::format("|ibsm={}x{}", a.ibsm_views, a.ibsm_resolution);
   if (a.pcc) identity += "|pcc";
   if (a.pcc_resolution) identity += fmt::format("|pcc_resolution={}", *a.pcc_resolution);
+  if (!a.protocol.empty()) {
+    identity += fmt::format("|protocol={}|files={}|dtu={},{},{}|seed={}|runs={}|tnt_scene={}|tnt_tau={}", a.protocol,
+                            protocol_files, a.dtu_density, a.dtu_patch, a.dtu_max_dist, a.protocol_seed,
+                            a.protocol_runs, a.tnt_scene, a.tnt_tau ? fmt::format("{}", *a.tnt_tau) : "");
+  }
   unsigned char digest[EVP_MAX_MD_SIZE];
   unsigned int length = 0;
   EVP_Digest(identity.data(), identity.size(), digest, &length, EVP_sha256(), nullptr);
@@ -229,6 +257,16 @@ void write_json(const fs::path& path, const nlohmann::json& json) {
   std::fputs((json.dump(2) + "\n").c_str(), file.stream());
   file.close_stream();
   file.commit();
+}
+
+// A pair's web page, written before its report: a pair with a report has its page.
+void write_page(const fs::path& path, const MeasureReport& report, const Model& reference, const Model& test,
+                const nlohmann::json& json, std::string& stage) {
+  stage = "writing the web page";
+  AtomicFile page(path.string());
+  write_html_page(page.stream(), measurement_page(report, format_header(reference, test, report) + format_body(report), json));
+  page.close_stream();
+  page.commit();
 }
 
 // The summary's columns: where the pair is, how it went, then the report's figures.
@@ -280,6 +318,12 @@ std::vector<std::string> summary_row(const nlohmann::json& report) {
     const bool interval = at_tau.is_object() && at_tau.contains(key) && at_tau[key].is_object();
     row.push_back(interval ? number(at_tau[key]["estimate"]) : field(at_tau, key));
   }
+  // A benchmark's protocol (--protocol or the manifest's protocol column): its own figures.
+  const nlohmann::json dtu = ok && report.contains("dtu_protocol") ? report["dtu_protocol"] : nlohmann::json();
+  for (const char* key : {"accuracy", "completeness", "overall"}) row.push_back(field(dtu, key));
+  const nlohmann::json tnt =
+      ok && report.contains("tanks_and_temples_protocol") ? report["tanks_and_temples_protocol"] : nlohmann::json();
+  for (const char* key : {"tau", "precision", "recall", "fscore"}) row.push_back(field(tnt, key));
   row.push_back(ok ? number(report["seconds"]["total"]) : "");
   std::string warnings;
   if (ok) {
@@ -314,6 +358,11 @@ void write_index(const std::string& folder, const std::vector<std::string>& head
     shown.insert(shown.end(), {"mpeg_d1_psnr", "mpeg_d2_psnr", "mpeg_y_psnr"});
   if (std::any_of(reports.begin(), reports.end(), [](const nlohmann::json& r) { return r.contains("reconstruction"); }))
     shown.insert(shown.end(), {"chamfer_mean", "normal_consistency", "tau", "precision", "recall", "f_score"});
+  if (std::any_of(reports.begin(), reports.end(), [](const nlohmann::json& r) { return r.contains("dtu_protocol"); }))
+    shown.insert(shown.end(), {"dtu_accuracy", "dtu_completeness", "dtu_overall"});
+  if (std::any_of(reports.begin(), reports.end(),
+                  [](const nlohmann::json& r) { return r.contains("tanks_and_temples_protocol"); }))
+    shown.insert(shown.end(), {"tnt_tau", "tnt_precision", "tnt_recall", "tnt_f_score"});
   shown.insert(shown.end(), {"seconds", "warnings"});
   HtmlIndex page;
   page.title = fmt::format("surface roving batch: {} pairs", reports.size());
@@ -382,7 +431,8 @@ std::pair<std::size_t, std::size_t> merge(const std::string& folder, bool html) 
   header.insert(header.end(), {"hausdorff", "mean_both", "rms_both", "ibsm_psnr_rgb", "ibsm_psnr_ycbcr_611",
                                "ibsm_depth_psnr", "ibsm_unmatched_percent", "mpeg_d1_psnr", "mpeg_d2_psnr",
                                "mpeg_y_psnr", "chamfer_mean", "normal_consistency", "tau", "precision", "recall",
-                               "f_score", "seconds", "warnings"});
+                               "f_score", "dtu_accuracy", "dtu_completeness", "dtu_overall", "tnt_tau",
+                               "tnt_precision", "tnt_recall", "tnt_f_score", "seconds", "warnings"});
   AtomicFile summary((fs::path(folder) / "summary.csv").string());
   fmt::print(summary.stream(), "{}\n", fmt::join(header, ","));
   std::size_t ok = 0;
@@ -436,10 +486,9 @@ int run_batch(const BatchArguments& args, std::string& stage, const Progress::Li
     throw UsageError(fmt::format("batch: expected a manifest (.csv or .jsonl) or two folders, found {} argument(s)",
                             args.inputs.size()));
   }
-  if (!args.defaults.protocol.empty()) {
-    // Each DTU scan has its own mask and plane: one `roving measure` per scan.
-    throw UsageError("--protocol: not in batch (each scan has its own mask and plane files); run roving measure "
-                     "per scan");
+  if (!args.defaults.tnt_curves.empty()) {
+    throw UsageError("--tnt-curves: one picture per pair would overwrite the last; not in batch (the curves are "
+                     "in each pair's report, tanks_and_temples_protocol)");
   }
   const auto [first, last] = [&] {
     try {
@@ -486,11 +535,15 @@ int run_batch(const BatchArguments& args, std::string& stage, const Progress::Li
                                done ? fmt::format(", about {:.0f} s left", eta) : ""));
     nlohmann::json batch = {{"index", pair.index}, {"reference", pair.reference}, {"test", pair.test}};
     std::string key;
+    const std::vector<std::string> protocol_files = {a.dtu_obs_mask, a.dtu_plane, a.tnt_crop, a.tnt_alignment};
     try {
-      key = pair_key(a, sha256(pair.reference), sha256(pair.test));
+      std::string files;  // a protocol's data set files, by their bytes
+      for (const std::string& file : protocol_files) files += (file.empty() ? std::string("-") : sha256(file)) + " ";
+      key = pair_key(a, sha256(pair.reference), sha256(pair.test), a.protocol.empty() ? "" : files);
     } catch (const Error&) {
       // Unreadable input: keyed by the paths, so that its failure is recorded all the same.
-      key = pair_key(a, pair.reference, pair.test);
+      key = pair_key(a, pair.reference, pair.test,
+                     a.protocol.empty() ? "" : fmt::format("{}", fmt::join(protocol_files, " ")));
     }
     // Named by its place in the list too: two pairs of identical files still get a row each.
     const std::string name = fmt::format("{:06}-{}", pair.index, key);
@@ -501,6 +554,22 @@ int run_batch(const BatchArguments& args, std::string& stage, const Progress::Li
       continue;
     }
     try {
+      if (!a.protocol.empty()) {
+        // A benchmark's protocol, as `measure` runs it: the pair's data set files read, TEST aligned
+        // (Tanks and Temples), nothing shared with the next pair.
+        const MeasureRun run = measure_run(a, stage, progress);
+        nlohmann::json json = to_json(run.report);
+        batch["status"] = "ok";
+        json["batch"] = batch;
+        // The protocol alone has no page (as `measure --protocol --html` needs --symmetric): a row in the index.
+        if (args.html && !run.report.protocol_only) {
+          write_page(fs::path(args.out) / (name + ".html"), run.report, *run.a, *run.b, json, stage);
+        }
+        write_json(done_path, json);
+        fs::remove(failed_path);
+        ++measured;
+        continue;
+      }
       MeasurePlan plan = plan_measurement(a);
       MeasureReport report;
       Stopwatch load;
@@ -542,13 +611,7 @@ int run_batch(const BatchArguments& args, std::string& stage, const Progress::Li
       nlohmann::json json = to_json(report);
       batch["status"] = "ok";
       json["batch"] = batch;
-      if (args.html) {  // before the report: a pair with a report has its page
-        stage = "writing the web page";
-        AtomicFile page((fs::path(args.out) / (name + ".html")).string());
-        write_html_page(page.stream(), measurement_page(report, format_header(reference, test, report) + format_body(report), json));
-        page.close_stream();
-        page.commit();
-      }
+      if (args.html) write_page(fs::path(args.out) / (name + ".html"), report, reference, test, json, stage);
       write_json(done_path, json);
       fs::remove(failed_path);
       ++measured;

@@ -289,6 +289,24 @@ def test_batch_as_the_command(tmp_path):
             assert a[key] == b[key], key
 
 
+
+def test_batch_runs_each_pairs_protocol(tmp_path):
+    """A manifest naming each pair's data set files: the summary holds what roving.measure gives."""
+    manifest = tmp_path / "protocols.csv"
+    manifest.write_text(
+        "reference,test,protocol,dtu_obs_mask,dtu_plane,tnt_crop,tnt_alignment,tnt_tau\n"
+        f"{DTU}/Points/stl/stl001_total.ply,{DTU}/scan1_mesh.ply,dtu,{DTU}/ObsMask/ObsMask1_10.mat,"
+        f"{DTU}/ObsMask/Plane1.mat,,,\n"
+        f"{TNT}/Bench.ply,{TNT}/Bench_points.ply,tanks-and-temples,,,{TNT}/Bench.json,{TNT}/Bench_trans.txt,0.01\n")
+    assert roving.batch(str(manifest), out=str(tmp_path / "out"), quiet=True) == 0
+    rows = list(csv.DictReader(open(tmp_path / "out" / "summary.csv")))
+    dtu = roving.measure(f"{DTU}/Points/stl/stl001_total.ply", f"{DTU}/scan1_mesh.ply", protocol="dtu",
+                         dtu_obs_mask=f"{DTU}/ObsMask/ObsMask1_10.mat", dtu_plane=f"{DTU}/ObsMask/Plane1.mat")
+    tnt = roving.measure(f"{TNT}/Bench.ply", f"{TNT}/Bench_points.ply", protocol="tanks-and-temples",
+                         tnt_crop=f"{TNT}/Bench.json", tnt_alignment=f"{TNT}/Bench_trans.txt", tnt_tau=0.01)
+    assert float(rows[0]["dtu_overall"]) == dtu["dtu_protocol"]["overall"]
+    assert float(rows[1]["tnt_f_score"]) == tnt["tanks_and_temples_protocol"]["fscore"]
+
 def test_no_memory_growth_over_a_thousand_calls():
     small, large = cube(0.5), cube(0.55)
 
