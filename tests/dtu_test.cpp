@@ -310,7 +310,6 @@ TEST(DtuProtocol, BadInputGetsOneLine) {
   // A model the protocol does not take.
   expect_error("measure " + kTruth + " " + roving::testing::data_file("teapot.bpt") + " --protocol dtu" + files,
                {"teapot.bpt", "mesh or a point cloud"});
-  expect_error("batch " + kData + " " + kData + " --protocol dtu" + files, {"--protocol", "batch"});
 }
 
 }  // namespace
