@@ -9,13 +9,18 @@
 #include <cmath>
 #include <fstream>
 #include <map>
+#include <random>
+#include <set>
+#include <tuple>
 #include <nlohmann/json.hpp>
 #include <regex>
 #include <sstream>
 
 #include "cli_support.h"
 #include "roving/core/error.h"
+#include "roving/mpeg/lattice_neighbours.h"
 #include "roving/mpeg/mpeg_points.h"
+#include "roving/mpeg/point_cloud_psnr.h"
 
 namespace roving {
 namespace {
@@ -315,6 +320,115 @@ TEST(MpegPoints, EqualPointsMergeAsPcErrorMergesThem) {
     ADD_FAILURE() << "a NaN normal that is averaged was accepted";
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("six.ply: normal 2"), std::string::npos) << e.what();
+  }
+}
+
+// The lattice search against every point: the shell is all points at the least squared distance
+// (exact: integers), listed up to kListed, or nothing where none is within sqrt(kMaxSquared).
+TEST(LatticeNeighbours, ShellIsEveryPointAtTheLeastDistance) {
+  using P = std::array<float, 3>;
+  std::mt19937 random(7);
+  std::uniform_int_distribution<int> coordinate(-21, 20);  // bricks either side of 0
+  std::set<P> unique;
+  while (unique.size() < 3000)
+    unique.insert(P{float(coordinate(random)), float(coordinate(random)), float(coordinate(random))});
+  for (int k = -4; k <= 4; ++k) unique.insert(P{float(k), 200, 0});  // a row far off: long shells of 2
+  const std::vector<P> points(unique.begin(), unique.end());
+  const auto lattice = LatticeNeighbours::build(points);
+  ASSERT_TRUE(lattice);
+  LatticeNeighbours::Probe probe;
+  LatticeNeighbours::Shell shell;
+  std::uniform_int_distribution<int> query(-34, 34);
+  for (int n = 0; n < 4000; ++n) {
+    const P q = n % 10 == 0 ? points[std::size_t(n) % points.size()]
+                            : P{float(query(random)), float(query(random) + (n % 7 == 0 ? 196 : 0)),
+                                float(query(random))};
+    for (const bool skip_zero : {false, true}) {
+      double least = INFINITY;
+      std::set<std::uint32_t> nearest;
+      for (std::uint32_t i = 0; i < points.size(); ++i) {
+        double squared = 0;
+        for (int c = 0; c < 3; ++c) squared += double(points[i][c] - q[c]) * double(points[i][c] - q[c]);
+        if (skip_zero && squared == 0) continue;
+        if (squared < least) least = squared, nearest.clear();
+        if (squared == least) nearest.insert(i);
+      }
+      const bool found = lattice->nearest(q, skip_zero, probe, shell);
+      ASSERT_EQ(found, least <= LatticeNeighbours::kMaxSquared) << q[0] << " " << q[1] << " " << q[2];
+      if (!found) continue;
+      ASSERT_EQ(shell.squared, least);
+      ASSERT_EQ(shell.count, nearest.size());
+      const std::set<std::uint32_t> listed(
+          shell.index.begin(), shell.index.begin() + std::min(shell.count, LatticeNeighbours::kListed));
+      ASSERT_EQ(listed.size(), std::min(shell.count, LatticeNeighbours::kListed));
+      for (const std::uint32_t i : listed) EXPECT_TRUE(nearest.count(i)) << i;
+    }
+  }
+}
+
+TEST(LatticeNeighbours, OnlyVoxelisedCloudsOfDistinctPoints) {
+  using P = std::array<float, 3>;
+  EXPECT_TRUE(LatticeNeighbours::build({P{0, 0, 0}, P{-1048576, 1048576, 3}}));
+  EXPECT_FALSE(LatticeNeighbours::build({P{0, 0, 0}, P{0.5f, 0, 0}}));           // not integral
+  EXPECT_FALSE(LatticeNeighbours::build({P{0, 0, 0}, P{2097152, 0, 0}}));        // beyond 2^20
+  EXPECT_FALSE(LatticeNeighbours::build({P{1, 2, 3}, P{0, 0, 0}, P{1, 2, 3}}));  // two equal
+  EXPECT_FALSE(LatticeNeighbours::build({}));
+}
+
+// A voxelised pair goes through the lattice, the same pair moved by half a voxel (every
+// difference, so every distance and tie, unchanged in single precision) through the k-d tree:
+// the figures agree, up to the order in which a D2 adds its tied points (a few ulps). The pair
+// has ties of every size: a shell of 30 points around a point (pc_error's search sees all 30) and
+// one of 31 (it sees 30 of them, its tree's choice: there the lattice leaves it the query).
+TEST(PcErrorFigures, VoxelisedCloudsGiveTheFiguresOfTheGeneralSearch) {
+  std::mt19937 random(3);
+  std::uniform_int_distribution<int> coordinate(0, 40), channel(0, 255);
+  std::normal_distribution<double> gauss;
+  PointCloud a, b;
+  const auto add = [&](PointCloud& cloud, Vec3 p) {
+    cloud.positions.push_back(p);
+    cloud.colours.push_back(Colour(float(channel(random)), float(channel(random)), float(channel(random))));
+    if (&cloud == &a) cloud.normals.push_back(Vec3(gauss(random), gauss(random), gauss(random)).normalized());
+  };
+  for (int k = 0; k < 4000; ++k) {
+    const Vec3 p(coordinate(random), coordinate(random), coordinate(random) / 8);
+    add(a, p);
+    add(b, p + Vec3(coordinate(random) % 3 - 1, coordinate(random) % 3 - 1, coordinate(random) % 5 - 2));
+  }
+  // Shells: squared length 9 has 30 lattice points, 17 has 48 (31 of them taken).
+  for (const auto& [centre, squared, taken] :
+       {std::tuple{Vec3(100, 0, 0), 9, 30}, std::tuple{Vec3(0, 100, 0), 17, 31}}) {
+    add(a, centre);
+    int count = 0;
+    for (int x = -5; x <= 5; ++x)
+      for (int y = -5; y <= 5; ++y)
+        for (int z = -5; z <= 5; ++z)
+          if (x * x + y * y + z * z == squared && count++ < taken) add(b, centre + Vec3(x, y, z));
+  }
+  add(b, Vec3(-50, -50, -50));  // beyond the lattice's reach of every point of A
+  PointCloud a_moved = a, b_moved = b;
+  for (Vec3& p : a_moved.positions) p += Vec3(0.5, 0.5, 0.5);
+  for (Vec3& p : b_moved.positions) p += Vec3(0.5, 0.5, 0.5);
+  for (const bool mmetric : {false, true}) {
+    for (const std::optional<double> resolution : {std::optional<double>(), std::optional<double>(1023)}) {
+      MpegRules rules;
+      rules.mmetric = mmetric;
+      rules.resolution = resolution;
+      const MpegFigures on =
+          mpeg_point_cloud_figures(mpeg_points(a, "a", true), mpeg_points(b, "b", false), rules, "a");
+      const MpegFigures off = mpeg_point_cloud_figures(mpeg_points(a_moved, "a", true),
+                                                       mpeg_points(b_moved, "b", false), rules, "a");
+      EXPECT_EQ(on.peak, off.peak);
+      for (const auto& [x, y] : {std::pair{on.a_to_b, off.a_to_b}, std::pair{on.b_to_a, off.b_to_a}}) {
+        EXPECT_EQ(x.d1_mse, y.d1_mse);
+        EXPECT_EQ(x.d1_hausdorff, y.d1_hausdorff);
+        EXPECT_NEAR(x.d2_mse, y.d2_mse, 1e-13 * y.d2_mse);
+        EXPECT_NEAR(x.d2_hausdorff, y.d2_hausdorff, 1e-13 * y.d2_hausdorff);
+        EXPECT_EQ(x.ycbcr_mse, y.ycbcr_mse);
+        EXPECT_EQ(x.rgb_mse, y.rgb_mse);
+        EXPECT_EQ(x.rgb_hausdorff, y.rgb_hausdorff);
+      }
+    }
   }
 }
 

@@ -91,6 +91,7 @@ MpegPoints mpeg_points(const PointCloud& cloud, const std::string& name, bool wi
   // Runs of equal points, found and merged block by block on all cores: each block merges the runs
   // that begin in it, into the places counted before it.
   constexpr std::size_t kBlock = 65536;
+  constexpr std::size_t kAhead = 16;
   const std::size_t blocks = (n + kBlock - 1) / kBlock;
   std::vector<std::size_t> first_run(blocks + 1, 0);
   tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t b) {
@@ -121,6 +122,13 @@ MpegPoints mpeg_points(const PointCloud& cloud, const std::string& name, bool wi
     std::size_t run = b * kBlock;
     while (run < n && run > 0 && order[run].same_position(order[run - 1])) ++run;  // the block before's
     for (const std::size_t stop = std::min(n, (b + 1) * kBlock); run < stop; ++out) {
+      // The colours and normals are read in sorted order, at random in the file's: asked for
+      // ahead, their cache misses overlap instead of following one another.
+      if (run + kAhead < n) {
+        const std::uint32_t ahead = order[run + kAhead].index();
+        if (!cloud.colours.empty()) __builtin_prefetch(&cloud.colours[ahead]);
+        if (normals) __builtin_prefetch(&cloud.normals[ahead]);
+      }
       std::size_t end = run + 1;
       while (end < n && order[end].same_position(order[run])) ++end;
       points.positions[out] = {coordinate(order[run].xy >> 32), coordinate(order[run].xy),

@@ -3,15 +3,19 @@
 #include <fmt/format.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_invoke.h>
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
+#include <mutex>
 #include <nanoflann.hpp>
 #include <optional>
 #include <vector>
 
 #include "roving/core/error.h"
+#include "roving/mpeg/lattice_neighbours.h"
 
 namespace roving {
 namespace {
@@ -92,6 +96,95 @@ Neighbours nearest_equal(const KdTree& tree, std::size_t size, const Point& q) {
   return n;
 }
 
+// How many of `tied` points at the nearest distance pc_error's search from `first` neighbours
+// (nearest()) sees: it grows by 5 while every point found is at that distance.
+std::size_t seen_of_tied(std::size_t first, std::size_t tied, std::size_t size) {
+  std::size_t k = std::min(first, size);
+  while (tied >= k && k + 5 <= kMaxNeighbours && k < size) k = std::min(k + 5, size);
+  return std::min(tied, k);
+}
+
+// One thread's room for NearestPoints' lattice queries.
+struct Scratch {
+  LatticeNeighbours::Probe probe;
+  LatticeNeighbours::Shell shell;
+};
+
+// A cloud's nearest points to a query, as pc_error's search finds them. Where both clouds are
+// voxelised they come from the lattice (lattice_neighbours.h): its shell is every point at the
+// least distance, and as squared distances between integers differ by 1 or more, pc_error's ties
+// (within a threshold < 1) are that shell, as far as its search sees; where the search would see
+// only some of them (which ones is its tree's choice), where no point is within the lattice's
+// reach, and for clouds not voxelised, a k-d tree like pc_error's answers.
+class NearestPoints {
+ public:
+  explicit NearestPoints(const MpegPoints& points) : points_(points), adaptor_{points.positions} {}
+
+  void use_lattice(std::unique_ptr<LatticeNeighbours> lattice) { lattice_ = std::move(lattice); }
+  std::size_t size() const { return points_.size(); }
+
+  // Built on first use: on a lattice, most clouds never need it.
+  const KdTree& tree() const {
+    std::call_once(built_, [this] {
+      tree_ = std::make_unique<KdTree>(3, adaptor_, nanoflann::KDTreeSingleIndexAdaptorParams(10));
+    });
+    return *tree_;
+  }
+
+  // nearest_tied()'s points.
+  Neighbours tied(const Point& q, double threshold, Scratch& scratch) const {
+    if (lattice_ && lattice_->nearest(q, false, scratch.probe, scratch.shell)) {
+      const LatticeNeighbours::Shell& s = scratch.shell;
+      if (seen_of_tied(10, s.count, size()) == s.count) return from_shell(s);
+    }
+    return nearest_tied(tree(), size(), q, threshold);
+  }
+
+  // nearest_equal()'s points.
+  Neighbours equal(const Point& q, Scratch& scratch) const {
+    if (lattice_ && lattice_->nearest(q, false, scratch.probe, scratch.shell)) {
+      const LatticeNeighbours::Shell& s = scratch.shell;
+      if (s.count == 1 || seen_of_tied(5, s.count, size()) == s.count) return from_shell(s);
+    }
+    return nearest_equal(tree(), size(), q);
+  }
+
+  // The squared distance to the nearest point.
+  double nearest_squared(const Point& q, Scratch& scratch) const {
+    if (lattice_ && lattice_->nearest(q, false, scratch.probe, scratch.shell)) return scratch.shell.squared;
+    std::uint32_t index;
+    double squared;
+    tree().knnSearch(q.data(), 1, &index, &squared);
+    return squared;
+  }
+
+  // pc_error's spacing at point i (largest_spacing()): the distance to its nearest other point
+  // where that is over 1e-5, else 0.
+  double spacing(std::size_t i, Scratch& scratch) const {
+    const Point& q = points_.positions[i];
+    if (lattice_ && lattice_->nearest(q, true, scratch.probe, scratch.shell)) return std::sqrt(scratch.shell.squared);
+    std::uint32_t index[2];
+    double squared[2];
+    const std::size_t found = tree().knnSearch(q.data(), 2, index, squared);
+    return found == 2 && index[0] == i && squared[1] > 1e-10 ? std::sqrt(squared[1]) : 0.0;
+  }
+
+ private:
+  static Neighbours from_shell(const LatticeNeighbours::Shell& s) {
+    Neighbours n;
+    n.found = s.count;
+    std::copy_n(s.index.begin(), s.count, n.index.begin());
+    std::fill_n(n.squared.begin(), s.count, s.squared);
+    return n;
+  }
+
+  const MpegPoints& points_;
+  PointsAdaptor adaptor_;
+  std::unique_ptr<LatticeNeighbours> lattice_;
+  mutable std::once_flag built_;
+  mutable std::unique_ptr<KdTree> tree_;
+};
+
 // Fixed blocks of points, so that sums over them, taken block by block in order, are the same
 // whatever the threads.
 constexpr std::size_t kBlock = 4096;
@@ -121,15 +214,17 @@ struct Matches {
   std::vector<std::vector<std::uint32_t>> index;  // per block: each point's run, point after point
 };
 
-Matches find_matches(const MpegPoints& from, const KdTree& to_tree, std::size_t to_size, double threshold) {
+Matches find_matches(const MpegPoints& from, const NearestPoints& to, double threshold) {
   Matches m;
   m.nearest.resize(from.size());
   m.tied.resize(from.size());
   m.equal.resize(from.size());
   m.index.resize((from.size() + kBlock - 1) / kBlock);
+  tbb::enumerable_thread_specific<Scratch> scratches;  // one per thread, for this cloud
   for_each_block(from.size(), [&](std::size_t block, std::size_t begin, std::size_t end) {
+    Scratch& scratch = scratches.local();
     for (std::size_t i = begin; i < end; ++i) {
-      const Neighbours n = nearest_tied(to_tree, to_size, from.positions[i], threshold);
+      const Neighbours n = to.tied(from.positions[i], threshold, scratch);
       // The run holds every point exactly as near (a difference of 0 is within any threshold),
       // and so the points pc_error's own search for equals finds (nearest_equal).
       std::size_t equal = 1;
@@ -145,7 +240,7 @@ Matches find_matches(const MpegPoints& from, const KdTree& to_tree, std::size_t 
 
 // A's normals carried onto B's points (see the header), from A's matches in B.
 std::vector<Point> normals_carried(const MpegPoints& a, const MpegPoints& b, const Matches& a_in_b,
-                                   const KdTree& a_tree) {
+                                   const NearestPoints& a_nearest) {
   // Added in A's order: the single-precision sums then round as pc_error's do.
   std::vector<Point> normals(b.size(), Point{0, 0, 0});
   std::vector<int> count(b.size(), 0);
@@ -158,27 +253,34 @@ std::vector<Point> normals_carried(const MpegPoints& a, const MpegPoints& b, con
       }
     }
   }
-  tbb::parallel_for(std::size_t{0}, b.size(), [&](std::size_t j) {
-    if (count[j] > 0) {
-      for (int c = 0; c < 3; ++c) normals[j][c] /= float(count[j]);
-      return;
+  tbb::enumerable_thread_specific<Scratch> scratches;  // one per thread, for this cloud
+  for_each_block(b.size(), [&](std::size_t, std::size_t begin, std::size_t end) {
+    Scratch& scratch = scratches.local();
+    for (std::size_t j = begin; j < end; ++j) {
+      if (count[j] > 0) {
+        for (int c = 0; c < 3; ++c) normals[j][c] /= float(count[j]);
+        continue;
+      }
+      const Neighbours n = a_nearest.equal(b.positions[j], scratch);
+      for (std::size_t k = 0; k < n.found; ++k)
+        for (int c = 0; c < 3; ++c) normals[j][c] += a.normals[n.index[k]][c];
+      for (int c = 0; c < 3; ++c) normals[j][c] /= float(n.found);
     }
-    const Neighbours n = nearest_equal(a_tree, a.size(), b.positions[j]);
-    for (std::size_t k = 0; k < n.found; ++k)
-      for (int c = 0; c < 3; ++c) normals[j][c] += a.normals[n.index[k]][c];
-    for (int c = 0; c < 3; ++c) normals[j][c] /= float(n.found);
   });
   return normals;
 }
 
 // Each point of `from` against `to`: sums and maxima per block, then over the blocks in order.
 // `matches`: `from`'s points' matches where found already, else searched here.
-MpegDirection direction(const MpegPoints& from, const MpegPoints& to, const KdTree& to_tree, const Matches* matches,
-                        const std::vector<Point>* to_normals, bool colour, double threshold) {
+MpegDirection direction(const MpegPoints& from, const MpegPoints& to, const NearestPoints& to_nearest,
+                        const Matches* matches, const std::vector<Point>* to_normals, bool colour,
+                        double threshold) {
   const bool ties = to_normals || colour;  // D1 needs the nearest point alone
   std::vector<MpegDirection> blocks((from.size() + kBlock - 1) / kBlock);
+  tbb::enumerable_thread_specific<Scratch> scratches;  // one per thread, for this cloud
   for_each_block(from.size(), [&](std::size_t block, std::size_t begin, std::size_t end) {
     MpegDirection& sum = blocks[block];
+    Scratch& scratch = scratches.local();
     const std::uint32_t* run = matches ? matches->index[block].data() : nullptr;
     for (std::size_t i = begin; i < end; ++i) {
       const Point& p = from.positions[i];
@@ -189,9 +291,10 @@ MpegDirection direction(const MpegPoints& from, const MpegPoints& to, const KdTr
         std::copy_n(run, n.found, n.index.begin());
         run += n.found;
       } else if (ties) {
-        n = nearest_tied(to_tree, to.size(), p, threshold);
+        n = to_nearest.tied(p, threshold, scratch);
       } else {
-        n.found = to_tree.knnSearch(p.data(), 1, n.index.data(), n.squared.data());
+        n.found = 1;
+        n.squared[0] = to_nearest.nearest_squared(p, scratch);
       }
       sum.d1_mse += n.squared[0];
       sum.d1_hausdorff = std::max(sum.d1_hausdorff, n.squared[0]);
@@ -250,13 +353,12 @@ MpegDirection direction(const MpegPoints& from, const MpegPoints& to, const KdTr
 
 // pc_error's default peak: the largest distance from a point of A to its nearest other point,
 // leaving out points with another within 1e-5.
-std::optional<double> largest_spacing(const MpegPoints& a, const KdTree& a_tree) {
+std::optional<double> largest_spacing(const MpegPoints& a, const NearestPoints& a_nearest) {
   std::vector<double> spacing(a.size(), 0);
-  tbb::parallel_for(std::size_t{0}, a.size(), [&](std::size_t i) {
-    std::uint32_t index[2];
-    double squared[2];
-    const std::size_t found = a_tree.knnSearch(a.positions[i].data(), 2, index, squared);
-    if (found == 2 && index[0] == i && squared[1] > 1e-10) spacing[i] = std::sqrt(squared[1]);
+  tbb::enumerable_thread_specific<Scratch> scratches;  // one per thread, for this cloud
+  for_each_block(a.size(), [&](std::size_t, std::size_t begin, std::size_t end) {
+    Scratch& scratch = scratches.local();
+    for (std::size_t i = begin; i < end; ++i) spacing[i] = a_nearest.spacing(i, scratch);
   });
   const double largest = *std::max_element(spacing.begin(), spacing.end());
   if (largest > 0) return largest;
@@ -300,10 +402,16 @@ MpegFigures mpeg_point_cloud_figures(const MpegPoints& a, const MpegPoints& b, c
   if (resolution && !(std::isfinite(*resolution) && *resolution > 0)) {
     throw Error(fmt::format("--pcc-resolution: expected a finite peak > 0, found {}", *resolution));
   }
-  const PointsAdaptor a_points{a.positions}, b_points{b.positions};
-  const auto flag = nanoflann::KDTreeSingleIndexAdaptorFlags::SkipInitialBuildIndex;
-  KdTree a_tree(3, a_points, {10, flag}), b_tree(3, b_points, {10, flag});
-  tbb::parallel_invoke([&] { a_tree.buildIndex(); }, [&] { b_tree.buildIndex(); });
+  NearestPoints a_nearest(a), b_nearest(b);
+  std::unique_ptr<LatticeNeighbours> a_lattice, b_lattice;
+  tbb::parallel_invoke([&] { a_lattice = LatticeNeighbours::build(a.positions); },
+                       [&] { b_lattice = LatticeNeighbours::build(b.positions); });
+  if (a_lattice && b_lattice) {  // both voxelised: queries from either are on the lattice
+    a_nearest.use_lattice(std::move(a_lattice));
+    b_nearest.use_lattice(std::move(b_lattice));
+  } else {
+    tbb::parallel_invoke([&] { a_nearest.tree(); }, [&] { b_nearest.tree(); });
+  }
 
   MpegFigures figures;
   figures.mmetric = rules.mmetric;
@@ -319,7 +427,7 @@ MpegFigures mpeg_point_cloud_figures(const MpegPoints& a, const MpegPoints& b, c
                               a_name));
     }
   } else {
-    const std::optional<double> spacing = largest_spacing(a, a_tree);
+    const std::optional<double> spacing = largest_spacing(a, a_nearest);
     if (!spacing) {
       throw Error(fmt::format(
           "{}: no two points are 1e-5 or more apart, so there is no spacing to take as the PSNR's peak; "
@@ -336,13 +444,13 @@ MpegFigures mpeg_point_cloud_figures(const MpegPoints& a, const MpegPoints& b, c
   const double threshold = rules.tie_threshold();
   std::optional<Matches> a_in_b;
   if (figures.d2 && !own) {
-    a_in_b = find_matches(a, b_tree, b.size(), threshold);
-    carried = normals_carried(a, b, *a_in_b, a_tree);
+    a_in_b = find_matches(a, b_nearest, threshold);
+    carried = normals_carried(a, b, *a_in_b, a_nearest);
   }
   const std::vector<Point>* b_normals = !figures.d2 ? nullptr : own ? &b.normals : &carried;
-  figures.a_to_b = direction(a, b, b_tree, a_in_b ? &*a_in_b : nullptr, b_normals, figures.colour, threshold);
+  figures.a_to_b = direction(a, b, b_nearest, a_in_b ? &*a_in_b : nullptr, b_normals, figures.colour, threshold);
   a_in_b.reset();
-  figures.b_to_a = direction(b, a, a_tree, nullptr, figures.d2 ? &a.normals : nullptr, figures.colour, threshold);
+  figures.b_to_a = direction(b, a, a_nearest, nullptr, figures.d2 ? &a.normals : nullptr, figures.colour, threshold);
   return figures;
 }
 
