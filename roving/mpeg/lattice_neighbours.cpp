@@ -9,7 +9,6 @@ namespace {
 
 constexpr std::int32_t kLimit = 1 << 20;  // |coordinate| <= kLimit
 constexpr std::int32_t kBias = 1 << 18;   // brick coordinates (within +-2^17) made positive in 21 bits
-constexpr std::size_t kCubeShells = 4;    // squared lengths 0 .. 3: the 3^3 cube
 
 struct Offset {
   std::int8_t x, y, z;
@@ -20,8 +19,12 @@ struct Shells {
   std::vector<Offset> offsets;
   std::vector<std::uint32_t> end;  // per shell, one past its last offset
   std::vector<int> squared;        // per shell
-  // Shells 0 to 3 as bits of the 3^3 cube around a query (LatticeNeighbours::nearest).
-  std::array<std::uint32_t, kCubeShells> cube_masks{};
+  // The first shells as bits of the cubes around a query (cube_around): those of the 3^3 cube
+  // (squared lengths 0 to 3) and then of the 5^3 cube (4 to 8); `small_end` and `large_end`: the
+  // first shell each leaves out.
+  std::vector<std::uint32_t> small_masks;
+  std::vector<unsigned __int128> large_masks;  // indexed from small_end
+  std::size_t small_end = 0, large_end = 0;
 };
 
 const Shells& shells() {
@@ -46,10 +49,30 @@ const Shells& shells() {
         s.end.push_back(std::uint32_t(k + 1));
         s.squared.push_back(all[k].first);
       }
-      const Offset o = all[k].second;
-      if (all[k].first < int(kCubeShells)) {
-        s.cube_masks[std::size_t(all[k].first)] |= 1u << (9 * (o.z + 1) + 3 * (o.y + 1) + o.x + 1);
+    }
+    // Each shell as cube bits, while all its offsets are in the cube.
+    const auto within = [&](std::size_t g, int reach) {
+      for (std::size_t k = g == 0 ? 0 : s.end[g - 1]; k < s.end[g]; ++k) {
+        const Offset o = s.offsets[k];
+        if (std::abs(o.x) > reach || std::abs(o.y) > reach || std::abs(o.z) > reach) return false;
       }
+      return true;
+    };
+    const auto bit = [](const Offset& o, int reach) {
+      const int side = 2 * reach + 1;
+      return side * side * (o.z + reach) + side * (o.y + reach) + o.x + reach;
+    };
+    for (std::size_t g = 0; within(g, 1); ++g) {
+      s.small_masks.push_back(0);
+      for (std::size_t k = g == 0 ? 0 : s.end[g - 1]; k < s.end[g]; ++k) s.small_masks[g] |= 1u << bit(s.offsets[k], 1);
+      s.small_end = g + 1;
+    }
+    for (std::size_t g = s.small_end; within(g, 2); ++g) {
+      s.large_masks.push_back(0);
+      for (std::size_t k = s.end[g - 1]; k < s.end[g]; ++k) {
+        s.large_masks.back() |= static_cast<unsigned __int128>(1) << bit(s.offsets[k], 2);
+      }
+      s.large_end = g + 1;
     }
     return s;
   }();
@@ -58,6 +81,40 @@ const Shells& shells() {
 
 std::uint64_t brick_key(std::int32_t x, std::int32_t y, std::int32_t z) {
   return std::uint64_t(x + kBias) << 42 | std::uint64_t(y + kBias) << 21 | std::uint64_t(z + kBias);
+}
+
+// The voxels within `kReach` of a query at (lx, ly, lz) of its brick, as bits of a cube of side
+// 2 kReach + 1 (bit side^2 (dz + kReach) + side (dy + kReach) + dx + kReach: the query's voxel
+// + (dx, dy, dz)), read a row at a time: `row(tx, ty, tz)` is row (ty, tz) of the brick holding
+// those coordinates (each within -8 .. 15), 8 bits.
+template <class Bits, int kReach, class Row>
+Bits cube_around(std::int32_t lx, std::int32_t ly, std::int32_t lz, const Row& row) {
+  constexpr int side = 2 * kReach + 1;
+  Bits cube = 0;
+  for (std::int32_t dz = -kReach; dz <= kReach; ++dz) {
+    for (std::int32_t dy = -kReach; dy <= kReach; ++dy) {
+      const std::int32_t ty = ly + dy, tz = lz + dz;
+      std::uint32_t bits = row(lx, ty, tz) << 8;  // bit i: x = i - 8 of the query's brick
+      if (lx < kReach) bits |= row(-1, ty, tz);
+      if (lx > 7 - kReach) bits |= row(8, ty, tz) << 16;
+      cube |= Bits(bits >> (8 + lx - kReach) & ((1u << side) - 1)) << (side * side * (dz + kReach) + side * (dy + kReach));
+    }
+  }
+  return cube;
+}
+
+// Set bits of a word (without asking the compiler for a CPU with POPCNT).
+std::uint32_t bit_count(std::uint64_t v) {
+  v = v - (v >> 1 & 0x5555555555555555ull);
+  v = (v & 0x3333333333333333ull) + (v >> 2 & 0x3333333333333333ull);
+  v = (v + (v >> 4)) & 0x0f0f0f0f0f0f0f0full;
+  return std::uint32_t((v * 0x0101010101010101ull) >> 56);
+}
+
+int lowest_bit(std::uint32_t bits) { return __builtin_ctz(bits); }
+int lowest_bit(unsigned __int128 bits) {
+  const std::uint64_t low = std::uint64_t(bits);
+  return low != 0 ? __builtin_ctzll(low) : 64 + __builtin_ctzll(std::uint64_t(bits >> 64));
 }
 
 std::size_t hash(std::uint64_t key, int shift) {
@@ -137,13 +194,15 @@ std::unique_ptr<LatticeNeighbours> LatticeNeighbours::build(const std::vector<st
     b.words[std::size_t(z & 7)] |= bit;
   }
   // Each brick's points after the bricks before it, in voxel order.
+  l.starts_.resize(l.bricks_.size());
   std::uint32_t first = 0;
-  for (Brick& b : l.bricks_) {
-    b.first = first;
+  for (std::size_t brick = 0; brick < l.bricks_.size(); ++brick) {
+    BrickStart& start = l.starts_[brick];
+    start.first = first;
     std::uint16_t before = 0;
     for (std::size_t w = 0; w < 8; ++w) {
-      b.before[w] = before;
-      before = std::uint16_t(before + __builtin_popcountll(b.words[w]));
+      start.before[w] = before;
+      before = std::uint16_t(before + bit_count(l.bricks_[brick].words[w]));
     }
     first += before;
   }
@@ -151,11 +210,7 @@ std::unique_ptr<LatticeNeighbours> LatticeNeighbours::build(const std::vector<st
   for (std::size_t i = 0; i < points.size(); ++i) {
     const std::array<float, 3>& p = points[i];
     const std::int32_t x = std::int32_t(p[0]), y = std::int32_t(p[1]), z = std::int32_t(p[2]);
-    const Brick& b = l.bricks_[std::size_t(brick_of[i])];
-    const std::uint64_t word = b.words[std::size_t(z & 7)];
-    const int bit = (x & 7) | (y & 7) << 3;
-    l.order_[b.first + b.before[std::size_t(z & 7)] +
-             std::uint32_t(__builtin_popcountll(word & ((std::uint64_t{1} << bit) - 1)))] = std::uint32_t(i);
+    l.order_[l.place(brick_of[i], x, y, z)] = std::uint32_t(i);
   }
   return lattice;
 }
@@ -171,12 +226,17 @@ inline std::int32_t LatticeNeighbours::brick_near(Probe& probe, std::int32_t tx,
   return brick;
 }
 
-inline std::uint32_t LatticeNeighbours::point_in(const Brick& b, std::int32_t tx, std::int32_t ty,
-                                                 std::int32_t tz) const {
-  const std::uint64_t word = b.words[std::size_t(tz & 7)];
+inline std::size_t LatticeNeighbours::place(std::int32_t brick, std::int32_t tx, std::int32_t ty,
+                                            std::int32_t tz) const {
+  const BrickStart& start = starts_[std::size_t(brick)];
+  const std::uint64_t word = bricks_[std::size_t(brick)].words[std::size_t(tz & 7)];
   const int bit = (tx & 7) | (ty & 7) << 3;
-  return order_[b.first + b.before[std::size_t(tz & 7)] +
-                std::uint32_t(__builtin_popcountll(word & ((std::uint64_t{1} << bit) - 1)))];
+  return start.first + start.before[std::size_t(tz & 7)] + bit_count(word & ((std::uint64_t{1} << bit) - 1));
+}
+
+inline std::uint32_t LatticeNeighbours::point_in(std::int32_t brick, std::int32_t tx, std::int32_t ty,
+                                                 std::int32_t tz) const {
+  return order_[place(brick, tx, ty, tz)];
 }
 
 bool LatticeNeighbours::nearest(const std::array<float, 3>& q, bool skip_zero, Probe& probe,
@@ -190,41 +250,38 @@ bool LatticeNeighbours::nearest(const std::array<float, 3>& q, bool skip_zero, P
   const std::int32_t lx = x & 7, ly = y & 7, lz = z & 7;  // offsets from here reach -8 .. 15
   const Shells& s = shells();
 
-  // Shells 0 to 3 (the 3^3 voxels around q) read at once, row by row from the bricks' masks:
-  // bit 9 (dz + 1) + 3 (dy + 1) + dx + 1 of `cube` is voxel q + (dx, dy, dz).
-  std::uint32_t cube = 0;
-  for (std::int32_t dz = -1; dz <= 1; ++dz) {
-    const std::int32_t tz = lz + dz;
-    for (std::int32_t dy = -1; dy <= 1; ++dy) {
-      const std::int32_t ty = ly + dy;
-      const auto row = [&](std::int32_t tx) {  // x = 0 .. 7 of the brick holding tx
-        const std::int32_t brick = brick_near(probe, tx, ty, tz);
-        if (brick < 0) return 0u;
-        return std::uint32_t(bricks_[std::size_t(brick)].words[std::size_t(tz & 7)] >> ((ty & 7) * 8)) &
-               0xffu;
-      };
-      std::uint32_t bits = row(lx) << 1;  // bit i: x = i - 1 of q's brick
-      if (lx == 0) bits |= row(-1) >> 7;
-      if (lx == 7) bits |= (row(8) & 1u) << 9;
-      cube |= (bits >> lx & 7u) << (9 * (dz + 1) + 3 * (dy + 1));
+  // The nearest shells read at once from the bricks' bits: within the 3^3 cube, then the 5^3.
+  const auto row = [&](std::int32_t tx, std::int32_t ty, std::int32_t tz) {
+    const std::int32_t brick = brick_near(probe, tx, ty, tz);
+    if (brick < 0) return 0u;
+    return std::uint32_t(bricks_[std::size_t(brick)].words[std::size_t(tz & 7)] >> ((ty & 7) * 8)) & 0xffu;
+  };
+  // The first shell from `first` with a bit in `cube`, listed; false where none.
+  const auto list = [&](auto cube, const auto& masks, std::size_t first, std::size_t end, int reach) {
+    const int side = 2 * reach + 1;
+    for (std::size_t g = std::max(first, skip_zero ? std::size_t{1} : std::size_t{0}); g < end; ++g) {
+      auto found = cube & masks[g - first];
+      if (found == 0) continue;
+      std::size_t count = 0;
+      for (; found != 0; found &= found - 1, ++count) {
+        const int bit = lowest_bit(found);
+        const std::int32_t tx = lx + bit % side - reach, ty = ly + bit / side % side - reach,
+                           tz = lz + bit / (side * side) - reach;
+        shell.index[count] = point_in(brick_near(probe, tx, ty, tz), tx, ty, tz);
+      }
+      shell.squared = s.squared[g];
+      shell.count = count;
+      return true;
     }
-  }
-  for (std::size_t g = skip_zero ? 1 : 0; g < kCubeShells; ++g) {
-    std::uint32_t found = cube & s.cube_masks[g];
-    if (found == 0) continue;
-    std::size_t count = 0;
-    for (; found != 0; found &= found - 1, ++count) {
-      const int bit = __builtin_ctz(found);
-      const std::int32_t tx = lx + bit % 3 - 1, ty = ly + bit / 3 % 3 - 1, tz = lz + bit / 9 - 1;
-      shell.index[count] = point_in(bricks_[std::size_t(brick_near(probe, tx, ty, tz))], tx, ty, tz);
-    }
-    shell.squared = s.squared[g];
-    shell.count = count;
+    return false;
+  };
+  if (list(cube_around<std::uint32_t, 1>(lx, ly, lz, row), s.small_masks, 0, s.small_end, 1)) return true;
+  if (list(cube_around<unsigned __int128, 2>(lx, ly, lz, row), s.large_masks, s.small_end, s.large_end, 2)) {
     return true;
   }
 
   // Farther shells offset by offset.
-  for (std::size_t g = kCubeShells; g < s.end.size(); ++g) {
+  for (std::size_t g = s.large_end; g < s.end.size(); ++g) {
     std::size_t count = 0;
     for (std::size_t k = s.end[g - 1]; k < s.end[g]; ++k) {
       const Offset o = s.offsets[k];
@@ -233,7 +290,7 @@ bool LatticeNeighbours::nearest(const std::array<float, 3>& q, bool skip_zero, P
       if (brick < 0) continue;
       const Brick& b = bricks_[std::size_t(brick)];
       if (!(b.words[std::size_t(tz & 7)] >> ((tx & 7) | (ty & 7) << 3) & 1)) continue;
-      if (count < kListed) shell.index[count] = point_in(b, tx, ty, tz);
+      if (count < kListed) shell.index[count] = point_in(brick, tx, ty, tz);
       ++count;
     }
     if (count > 0) {

@@ -50,19 +50,25 @@ class LatticeNeighbours {
   static bool on_lattice(const std::array<float, 3>& q);
 
  private:
-  struct Brick {
-    std::array<std::uint64_t, 8> words{};   // bit (x | y << 3) of word z: voxel (x, y, z) of the brick
-    std::array<std::uint16_t, 8> before{};  // points in the words before each
-    std::uint32_t first = 0;                // where the brick's points begin in `order_`
+  // One cache line of occupancy: bit (x | y << 3) of word z is voxel (x, y, z) of the brick.
+  struct alignas(64) Brick {
+    std::array<std::uint64_t, 8> words{};
+  };
+  // Where a brick's points are listed: from `first` in `order_`, `before[z]` of them before word z.
+  struct BrickStart {
+    std::uint32_t first = 0;
+    std::array<std::uint16_t, 8> before{};
   };
   std::int32_t find(std::uint64_t key) const;
   std::int32_t find(std::uint64_t key, Probe& probe) const;  // through probe.recent
   // The brick of voxel (tx, ty, tz) of the probe's block (each within -8 .. 15), -1 none.
   std::int32_t brick_near(Probe& probe, std::int32_t tx, std::int32_t ty, std::int32_t tz) const;
-  // The point at voxel (tx, ty, tz) (brick-local low 3 bits) of brick `b`, which holds one.
-  std::uint32_t point_in(const Brick& b, std::int32_t tx, std::int32_t ty, std::int32_t tz) const;
+  // The point at voxel (tx, ty, tz) (brick-local low 3 bits) of brick `brick`, which holds one.
+  std::size_t place(std::int32_t brick, std::int32_t tx, std::int32_t ty, std::int32_t tz) const;  // in order_
+  std::uint32_t point_in(std::int32_t brick, std::int32_t tx, std::int32_t ty, std::int32_t tz) const;
 
   std::vector<Brick> bricks_;
+  std::vector<BrickStart> starts_;
   std::vector<std::uint32_t> order_;  // the points' indices, brick after brick, voxel order within
   std::vector<std::uint64_t> keys_;   // open addressing: brick key + 1, 0 empty
   std::vector<std::int32_t> slots_;   // the brick of each key

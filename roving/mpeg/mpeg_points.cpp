@@ -73,7 +73,13 @@ MpegPoints mpeg_points(const PointCloud& cloud, const std::string& name, bool wi
     return f;
   };
   // On all cores; the first point that is not representable (in file order) is the one named.
+  // The normals and colours are made small here, in the file's order, so that the merging below,
+  // which reads them in sorted order (at random in the file's), has less to fetch: single
+  // precision (NaN where the value is not representable) and 8 bits.
+  const bool normals = with_normals && !cloud.normals.empty();
   std::vector<Entry> order(n);
+  std::vector<std::array<float, 3>> small_normals(normals ? n : 0);
+  std::vector<std::array<std::uint8_t, 4>> small_colours(cloud.colours.empty() ? 0 : n);
   std::atomic<std::size_t> first_bad{n};
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 65536), [&](const tbb::blocked_range<std::size_t>& range) {
     for (std::size_t i = range.begin(); i != range.end(); ++i) {
@@ -83,6 +89,14 @@ MpegPoints mpeg_points(const PointCloud& cloud, const std::string& name, bool wi
         return;
       }
       order[i] = {ordered(p.x()) << 32 | ordered(p.y()), ordered(p.z()) << 32 | i};
+      if (normals) {
+        const Vec3& normal = cloud.normals[i];
+        small_normals[i] = representable(normal) ? std::array<float, 3>{float(normal.x()), float(normal.y()), float(normal.z())}
+                                                 : std::array<float, 3>{NAN, NAN, NAN};
+      }
+      if (!small_colours.empty()) {
+        for (int c = 0; c < 3; ++c) small_colours[i][c] = std::uint8_t(std::lround(std::clamp(cloud.colours[i][c], 0.0f, 255.0f)));
+      }
     }
   });
   if (first_bad < n) to_float(cloud.positions[first_bad], name, "point", first_bad);  // throws
@@ -105,12 +119,11 @@ MpegPoints mpeg_points(const PointCloud& cloud, const std::string& name, bool wi
   const std::size_t runs = first_run.back();
 
   // A normal that is used must be finite; the first such in sorted order is the one named.
-  const bool normals = with_normals && !cloud.normals.empty();
   std::atomic<std::size_t> first_bad_normal{n};
   const auto normal_at = [&](std::size_t k) {
-    const Vec3& normal = cloud.normals[order[k].index()];
-    if (!representable(normal)) keep_least(first_bad_normal, k);
-    return std::array<float, 3>{float(normal.x()), float(normal.y()), float(normal.z())};
+    const std::array<float, 3>& normal = small_normals[order[k].index()];
+    if (std::isnan(normal[0])) keep_least(first_bad_normal, k);
+    return normal;
   };
   MpegPoints points;
   points.points_read = n;
@@ -126,8 +139,8 @@ MpegPoints mpeg_points(const PointCloud& cloud, const std::string& name, bool wi
       // ahead, their cache misses overlap instead of following one another.
       if (run + kAhead < n) {
         const std::uint32_t ahead = order[run + kAhead].index();
-        if (!cloud.colours.empty()) __builtin_prefetch(&cloud.colours[ahead]);
-        if (normals) __builtin_prefetch(&cloud.normals[ahead]);
+        if (!small_colours.empty()) __builtin_prefetch(&small_colours[ahead]);
+        if (normals) __builtin_prefetch(&small_normals[ahead]);
       }
       std::size_t end = run + 1;
       while (end < n && order[end].same_position(order[run])) ++end;
@@ -148,7 +161,7 @@ MpegPoints mpeg_points(const PointCloud& cloud, const std::string& name, bool wi
         // pc_error sums the 8-bit values and divides as integers: the mean, truncated.
         long sum[3] = {0, 0, 0};
         for (std::size_t k = run; k < end; ++k) {
-          for (int c = 0; c < 3; ++c) sum[c] += std::lround(std::clamp(cloud.colours[order[k].index()][c], 0.0f, 255.0f));
+          for (int c = 0; c < 3; ++c) sum[c] += small_colours[order[k].index()][c];
         }
         const long count = long(end - run);
         points.colours[out] = {std::uint8_t(sum[0] / count), std::uint8_t(sum[1] / count), std::uint8_t(sum[2] / count)};
