@@ -64,7 +64,8 @@ const Shells& shells() {
     };
     for (std::size_t g = 0; within(g, 1); ++g) {
       s.small_masks.push_back(0);
-      for (std::size_t k = g == 0 ? 0 : s.end[g - 1]; k < s.end[g]; ++k) s.small_masks[g] |= 1u << bit(s.offsets[k], 1);
+      for (std::size_t k = g == 0 ? 0 : s.end[g - 1]; k < s.end[g]; ++k)
+        s.small_masks[g] |= 1u << bit(s.offsets[k], 1);
       s.small_end = g + 1;
     }
     for (std::size_t g = s.small_end; within(g, 2); ++g) {
@@ -97,7 +98,8 @@ Bits cube_around(std::int32_t lx, std::int32_t ly, std::int32_t lz, const Row& r
       std::uint32_t bits = row(lx, ty, tz) << 8;  // bit i: x = i - 8 of the query's brick
       if (lx < kReach) bits |= row(-1, ty, tz);
       if (lx > 7 - kReach) bits |= row(8, ty, tz) << 16;
-      cube |= Bits(bits >> (8 + lx - kReach) & ((1u << side) - 1)) << (side * side * (dz + kReach) + side * (dy + kReach));
+      cube |= Bits(bits >> (8 + lx - kReach) & ((1u << side) - 1))
+              << (side * side * (dz + kReach) + side * (dy + kReach));
     }
   }
   return cube;
@@ -111,7 +113,9 @@ std::uint32_t bit_count(std::uint64_t v) {
   return std::uint32_t((v * 0x0101010101010101ull) >> 56);
 }
 
-int lowest_bit(std::uint32_t bits) { return __builtin_ctz(bits); }
+int lowest_bit(std::uint32_t bits) {
+  return __builtin_ctz(bits);
+}
 int lowest_bit(unsigned __int128 bits) {
   const std::uint64_t low = std::uint64_t(bits);
   return low != 0 ? __builtin_ctzll(low) : 64 + __builtin_ctzll(std::uint64_t(bits >> 64));

@@ -64,7 +64,8 @@ class LatticeNeighbours {
   // The brick of voxel (tx, ty, tz) of the probe's block (each within -8 .. 15), -1 none.
   std::int32_t brick_near(Probe& probe, std::int32_t tx, std::int32_t ty, std::int32_t tz) const;
   // The point at voxel (tx, ty, tz) (brick-local low 3 bits) of brick `brick`, which holds one.
-  std::size_t place(std::int32_t brick, std::int32_t tx, std::int32_t ty, std::int32_t tz) const;  // in order_
+  std::size_t place(std::int32_t brick, std::int32_t tx, std::int32_t ty,
+                    std::int32_t tz) const;  // in order_
   std::uint32_t point_in(std::int32_t brick, std::int32_t tx, std::int32_t ty, std::int32_t tz) const;
 
   std::vector<Brick> bricks_;
