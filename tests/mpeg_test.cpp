@@ -35,6 +35,7 @@ struct Golden {
   std::string command;                        // pc_error's, as recorded
   std::string file_a, file_b;
   std::string resolution;                     // empty: pc_error's default peak
+  std::string normals;                        // --inputNorm: A's normals from this file
   bool rgb = false;                           // --mseSpace=0: c[k] are R, G, B
   double peak = 0;
   std::map<std::string, std::string> values;  // "a_to_b/d1_mse" -> "1.48473455"
@@ -53,6 +54,7 @@ Golden read_golden(const std::string& name) {
   g.file_a = option("fileA") + option("inputModelA");  // pc_error's or mmetric's
   g.file_b = option("fileB") + option("inputModelB");
   g.resolution = option("resolution");
+  g.normals = option("inputNorm");
   g.rgb = option("mseSpace") == "0";
   const char* sections[] = {"a_to_b", "b_to_a", "symmetric"};
   const char* ycbcr[] = {"y", "cb", "cr"};
@@ -83,7 +85,8 @@ Golden read_golden(const std::string& name) {
 
 nlohmann::json measure_pcc(const Golden& g) {
   const CliRun run = run_cli("measure " + kData + g.file_a + " " + kData + g.file_b + " --pcc --json -" +
-                             (g.resolution.empty() ? "" : " --pcc-resolution " + g.resolution));
+                             (g.resolution.empty() ? "" : " --pcc-resolution " + g.resolution) +
+                             (g.normals.empty() ? "" : " --pcc-normals " + kData + g.normals));
   EXPECT_EQ(run.exit_code, 0) << run.err;
   return nlohmann::json::parse(run.out)["mpeg_pcc"];
 }
@@ -123,6 +126,15 @@ TEST(PcErrorGolden, WithoutNormalsThereIsNoD2) {
   const nlohmann::json ours = measure_pcc(read_golden("sphere10_swapped"));
   EXPECT_TRUE(ours["d2"].is_string());
   EXPECT_FALSE(ours["symmetric"].contains("d2_mse"));
+}
+
+// pc_error's --inputNorm: A without normals, its normals in a file of their own (A's points in
+// another order, other normals), paired with A's points as pc_error pairs them.
+TEST(PcErrorGolden, NormalsFromAFileOfTheirOwn) {
+  expect_equal_to_pc_error("sphere10_normals_file", 3 * 8 + 3 * 12);
+  const nlohmann::json ours = measure_pcc(read_golden("sphere10_normals_file"));
+  EXPECT_EQ(ours["normals_from"], kData + "sphere10_a_normals.ply");
+  EXPECT_EQ(measure_pcc(read_golden("sphere10_r1023"))["normals_from"], "A's file");
 }
 
 TEST(PcErrorGolden, ElevenBitsWithoutColour) {
@@ -253,8 +265,11 @@ TEST(PcErrorFigures, BatchSummaryHasThem) {
   testing::cli::fs::create_directories(folder);
   {
     std::ofstream manifest(folder / "pairs.csv");
-    manifest << "reference,test\n";
-    for (const char* pair : {"sphere10", "torus11"}) manifest << kData << pair << "_a.ply," << kData << pair << "_b.ply\n";
+    manifest << "reference,test,pcc_normals\n";
+    for (const char* pair : {"sphere10", "torus11"}) manifest << kData << pair << "_a.ply," << kData << pair << "_b.ply,\n";
+    // A's normals in a file of their own, named relative to the manifest.
+    testing::cli::fs::copy_file(kData + "sphere10_a_normals.ply", folder / "normals.ply");
+    manifest << kData << "sphere10_a_bare.ply," << kData << "sphere10_b.ply,normals.ply\n";
   }
   const CliRun run = run_cli("batch " + (folder / "pairs.csv").string() + " --pcc --pcc-resolution 1023 --quiet --out " +
                              (folder / "out").string());
@@ -266,7 +281,9 @@ TEST(PcErrorFigures, BatchSummaryHasThem) {
   std::stringstream split(header);
   for (std::string c; std::getline(split, c, ',');) columns.push_back(c);
   const std::size_t d1 = std::find(columns.begin(), columns.end(), "mpeg_d1_psnr") - columns.begin();
+  const std::size_t d2 = std::find(columns.begin(), columns.end(), "mpeg_d2_psnr") - columns.begin();
   ASSERT_LT(d1, columns.size());
+  ASSERT_LT(d2, columns.size());
   for (const char* pair : {"sphere10", "torus11"}) {
     ASSERT_TRUE(std::getline(summary, line));
     std::vector<std::string> cells;
@@ -277,6 +294,12 @@ TEST(PcErrorFigures, BatchSummaryHasThem) {
     const double expected = nlohmann::json::parse(one.out)["mpeg_pcc"]["symmetric"]["d1_psnr"].get<double>();
     EXPECT_DOUBLE_EQ(std::stod(cells.at(d1)), expected) << pair;
   }
+  ASSERT_TRUE(std::getline(summary, line));
+  std::vector<std::string> cells;
+  std::stringstream row(line);
+  for (std::string c; std::getline(row, c, ',');) cells.push_back(c);
+  const Golden g = read_golden("sphere10_normals_file");
+  EXPECT_NEAR(std::stod(cells.at(d2)), std::stod(g.values.at("symmetric/d2_psnr")), 1e-6) << line;
   testing::cli::fs::remove_all(folder);
 }
 
@@ -464,6 +487,22 @@ TEST(PcErrorFigures, BadInputIsOneLine) {
   const std::string plain = kData + "torus11_b.ply";
   expect_error("measure " + one + " " + plain + " --pcc", {"one.xyz", "--pcc-resolution"});
   EXPECT_EQ(run_cli("measure " + one + " " + plain + " --pcc --pcc-resolution 1023").exit_code, 0);
+  // --pcc-normals: a file without normals, of other points, of as many other points; a mesh's.
+  const std::string normals = " --pcc --pcc-normals ";
+  expect_error("measure " + a + " " + b + normals + b, {"sphere10_b.ply", "no normals", "expected A's points"});
+  expect_error("measure " + a + " " + b + normals + kData + "torus11_a.ply",
+               {"torus11_a.ply", "7", "points at distinct positions", "expected A's 6649"});
+  const std::string ply = "ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty float y\n"
+                          "property float z\nproperty float nx\nproperty float ny\nproperty float nz\nend_header\n";
+  const std::string two = write("two.ply", ply + "0 0 0 0 0 1\n1 0 0 0 0 1\n");
+  const std::string other = write("other.ply", ply + "0 0 0 0 0 1\n2 0 0 0 0 1\n");
+  const std::string fewer = write("fewer.ply", ply + "0 0 0 0 0 1\n0 0 0 0 0 1\n");
+  expect_error("measure " + two + " " + plain + normals + other, {"other.ply", "(2, 0, 0) that A has not"});
+  expect_error("measure " + two + " " + plain + normals + fewer, {"fewer.ply", "1 points", "(2 read)", "A's 2"});
+  expect_error("measure " + kData + "fandisk10_a.ply " + kData + "fandisk10_b.ply" + normals + two,
+               {"--pcc-normals", "fandisk10_a.ply is a mesh"});
+  expect_error("measure " + kData + "fandisk10_a.ply " + kData + "fandisk10_b.ply --pcc-normals " + two,
+               {"--pcc-normals", "two point clouds"});
   testing::cli::fs::remove_all(folder);
 }
 

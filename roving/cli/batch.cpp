@@ -35,9 +35,10 @@ namespace fs = std::filesystem;
 const std::vector<std::string> kPairColumns = {
     "method",     "semantics", "samples",  "seed",         "max_error",  "views",         "resolution",
     "backend",    "camera_geometry",       "protocol",     "dtu_obs_mask", "dtu_plane",   "tnt_crop",
-    "tnt_alignment", "tnt_scene", "tnt_tau"};
+    "tnt_alignment", "tnt_scene", "tnt_tau", "pcc_normals"};
 // The columns that name a file: relative to the manifest, as the models are.
-const std::vector<std::string> kFileColumns = {"dtu_obs_mask", "dtu_plane", "tnt_crop", "tnt_alignment"};
+const std::vector<std::string> kFileColumns = {"dtu_obs_mask", "dtu_plane", "tnt_crop", "tnt_alignment",
+                                               "pcc_normals"};
 
 struct Pair {
   std::size_t index = 0;  // in the list, 0-based
@@ -207,6 +208,7 @@ MeasureArguments arguments_for(const Pair& pair, const MeasureArguments& default
     if (column == "tnt_crop") a.tnt_crop = value;
     if (column == "tnt_alignment") a.tnt_alignment = value;
     if (column == "tnt_scene") a.tnt_scene = value;
+    if (column == "pcc_normals") a.pcc_normals = value;
     if (column == "tnt_tau") {
       double tau = 0;
       if (!parse_number(value, tau)) throw Error(fmt::format("tnt_tau: expected a number, found '{}'", value));
@@ -226,9 +228,10 @@ MeasureArguments arguments_for(const Pair& pair, const MeasureArguments& default
 
 // What decides a pair's result: its inputs' bytes and every option. Two runs, or two shards,
 // with the same key would write the same report.
-// `protocol_files`: what identifies a protocol's data set files (their sha256), empty without one.
+// `other_files`: what identifies the other files read (a protocol's data set, --pcc-normals; their
+// sha256), empty without any.
 std::string pair_key(const MeasureArguments& a, const std::string& reference_sha, const std::string& test_sha,
-                     const std::string& protocol_files) {
+                     const std::string& other_files) {
   std::string identity = fmt::format(
       "{}|{}|method={}|semantics={}|samples={}|seed={}|max_error={}|views={}|resolution={}|backend={}|"
       "camera_geometry={}|symmetric={}|ref_type={}|test_type={}|bins={}|hausdorff_bound={}",
@@ -239,9 +242,10 @@ std::string pair_key(const MeasureArguments& a, const std::string& reference_sha
   if (a.ibsm) identity += fmt::format("|ibsm={}x{}", a.ibsm_views, a.ibsm_resolution);
   if (a.pcc) identity += "|pcc";
   if (a.pcc_resolution) identity += fmt::format("|pcc_resolution={}", *a.pcc_resolution);
+  if (!a.pcc_normals.empty()) identity += "|pcc_normals=" + other_files;
   if (!a.protocol.empty()) {
     identity += fmt::format("|protocol={}|files={}|dtu={},{},{}|seed={}|runs={}|tnt_scene={}|tnt_tau={}", a.protocol,
-                            protocol_files, a.dtu_density, a.dtu_patch, a.dtu_max_dist, a.protocol_seed,
+                            other_files, a.dtu_density, a.dtu_patch, a.dtu_max_dist, a.protocol_seed,
                             a.protocol_runs, a.tnt_scene, a.tnt_tau ? fmt::format("{}", *a.tnt_tau) : "");
   }
   unsigned char digest[EVP_MAX_MD_SIZE];
@@ -535,15 +539,17 @@ int run_batch(const BatchArguments& args, std::string& stage, const Progress::Li
                                done ? fmt::format(", about {:.0f} s left", eta) : ""));
     nlohmann::json batch = {{"index", pair.index}, {"reference", pair.reference}, {"test", pair.test}};
     std::string key;
-    const std::vector<std::string> protocol_files = {a.dtu_obs_mask, a.dtu_plane, a.tnt_crop, a.tnt_alignment};
+    // The other files a measurement reads (a protocol's data set, A's normals for MPEG's figures).
+    const std::vector<std::string> other_files = {a.dtu_obs_mask, a.dtu_plane, a.tnt_crop, a.tnt_alignment,
+                                                  a.pcc_normals};
+    const bool others = !a.protocol.empty() || !a.pcc_normals.empty();
     try {
-      std::string files;  // a protocol's data set files, by their bytes
-      for (const std::string& file : protocol_files) files += (file.empty() ? std::string("-") : sha256(file)) + " ";
-      key = pair_key(a, sha256(pair.reference), sha256(pair.test), a.protocol.empty() ? "" : files);
+      std::string files;  // by their bytes
+      for (const std::string& file : other_files) files += (file.empty() ? std::string("-") : sha256(file)) + " ";
+      key = pair_key(a, sha256(pair.reference), sha256(pair.test), others ? files : "");
     } catch (const Error&) {
       // Unreadable input: keyed by the paths, so that its failure is recorded all the same.
-      key = pair_key(a, pair.reference, pair.test,
-                     a.protocol.empty() ? "" : fmt::format("{}", fmt::join(protocol_files, " ")));
+      key = pair_key(a, pair.reference, pair.test, others ? fmt::format("{}", fmt::join(other_files, " ")) : "");
     }
     // Named by its place in the list too: two pairs of identical files still get a row each.
     const std::string name = fmt::format("{:06}-{}", pair.index, key);

@@ -398,6 +398,7 @@ MeasurePlan plan_measurement(const MeasureArguments& args) {
                             *args.pcc_resolution));
   }
   plan.pcc_resolution = args.pcc_resolution;
+  plan.pcc_normals = args.pcc_normals;
   plan.pcc_only = args.pcc;
   if (args.pcc) {
     // --pcc's outputs are MPEG's figures in the report: no per-sample files, pictures or pages.
@@ -468,6 +469,16 @@ std::vector<Colour> reference_colours(const Model& reference, const SampleSet& s
 }
 
 void describe_pair(const Model& a, const Model& b, MeasurePlan& plan, MeasureReport& report) {
+  if (!plan.pcc_normals.empty() && !(a.type == ModelType::Points && b.type == ModelType::Points)) {
+    if (plan.pcc_only) {
+      throw Error(fmt::format("--pcc-normals: pc_error's --inputNorm, for two point clouds; {} is a mesh "
+                              "(measured by mmetric's rules, which read no normals file)",
+                              (a.type == ModelType::Mesh ? a : b).path()));
+    }
+    throw Error(fmt::format("--pcc-normals: gives A's normals for MPEG's point-cloud figures, which two point "
+                            "clouds get (or --pcc); found {} and {}",
+                            to_string(a.type), to_string(b.type)));
+  }
   // A point cloud's surfels are made (and its points checked) before the long work.
   test_surface(b);
   if (plan.symmetric) test_surface(a);
@@ -502,7 +513,8 @@ namespace {
 // MPEG's point-cloud figures: of two point clouds as pc_error computes them (its D2 takes A's
 // normals from its file; estimated ones are not pc_error's), or, where a model is a mesh, as
 // mmetric's compare --mode pcc does, each mesh sampled as mmetric samples it.
-MpegReport mpeg_report(const Model& a, const Model& b, std::optional<double> resolution) {
+MpegReport mpeg_report(const Model& a, const Model& b, std::optional<double> resolution,
+                       const std::string& normals_path) {
   const Stopwatch watch;
   MpegReport report;
   MpegRules rules;
@@ -514,9 +526,15 @@ MpegReport mpeg_report(const Model& a, const Model& b, std::optional<double> res
     }
     return mpeg_points(model.points, model.path(), normals && !model.normals_estimated, rules.mmetric);
   };
-  MpegPoints a_points, b_points;
-  tbb::parallel_invoke([&] { a_points = points_of(a, true); }, [&] { b_points = points_of(b, rules.mmetric); });
+  MpegPoints a_points, b_points, normals;
+  tbb::parallel_invoke([&] { a_points = points_of(a, normals_path.empty()); },
+                       [&] { b_points = points_of(b, rules.mmetric); },
+                       [&] {
+                         if (!normals_path.empty()) normals = mpeg_points(load_point_cloud(normals_path), normals_path, true);
+                       });
+  if (!normals_path.empty()) use_normals_of(a_points, normals, normals_path);
   report.figures = mpeg_point_cloud_figures(a_points, b_points, rules, a.path());
+  report.normals_from = normals_path;
   report.points_read[0] = a_points.points_read;
   report.points_read[1] = b_points.points_read;
   report.points[0] = a_points.size();
@@ -555,7 +573,7 @@ void measure_point_clouds(const Model& a, const Model& b, const MeasurePlan& pla
   }
   stage = fmt::format("computing MPEG's point-cloud figures of {} and {}", a.path(), b.path());
   progress.stage("MPEG point-cloud figures");
-  report.mpeg = mpeg_report(a, b, plan.pcc_resolution);
+  report.mpeg = mpeg_report(a, b, plan.pcc_resolution, plan.pcc_normals);
   progress.clear();
 }
 
@@ -733,7 +751,7 @@ void measure_models(const Model& a, const Model& b, MeasurePlan& plan, MeasureRe
   if ((a.type == ModelType::Points && b.type == ModelType::Points) || plan.pcc_only) {
     stage = fmt::format("computing MPEG's point-cloud figures of {} and {}", a.path(), b.path());
     progress.stage("MPEG point-cloud figures");
-    report.mpeg = mpeg_report(a, b, plan.pcc_resolution);
+    report.mpeg = mpeg_report(a, b, plan.pcc_resolution, plan.pcc_normals);
     // Two meshes measured both ways with closest semantics: D1 of the surfaces themselves.
     if (plan.pcc_only && report.symmetric()) {
       std::array<SurfaceFigures, 2> exact;

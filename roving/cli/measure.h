@@ -49,6 +49,7 @@ struct MeasureArguments {
   bool certify_thresholds = false;      // --certify-thresholds: their certified bounds too
   bool pcc = false;                     // MPEG's point-cloud figures alone (pc_error's)
   std::optional<double> pcc_resolution;  // their PSNR peak; unset: pc_error's default
+  std::string pcc_normals;               // A's normals from this file (pc_error's --inputNorm)
   std::string protocol;                  // "dtu", "tanks-and-temples": a benchmark's own evaluation (protocols.h)
   std::string dtu_obs_mask, dtu_plane;   // its data set's files
   double dtu_density = 0.2, dtu_patch = 60, dtu_max_dist = 20;
@@ -94,6 +95,7 @@ struct MeasurePlan {
   bool certify_thresholds = false;               // --certify-thresholds
   bool pcc_only = false;                         // --pcc: MPEG's point-cloud figures, nothing else
   std::optional<double> pcc_resolution;          // --pcc-resolution
+  std::string pcc_normals;                       // --pcc-normals
   std::optional<DtuPlan> dtu;                    // --protocol dtu
   std::optional<TanksAndTemplesPlan> tnt;        // --protocol tanks-and-temples
   bool protocol_only = false;                    // --protocol without --symmetric: its figures alone

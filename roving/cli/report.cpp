@@ -686,6 +686,10 @@ nlohmann::json mpeg_json(const MpegReport& m) {
       {"points_read", {m.points_read[0], m.points_read[1]}},
       {"points", {m.points[0], m.points[1]}},
       {"d2", f.d2 ? nlohmann::json(true) : nlohmann::json("none: A has no normals in its file")},
+      {"normals_from", !f.d2                   ? nlohmann::json()
+                       : !m.normals_from.empty() ? nlohmann::json(m.normals_from)
+                       : f.mmetric               ? nlohmann::json("A's samples (their faces' normals)")
+                                                 : nlohmann::json("A's file")},
       {"colour", f.colour},
       {"a_to_b", mpeg_direction_json(f.a_to_b, f)},
       {"b_to_a", mpeg_direction_json(f.b_to_a, f)},
@@ -716,6 +720,7 @@ std::string mpeg_lines(const MpegReport& m) {
       : f.mmetric  ? "diagonal of A's box"
                    : "largest nearest-neighbour spacing within A",
       m.points[0], m.points[1], m.points_read[0], m.points_read[1], f.mmetric ? "sampled or read" : "read");
+  if (!m.normals_from.empty()) out += fmt::format("  D2 along A's normals from {}\n", m.normals_from);
   out += fmt::format("  {:<28} {:>16} {:>16} {:>16}\n", "figure", "A -> B", "B -> A", "symmetric");
   const MpegDirection both = f.symmetric();
   const auto row = [&](const char* name, auto value) {

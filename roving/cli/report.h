@@ -95,6 +95,7 @@ struct MpegReport {
   std::size_t points_read[2] = {0, 0};  // A, B as read
   std::size_t points[2] = {0, 0};       // after pc_error's merging of points at one position
   double seconds = 0;
+  std::string normals_from;  // D2's normals: from this file (--pcc-normals); empty: A's own
   // Two meshes under --pcc: D1 of the surfaces themselves, A -> B and B -> A (surface_psnr.h).
   std::optional<std::array<SurfaceFigures, 2>> surface;
 };

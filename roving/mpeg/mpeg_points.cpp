@@ -176,4 +176,28 @@ MpegPoints mpeg_points(const PointCloud& cloud, const std::string& name, bool wi
   return points;
 }
 
+void use_normals_of(MpegPoints& a, MpegPoints& normals, const std::string& name) {
+  if (normals.normals.empty()) {
+    throw Error(fmt::format("{}: no normals (nx, ny, nz); expected A's points with their normals", name));
+  }
+  if (normals.size() != a.size()) {
+    throw Error(fmt::format("{}: {} points at distinct positions ({} read); expected A's {}", name, normals.size(),
+                            normals.points_read, a.size()));
+  }
+  const auto differs = std::mismatch(a.positions.begin(), a.positions.end(), normals.positions.begin());
+  if (differs.first != a.positions.end()) {
+    // Both sorted: the first difference is a point of the file's that A lacks, or else one of A's
+    // that the file lacks.
+    const std::array<float, 3>& theirs = *differs.second;
+    if (!std::binary_search(a.positions.begin(), a.positions.end(), theirs)) {
+      throw Error(fmt::format("{}: has a point at ({}, {}, {}) that A has not; expected A's points with their normals",
+                              name, theirs[0], theirs[1], theirs[2]));
+    }
+    const std::array<float, 3>& ours = *differs.first;
+    throw Error(fmt::format("{}: has no point at A's ({}, {}, {}); expected A's points with their normals", name,
+                            ours[0], ours[1], ours[2]));
+  }
+  a.normals = std::move(normals.normals);
+}
+
 }  // namespace roving

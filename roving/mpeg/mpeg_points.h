@@ -29,4 +29,10 @@ struct MpegPoints {
 MpegPoints mpeg_points(const PointCloud& cloud, const std::string& name, bool with_normals,
                        bool average_normals = false);
 
+// pc_error's --inputNorm: A's normals taken from another file's cloud (`normals`, made by
+// mpeg_points with its normals), which pc_error pairs with A's points by their sorted order. Throws
+// roving::Error naming `name` where it has no normals or its points, merged, are not A's (pc_error
+// checks neither).
+void use_normals_of(MpegPoints& a, MpegPoints& normals, const std::string& name);
+
 }  // namespace roving

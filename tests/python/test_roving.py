@@ -79,6 +79,8 @@ def assert_same(cli, py, where="report"):
     ((os.path.join(IBSM, "torus-a.obj"), os.path.join(IBSM, "torus-b.obj")),
      {"method": "cooperative", "samples": "area:2000", "ibsm": True, "ibsm_resolution": 128}),
     ((os.path.join(MPEG, "sphere10_a.ply"), os.path.join(MPEG, "sphere10_b.ply")), {"pcc": True, "pcc_resolution": 1023}),
+    ((os.path.join(MPEG, "sphere10_a_bare.ply"), os.path.join(MPEG, "sphere10_b.ply")),
+     {"pcc": True, "pcc_normals": os.path.join(MPEG, "sphere10_a_normals.ply")}),
     ((os.path.join(MPEG, "blob_float_a.ply"), os.path.join(MPEG, "blob_float_b.ply")), {"samples": "vertices"}),
     ((os.path.join(MPEG, "fandisk10_a.ply"), os.path.join(MPEG, "fandisk10_b.ply")), {"pcc": True}),
     ((os.path.join(DTU, "Points/stl/stl001_total.ply"), os.path.join(DTU, "scan1_mesh.ply")),

@@ -8,6 +8,9 @@
   with noise; B has no normals (pc_error takes D2's normals from A alone).
 - torus11: 11-bit voxels of a torus, A with normals, B moved by rounded Gaussian noise; no colour.
 - bunny_float: a float-coordinate cloud (not voxelised) with normals and colour, B jittered.
+- sphere10's A once more, without normals (sphere10_a_bare), and its normals in a file of their own
+  (sphere10_a_normals, pc_error's --inputNorm): A's points shuffled, with other normals (A's
+  tilted at random), so that which normal a merged point keeps is the file's own.
 """
 import os
 import numpy as np
@@ -53,6 +56,7 @@ a = np.round(512 + 40 * directions)
 normals = unit(a - 512).astype(np.float32)
 colours = colours_of(a, 9.0)
 write_ply("sphere10_a.ply", a, normals, colours)
+sphere = a, normals, colours
 b = np.round(a / 2) * 2
 noisy = np.clip(colours.astype(int) + rng.integers(-12, 13, size=colours.shape), 0, 255).astype(np.uint8)
 write_ply("sphere10_b.ply", b, None, noisy)
@@ -77,3 +81,10 @@ normals = unit(directions / np.array([0.08, 0.06, 0.05]) ** 2).astype(np.float32
 write_ply("blob_float_a.ply", a, normals, colours_of(a, 0.01))
 b = (a + rng.normal(scale=0.0008, size=a.shape)).astype(np.float32)
 write_ply("blob_float_b.ply", b, None, colours_of(b, 0.0105))
+
+# sphere10's normals in a file of their own (drawn last: the files above stay as they were)
+a, normals, colours = sphere
+write_ply("sphere10_a_bare.ply", a, None, colours)
+order = rng.permutation(len(a))
+tilted = unit(normals + 0.3 * rng.normal(size=normals.shape)).astype(np.float32)
+write_ply("sphere10_a_normals.ply", a[order], tilted[order])

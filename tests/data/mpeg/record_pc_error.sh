@@ -29,3 +29,6 @@ record blob_float_rgb blob_float_a.ply blob_float_b.ply --color=1 --mseSpace=0 -
 record sphere10_identical sphere10_a.ply sphere10_a.ply --color=1 --hausdorff=1 --resolution=1023 --nbThreads=1
 # B against A: B has no normals, so pc_error computes no D2.
 record sphere10_swapped sphere10_b.ply sphere10_a.ply --color=1 --hausdorff=1 --resolution=1023 --nbThreads=1
+# A's normals from a file of their own (--inputNorm): the file's points in another order, its normals
+# other than A's.
+record sphere10_normals_file sphere10_a_bare.ply sphere10_b.ply --inputNorm=sphere10_a_normals.ply --color=1 --hausdorff=1 --resolution=1023 --nbThreads=1
