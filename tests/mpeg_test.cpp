@@ -266,7 +266,9 @@ TEST(PcErrorFigures, BatchSummaryHasThem) {
   {
     std::ofstream manifest(folder / "pairs.csv");
     manifest << "reference,test,pcc_normals\n";
-    for (const char* pair : {"sphere10", "torus11"}) manifest << kData << pair << "_a.ply," << kData << pair << "_b.ply,\n";
+    for (const char* pair : {"sphere10", "torus11"}) {
+      manifest << kData << pair << "_a.ply," << kData << pair << "_b.ply,\n";
+    }
     // A's normals in a file of their own, named relative to the manifest.
     testing::cli::fs::copy_file(kData + "sphere10_a_normals.ply", folder / "normals.ply");
     manifest << kData << "sphere10_a_bare.ply," << kData << "sphere10_b.ply,normals.ply\n";

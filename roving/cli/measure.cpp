@@ -530,7 +530,8 @@ MpegReport mpeg_report(const Model& a, const Model& b, std::optional<double> res
   tbb::parallel_invoke([&] { a_points = points_of(a, normals_path.empty()); },
                        [&] { b_points = points_of(b, rules.mmetric); },
                        [&] {
-                         if (!normals_path.empty()) normals = mpeg_points(load_point_cloud(normals_path), normals_path, true);
+                         if (normals_path.empty()) return;
+                         normals = mpeg_points(load_point_cloud(normals_path), normals_path, true);
                        });
   if (!normals_path.empty()) use_normals_of(a_points, normals, normals_path);
   report.figures = mpeg_point_cloud_figures(a_points, b_points, rules, a.path());

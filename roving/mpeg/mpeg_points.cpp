@@ -91,11 +91,14 @@ MpegPoints mpeg_points(const PointCloud& cloud, const std::string& name, bool wi
       order[i] = {ordered(p.x()) << 32 | ordered(p.y()), ordered(p.z()) << 32 | i};
       if (normals) {
         const Vec3& normal = cloud.normals[i];
-        small_normals[i] = representable(normal) ? std::array<float, 3>{float(normal.x()), float(normal.y()), float(normal.z())}
-                                                 : std::array<float, 3>{NAN, NAN, NAN};
+        small_normals[i] = representable(normal)
+                               ? std::array<float, 3>{float(normal.x()), float(normal.y()), float(normal.z())}
+                               : std::array<float, 3>{NAN, NAN, NAN};
       }
       if (!small_colours.empty()) {
-        for (int c = 0; c < 3; ++c) small_colours[i][c] = std::uint8_t(std::lround(std::clamp(cloud.colours[i][c], 0.0f, 255.0f)));
+        for (int c = 0; c < 3; ++c) {
+          small_colours[i][c] = std::uint8_t(std::lround(std::clamp(cloud.colours[i][c], 0.0f, 255.0f)));
+        }
       }
     }
   });
