@@ -81,21 +81,6 @@ Neighbours nearest_tied(const KdTree& tree, std::size_t size, const Point& q, do
   return n;
 }
 
-// The points at exactly the nearest distance among pc_error's search from 5 (normals_carried).
-Neighbours nearest_equal(const KdTree& tree, std::size_t size, const Point& q) {
-  Neighbours n;
-  n.found = tree.knnSearch(q.data(), std::min<std::size_t>(2, size), n.index.data(), n.squared.data());
-  if (n.found == 2 && n.squared[1] == n.squared[0]) n = nearest(tree, size, q, 5);
-  std::size_t equal = 0;
-  for (std::size_t k = 0; k < n.found; ++k) {
-    if (n.squared[k] != n.squared[0]) continue;
-    n.index[equal] = n.index[k];
-    n.squared[equal++] = n.squared[k];
-  }
-  n.found = equal;
-  return n;
-}
-
 // How many of `tied` points at the nearest distance pc_error's search from `first` neighbours
 // (nearest()) sees: it grows by 5 while every point found is at that distance.
 std::size_t seen_of_tied(std::size_t first, std::size_t tied, std::size_t size) {
@@ -138,15 +123,6 @@ class NearestPoints {
       if (seen_of_tied(10, s.count, size()) == s.count) return from_shell(s);
     }
     return nearest_tied(tree(), size(), q, threshold);
-  }
-
-  // nearest_equal()'s points.
-  Neighbours equal(const Point& q, Scratch& scratch) const {
-    if (lattice_ && lattice_->nearest(q, false, scratch.probe, scratch.shell)) {
-      const LatticeNeighbours::Shell& s = scratch.shell;
-      if (s.count == 1 || seen_of_tied(5, s.count, size()) == s.count) return from_shell(s);
-    }
-    return nearest_equal(tree(), size(), q);
   }
 
   // The squared distance to the nearest point.
@@ -226,7 +202,8 @@ Matches find_matches(const MpegPoints& from, const NearestPoints& to, double thr
     for (std::size_t i = begin; i < end; ++i) {
       const Neighbours n = to.tied(from.positions[i], threshold, scratch);
       // The run holds every point exactly as near (a difference of 0 is within any threshold),
-      // and so the points pc_error's own search for equals finds (nearest_equal).
+      // as far as pc_error's search sees them: its search for the points exactly as near (from 2
+      // neighbours, then 5, growing by 5 while all are equal, up to 30) sees as many, the same.
       std::size_t equal = 1;
       while (equal < n.found && n.squared[equal] == n.squared[0]) ++equal;
       m.nearest[i] = n.squared[0];
@@ -238,9 +215,10 @@ Matches find_matches(const MpegPoints& from, const NearestPoints& to, double thr
   return m;
 }
 
-// A's normals carried onto B's points (see the header), from A's matches in B.
+// A's normals carried onto B's points (see the header), from A's matches in B; B's points that no
+// point of A matched take the normals of their own matches in A that are exactly as near.
 std::vector<Point> normals_carried(const MpegPoints& a, const MpegPoints& b, const Matches& a_in_b,
-                                   const NearestPoints& a_nearest) {
+                                   const Matches& b_in_a) {
   // Added in A's order: the single-precision sums then round as pc_error's do.
   std::vector<Point> normals(b.size(), Point{0, 0, 0});
   std::vector<int> count(b.size(), 0);
@@ -253,18 +231,16 @@ std::vector<Point> normals_carried(const MpegPoints& a, const MpegPoints& b, con
       }
     }
   }
-  tbb::enumerable_thread_specific<Scratch> scratches;  // one per thread, for this cloud
-  for_each_block(b.size(), [&](std::size_t, std::size_t begin, std::size_t end) {
-    Scratch& scratch = scratches.local();
-    for (std::size_t j = begin; j < end; ++j) {
+  for_each_block(b.size(), [&](std::size_t block, std::size_t begin, std::size_t end) {
+    const std::uint32_t* run = b_in_a.index[block].data();
+    for (std::size_t j = begin; j < end; run += b_in_a.tied[j++]) {
       if (count[j] > 0) {
         for (int c = 0; c < 3; ++c) normals[j][c] /= float(count[j]);
         continue;
       }
-      const Neighbours n = a_nearest.equal(b.positions[j], scratch);
-      for (std::size_t k = 0; k < n.found; ++k)
-        for (int c = 0; c < 3; ++c) normals[j][c] += a.normals[n.index[k]][c];
-      for (int c = 0; c < 3; ++c) normals[j][c] /= float(n.found);
+      for (std::size_t k = 0; k < b_in_a.equal[j]; ++k)
+        for (int c = 0; c < 3; ++c) normals[j][c] += a.normals[run[k]][c];
+      for (int c = 0; c < 3; ++c) normals[j][c] /= float(b_in_a.equal[j]);
     }
   });
   return normals;
@@ -442,15 +418,19 @@ MpegFigures mpeg_point_cloud_figures(const MpegPoints& a, const MpegPoints& b, c
   std::vector<Point> carried;
   const bool own = rules.mmetric && !b.normals.empty();
   const double threshold = rules.tie_threshold();
-  std::optional<Matches> a_in_b;
+  // Each direction's matches are searched once: B's in A serve B -> A and the points of B that
+  // no point of A matched, A's in B carry A's normals over and serve A -> B.
+  std::optional<Matches> a_in_b, b_in_a;
+  if (figures.d2 || figures.colour) b_in_a = find_matches(b, a_nearest, threshold);
   if (figures.d2 && !own) {
     a_in_b = find_matches(a, b_nearest, threshold);
-    carried = normals_carried(a, b, *a_in_b, a_nearest);
+    carried = normals_carried(a, b, *a_in_b, *b_in_a);
   }
   const std::vector<Point>* b_normals = !figures.d2 ? nullptr : own ? &b.normals : &carried;
   figures.a_to_b = direction(a, b, b_nearest, a_in_b ? &*a_in_b : nullptr, b_normals, figures.colour, threshold);
   a_in_b.reset();
-  figures.b_to_a = direction(b, a, a_nearest, nullptr, figures.d2 ? &a.normals : nullptr, figures.colour, threshold);
+  figures.b_to_a = direction(b, a, a_nearest, b_in_a ? &*b_in_a : nullptr, figures.d2 ? &a.normals : nullptr,
+                             figures.colour, threshold);
   return figures;
 }
 
