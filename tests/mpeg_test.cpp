@@ -137,6 +137,24 @@ TEST(PcErrorGolden, NormalsFromAFileOfTheirOwn) {
   EXPECT_EQ(measure_pcc(read_golden("sphere10_r1023"))["normals_from"], "A's file");
 }
 
+// A point-cloud A against a mesh B (mmetric's rules) takes a normals file too: A's own normals
+// given again change nothing, other normals change D2 alone.
+TEST(PcErrorFigures, NormalsFileForACloudAgainstAMesh) {
+  const std::string a = kData + "sphere10_a.ply", b = kData + "fandisk10_b.ply";
+  const auto figures = [&](const std::string& normals) {
+    const CliRun run = run_cli("measure " + a + " " + b + " --pcc --pcc-resolution 1023 --json -" +
+                               (normals.empty() ? "" : " --pcc-normals " + normals));
+    EXPECT_EQ(run.exit_code, 0) << run.err;
+    return nlohmann::json::parse(run.out)["mpeg_pcc"];
+  };
+  const nlohmann::json own = figures(""), again = figures(a), tilted = figures(kData + "sphere10_a_normals.ply");
+  EXPECT_EQ(own["normals_from"], "A's file");
+  EXPECT_EQ(again["normals_from"], a);
+  EXPECT_EQ(again["symmetric"], own["symmetric"]);
+  EXPECT_EQ(tilted["symmetric"]["d1_mse"], own["symmetric"]["d1_mse"]);
+  EXPECT_NE(tilted["b_to_a"]["d2_mse"], own["b_to_a"]["d2_mse"]);
+}
+
 TEST(PcErrorGolden, ElevenBitsWithoutColour) {
   expect_equal_to_pc_error("torus11_r2047", 3 * 8);
   expect_equal_to_pc_error("torus11_peak", 3 * 8);

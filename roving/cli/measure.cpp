@@ -531,11 +531,13 @@ MpegReport mpeg_report(const Model& a, const Model& b, std::optional<double> res
                        [&] { b_points = points_of(b, rules.mmetric); },
                        [&] {
                          if (normals_path.empty()) return;
-                         normals = mpeg_points(load_point_cloud(normals_path), normals_path, true);
+                         // Merged as A's are: under mmetric's rules, duplicates' normals averaged.
+                         normals = mpeg_points(load_point_cloud(normals_path), normals_path, true, rules.mmetric);
                        });
   if (!normals_path.empty()) use_normals_of(a_points, normals, normals_path);
   report.figures = mpeg_point_cloud_figures(a_points, b_points, rules, a.path());
   report.normals_from = normals_path;
+  report.a_sampled = a.type == ModelType::Mesh;
   report.points_read[0] = a_points.points_read;
   report.points_read[1] = b_points.points_read;
   report.points[0] = a_points.size();

@@ -688,7 +688,7 @@ nlohmann::json mpeg_json(const MpegReport& m) {
       {"d2", f.d2 ? nlohmann::json(true) : nlohmann::json("none: A has no normals in its file")},
       {"normals_from", !f.d2                   ? nlohmann::json()
                        : !m.normals_from.empty() ? nlohmann::json(m.normals_from)
-                       : f.mmetric               ? nlohmann::json("A's samples (their faces' normals)")
+                       : m.a_sampled             ? nlohmann::json("A's samples (their faces' normals)")
                                                  : nlohmann::json("A's file")},
       {"colour", f.colour},
       {"a_to_b", mpeg_direction_json(f.a_to_b, f)},

@@ -96,6 +96,7 @@ struct MpegReport {
   std::size_t points[2] = {0, 0};       // after pc_error's merging of points at one position
   double seconds = 0;
   std::string normals_from;  // D2's normals: from this file (--pcc-normals); empty: A's own
+  bool a_sampled = false;    // A is a mesh, sampled as mmetric samples it (its normals its faces')
   // Two meshes under --pcc: D1 of the surfaces themselves, A -> B and B -> A (surface_psnr.h).
   std::optional<std::array<SurfaceFigures, 2>> surface;
 };
