@@ -64,7 +64,7 @@ def measure(
     json: Optional[str] = ...,
     shard: Optional[str] = ...,
     shard_out: Optional[str] = ...,
-    chunk: Optional[int] = ...,  # taken, but Python reads REF whole: its per_sample arrays need every sample
+    chunk: Optional[int] = ...,  # REF read a block of faces at a time where per_sample=False
     samples_out: Optional[str] = ...,
     heatmap: Optional[str] = ...,
     heatmap_png: Optional[str] = ...,
@@ -72,6 +72,7 @@ def measure(
     heatmap_of: Optional[str] = ...,
     heatmap_range: Optional[str] = ...,
     progress: Optional[Progress] = ...,
+    per_sample: bool = ...,  # False: no per-sample arrays (and REF may stream, as --chunk says)
 ) -> Dict[str, Any]: ...
 
 def merge(

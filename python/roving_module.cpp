@@ -328,6 +328,17 @@ py::object parse_json(const std::string& text) {
 py::dict measure(const py::object& reference, const py::object& test, const py::kwargs& all_options) {
   py::object callback = py::none();
   const py::kwargs options = without_progress(all_options, callback);
+  // per_sample=False: no per-sample arrays, so that a large REF file may be read a block of faces at
+  // a time (--chunk) as the command reads it, in the command's memory.
+  bool keep_per_sample = true;
+  if (options.contains("per_sample")) {
+    const py::object value = options["per_sample"];
+    if (!py::isinstance<py::bool_>(value)) {
+      throw Error("per_sample: expected True or False, found " + std::string(py::repr(value)));
+    }
+    keep_per_sample = value.cast<bool>();
+    PyDict_DelItemString(options.ptr(), "per_sample");
+  }
   const std::unique_ptr<CommandLine> line = make_command_line();
   const bool reference_is_path = is_path(reference), test_is_path = is_path(test);
   const std::string reference_path =
@@ -346,7 +357,7 @@ py::dict measure(const py::object& reference, const py::object& test, const py::
   }
   if (!error.empty()) throw Error(error);
   MeasureArguments& args = line->args;
-  args.correspondences = true;  // per_sample's test_point and barycentric
+  args.correspondences = keep_per_sample;  // per_sample's test_point and barycentric
   args.command_line = "roving.measure(" + reference_path + ", " + test_path;
   for (std::size_t i = 3; i < arguments.size(); ++i) args.command_line += " " + arguments[i];
   args.command_line += ")";
@@ -373,6 +384,7 @@ py::dict measure(const py::object& reference, const py::object& test, const py::
   if (!printed.empty()) py::print(printed);
   py::dict result = parse_json(json);
   result["breached_gates"] = breached;
+  if (!keep_per_sample) return result;
   if (run.report.symmetric()) {
     py::list directions = result["directions"];
     for (std::size_t i = 0; i < run.report.directions.size(); ++i)
@@ -468,6 +480,10 @@ point on TEST the distance was measured to; NaN for a no-hit, or a closest point
 method does not name), barycentric (K x 3: test_point's weights of hit_face's corners; NaN where
 there is no face), and where they apply hit_face (TEST's face at the hit), resolved_by (codes in
 roving.resolved_by), reference_colour, test_colour (K x 3, 8-bit code values) and delta_e (CIEDE2000).
+
+per_sample: False leaves the per-sample arrays out; then, as in the command, a binary PLY REF with
+  more faces than `chunk` is read and measured a block of faces at a time (report["samples"]
+  ["streamed"]), in the command's memory rather than about 85 bytes a face.
 
 progress: a function progress(stage, what, done, total) called as the measurement goes (each stage,
   then at most ten times a second: e.g. 'measuring', 'cameras', 40960, 69451); what it raises stops

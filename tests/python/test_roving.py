@@ -407,6 +407,20 @@ def test_batch_stops_at_once_and_resumes(tmp_path):
     assert not [p for p in (tmp_path / "slow").iterdir() if p.name != "summary.csv"]
 
 
+def test_without_per_sample_arrays_a_large_reference_streams():
+    # Igea (268,686 faces of binary PLY) read 50,000 faces at a time: the figures of the whole.
+    igea = os.path.join(DATA, "igea.ply")
+    options = {"samples": "faces", "chunk": 50000}
+    whole = roving.measure(igea, FANDISK, **options)
+    streamed = roving.measure(igea, FANDISK, per_sample=False, **options)
+    assert "per_sample" in whole and "streamed" not in whole["samples"]
+    assert "per_sample" not in streamed and streamed["samples"]["streamed"] == {"chunk_faces": 50000, "chunks": 6}
+    assert streamed["statistics"] == whole["statistics"]
+    assert_same(cli_json(igea, FANDISK, options), streamed)
+    with pytest.raises(roving.Error, match="per_sample: expected True or False"):
+        roving.measure(igea, FANDISK, per_sample="no")
+
+
 def test_type_stubs_name_exactly_the_commands_options():
     import ast
     stub = ast.parse(open(os.path.join(SOURCE, "python", "roving.pyi")).read())
@@ -417,7 +431,7 @@ def test_type_stubs_name_exactly_the_commands_options():
         import re
         return {o[2:].replace("-", "_") for o in re.findall(r"^\s+(--[a-z][a-z-]*)", text, re.M)} - {"help"}
 
-    assert keywords["measure"] == options("measure") | {"progress"}
+    assert keywords["measure"] == options("measure") | {"progress", "per_sample"}
     assert keywords["batch"] == options("batch") | {"progress"}
     assert keywords["merge"] == options("merge")
 
