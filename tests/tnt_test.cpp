@@ -8,14 +8,21 @@
 // count off by one point moves precision by 5e-5, far above any rounding.
 #include <gtest/gtest.h>
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <tuple>
 
 #include "cli_support.h"
+#include "roving/formats/distance_cloud_writer.h"
+#include "roving/formats/file_hash.h"
 #include "roving/reconstruction/crop_volume.h"
 #include "roving/reconstruction/tanks_and_temples_protocol.h"
 #include "roving/reconstruction/voxel_down_sample.h"
@@ -200,6 +207,72 @@ TEST(TanksAndTemplesProtocol, TheCurvesArePictured) {
   std::filesystem::remove(png);
 }
 
+// A viewing file of ours (distance_cloud_writer.h): its records (x y z float64, r g b bytes).
+std::vector<std::string> ply_records(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  const std::string bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  const std::size_t body = bytes.find("end_header\n") + 11;
+  std::vector<std::string> records;
+  for (std::size_t at = body; at + 27 <= bytes.size(); at += 27) records.push_back(bytes.substr(at, 27));
+  EXPECT_EQ((bytes.size() - body) % 27, 0u) << path;
+  return records;
+}
+
+// Records sorted as the golden file sorts them (by x, y, z, then colour): doubles compared as numbers.
+void sort_records(std::vector<std::string>& records) {
+  const auto key = [](const std::string& r) {
+    double xyz[3];
+    std::memcpy(xyz, r.data(), sizeof xyz);
+    return std::make_tuple(xyz[0], xyz[1], xyz[2], std::uint8_t(r[24]), std::uint8_t(r[25]), std::uint8_t(r[26]));
+  };
+  std::sort(records.begin(), records.end(), [&](const std::string& a, const std::string& b) { return key(a) < key(b); });
+}
+
+// The toolbox's viewing files (EvaluateHisto's write_color_distances): the same points with the same
+// colours, compared by the digest of the sorted records and, to show a difference, each colour's count.
+TEST(TanksAndTemplesGolden, ViewingFilesAreTheToolboxs) {
+  const std::string prefix = ::testing::TempDir() + "tnt_view";
+  const nlohmann::json t =
+      protocol("Bench_points.ply", "--tnt-tau 0.01 --tnt-plys " + prefix)["tanks_and_temples_protocol"];
+  EXPECT_EQ(t["plys"], nlohmann::json({prefix + ".precision.ply", prefix + ".recall.ply"}));
+  std::ifstream golden(kData + "golden/points_plys.txt");
+  ASSERT_TRUE(golden);
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(golden, line);)
+    if (!line.empty() && line[0] != '#') lines.push_back(line);
+  ASSERT_EQ(lines.size(), 4u);
+  for (std::size_t k = 0; k < 2; ++k) {
+    const std::string name = k == 0 ? "precision" : "recall";
+    std::vector<std::string> records = ply_records(prefix + "." + name + ".ply");
+    sort_records(records);
+    std::map<std::array<int, 3>, int> counts;
+    std::string all;
+    for (const std::string& r : records) {
+      ++counts[{std::uint8_t(r[24]), std::uint8_t(r[25]), std::uint8_t(r[26])}];
+      all += r;
+    }
+    std::string histogram;
+    for (const auto& [c, n] : counts) histogram += fmt::format("{}{},{},{}:{}", histogram.empty() ? "" : " ", c[0], c[1], c[2], n);
+    const std::string sorted_path = prefix + "." + name + ".sorted";
+    std::ofstream(sorted_path, std::ios::binary) << all;
+    EXPECT_EQ(fmt::format("{} {} {}", name, records.size(), file_sha256(sorted_path)), lines[2 * k]);
+    EXPECT_EQ(histogram, lines[2 * k + 1]) << name;
+    EXPECT_GT(counts.size(), 50u) << name << ": the distances span the colour map";
+    std::filesystem::remove(sorted_path);
+    std::filesystem::remove(prefix + "." + name + ".ply");
+  }
+}
+
+// hot_r's ends and its steps: matplotlib's table, Open3D's rounding to bytes.
+TEST(TanksAndTemplesProtocol, DistanceColoursAreHotR) {
+  EXPECT_EQ(hot_r_colour(0.0), (std::array<std::uint8_t, 3>{255, 255, 255}));
+  EXPECT_EQ(hot_r_colour(1.0), (std::array<std::uint8_t, 3>{11, 0, 0}));  // 0.0416 * 255 = 10.6, rounded
+  for (double t = 0; t < 1; t += 1.0 / 512) {  // darker, never lighter, as t grows
+    const std::array<std::uint8_t, 3> a = hot_r_colour(t), b = hot_r_colour(t + 1.0 / 512);
+    for (int c = 0; c < 3; ++c) EXPECT_LE(b[c], a[c]) << t;
+  }
+}
+
 TEST(TanksAndTemplesProtocol, BadInputGetsOneLine) {
   const std::string pair = kTruth + " " + kData + "Bench_points.ply";
   const std::string run = "measure " + pair + " --protocol tanks-and-temples ";
@@ -213,6 +286,9 @@ TEST(TanksAndTemplesProtocol, BadInputGetsOneLine) {
   expect_error(run + kScene + " --tnt-tau 1e-300", {"Bench_points.ply", "too small"});
   expect_error(run + "--tnt-crop missing.json --tnt-tau 0.01", {"--tnt-crop", "missing.json"});
   expect_error("measure " + pair + " --tnt-tau 0.01", {"--tnt-tau", "only with --protocol tanks-and-temples"});
+  expect_error("measure " + pair + " --tnt-plys view", {"--tnt-plys", "only with --protocol tanks-and-temples"});
+  expect_error(run + kScene + " --tnt-tau 0.01 --tnt-plys /nonexistent-folder/view",
+               {"/nonexistent-folder/view.precision.ply", "cannot open"});
   expect_error("measure " + pair + " --protocol dtu --tnt-crop " + kData + "Bench.json", {"--tnt-crop"});
   expect_error(run + kScene + " --tnt-tau 0.01 --html out.html", {"--html", "--symmetric"});
   // The scene's files: a crop volume and an alignment that are not what the toolbox reads.

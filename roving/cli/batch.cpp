@@ -490,6 +490,9 @@ int run_batch(const BatchArguments& args, std::string& stage, const Progress::Li
     throw UsageError(fmt::format("batch: expected a manifest (.csv or .jsonl) or two folders, found {} argument(s)",
                             args.inputs.size()));
   }
+  if (!args.defaults.tnt_plys.empty()) {
+    throw UsageError("--tnt-plys: one pair's files would overwrite the last's; not in batch (measure a pair with it)");
+  }
   if (!args.defaults.tnt_curves.empty()) {
     throw UsageError("--tnt-curves: one picture per pair would overwrite the last; not in batch (the curves are "
                      "in each pair's report, tanks_and_temples_protocol)");

@@ -173,6 +173,9 @@ void add_measurement_options(CLI::App& app, MeasureArguments& args, bool& trust_
                  "with --protocol tanks-and-temples: tau itself, in the models' units (metres), for another scene");
   app.add_option("--tnt-curves", args.tnt_curves,
                  "with --protocol tanks-and-temples: write the precision and recall curves as PNG here");
+  app.add_option("--tnt-plys", args.tnt_plys,
+                 "with --protocol tanks-and-temples: write the toolbox's viewing files PREFIX.precision.ply and "
+                 "PREFIX.recall.ply (the thinned clouds coloured by distance, hot_r up to 3 tau)");
   app.add_option("--protocol-seed", args.protocol_seed,
                  "with --protocol dtu: the first seed of the shuffle before thinning (eval.py's is unseeded), or "
                  "none for the points' own order")

@@ -24,6 +24,7 @@
 #include "report.h"
 #include "roving/core/error.h"
 #include "roving/formats/atomic_file.h"
+#include "roving/formats/distance_cloud_writer.h"
 #include "roving/formats/file_hash.h"
 #include "roving/formats/heatmap.h"
 #include "roving/formats/sample_output.h"
@@ -193,6 +194,7 @@ TanksAndTemplesPlan plan_tanks_and_temples(const MeasureArguments& args) {
   }
   tnt.options.voxel_size = tnt.options.tau / 2.0;  // run.py's dTau / 2.0
   tnt.curves_png = args.tnt_curves;
+  tnt.plys = args.tnt_plys;
   return tnt;
 }
 
@@ -205,7 +207,7 @@ void plan_protocol(const MeasureArguments& args, MeasurePlan& plan) {
   for (const auto& [option, given] :
        {std::pair{"--tnt-crop", !args.tnt_crop.empty()}, {"--tnt-alignment", !args.tnt_alignment.empty()},
         {"--tnt-scene", !args.tnt_scene.empty()}, {"--tnt-tau", args.tnt_tau.has_value()},
-        {"--tnt-curves", !args.tnt_curves.empty()}}) {
+        {"--tnt-curves", !args.tnt_curves.empty()}, {"--tnt-plys", !args.tnt_plys.empty()}}) {
     if (given && !tnt_given) throw Error(fmt::format("{}: only with --protocol tanks-and-temples", option));
   }
   if (args.protocol.empty()) return;
@@ -1045,6 +1047,18 @@ void write_measure_outputs(const MeasureArguments& args, const MeasureRun& run, 
     outputs.push_back(std::make_unique<AtomicFile>(t.curves_png));
     write_precision_recall_png(outputs.back()->stream(), chart);
     outputs.back()->close_stream();
+  }
+  if (report.tnt && report.tnt->clouds) {
+    stage = "writing the viewing files";
+    const TanksAndTemplesReport& t = *report.tnt;
+    const double max_distance = 3 * t.figures.options.tau;  // the toolbox's 3 * threshold
+    for (const auto& [suffix, points, distances] :
+         {std::tuple{".precision.ply", &t.clouds->reconstruction, &t.clouds->precision_distances},
+          std::tuple{".recall.ply", &t.clouds->ground_truth, &t.clouds->recall_distances}}) {
+      outputs.push_back(std::make_unique<AtomicFile>(t.plys + suffix));
+      write_distance_cloud_ply(outputs.back()->stream(), *points, *distances, max_distance);
+      outputs.back()->close_stream();
+    }
   }
   if (!args.shard_out.empty()) {
     outputs.push_back(std::make_unique<AtomicFile>(args.shard_out));

@@ -253,12 +253,15 @@ TanksAndTemplesReport tanks_and_temples_report(const Model& ground_truth, const 
   report.crop = plan.crop;
   report.alignment = plan.alignment;
   report.curves_png = plan.curves_png;
+  report.plys = plan.plys;
+  if (!plan.plys.empty()) report.clouds.emplace();
   report.alignment_matrix = files.alignment;
   std::vector<Vec3> truth_storage, reconstruction_storage;
   const std::vector<Vec3>& truth = protocol_points(ground_truth, "REF (the ground truth)", truth_storage);
   const std::vector<Vec3>& points = protocol_points(reconstruction, "TEST (the reconstruction)", reconstruction_storage);
   report.figures = tanks_and_temples_figures(points, truth, *files.crop, plan.options, progress,
-                                             {reconstruction.path(), ground_truth.path()});
+                                             {reconstruction.path(), ground_truth.path()},
+                                             report.clouds ? &*report.clouds : nullptr);
   report.seconds = watch.seconds();
   return report;
 }

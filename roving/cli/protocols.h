@@ -60,6 +60,7 @@ struct TanksAndTemplesPlan {
   std::string scene;            // where tau is the scene's (--tnt-scene), its name
   std::string crop, alignment;  // <scene>.json; the 4 x 4 alignment (none: the identity)
   std::string curves_png;       // --tnt-curves: the precision and recall curves as PNG
+  std::string plys;             // --tnt-plys: the viewing files' prefix (PREFIX.precision.ply, .recall.ply)
 };
 
 // The scenes' tau, as the toolbox's config.py sets them (metres); nullopt for another name.
@@ -74,7 +75,8 @@ struct TanksAndTemplesFiles {
 
 struct TanksAndTemplesReport {
   TanksAndTemplesFigures figures;
-  std::string scene, crop, alignment, curves_png;
+  std::string scene, crop, alignment, curves_png, plys;
+  std::optional<TanksAndTemplesClouds> clouds;  // with --tnt-plys: what they show
   Eigen::Matrix4d alignment_matrix = Eigen::Matrix4d::Identity();
   double seconds = 0;
   // With --symmetric, the exact figures within the crop volume: precision's side over TEST's

@@ -977,6 +977,8 @@ nlohmann::json tnt_json(const TanksAndTemplesReport& t) {
           {"cumulative_precision", f.cumulative_precision},
           {"cumulative_recall", f.cumulative_recall},
           {"curves_png", t.curves_png.empty() ? nlohmann::json(nullptr) : nlohmann::json(t.curves_png)},
+          {"plys", t.plys.empty() ? nlohmann::json(nullptr)
+                                  : nlohmann::json({t.plys + ".precision.ply", t.plys + ".recall.ply"})},
           {"exact_within_crop", exact},
           {"seconds", t.seconds}};
 }
@@ -997,6 +999,9 @@ std::string tnt_lines(const TanksAndTemplesReport& t) {
                      fmt::format("{} of {}", f.recall_counted, f.ground_truth_thinned));
   out += fmt::format("  {:<14} {:>14.8g}\n", "F-score", f.fscore);
   if (!t.curves_png.empty()) out += fmt::format("  curves: {}\n", t.curves_png);
+  if (!t.plys.empty()) {
+    out += fmt::format("  coloured by distance (hot_r up to 3 tau): {0}.precision.ply, {0}.recall.ply\n", t.plys);
+  }
   if (t.exact) {
     const ReconstructionFigures& e = *t.exact;
     out += fmt::format("  exact, within the crop (TEST's samples: {} of {}; REF's: {} of {}), at tau [95%]:\n",

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <memory>
 
 #include "roving/core/error.h"
@@ -68,7 +69,8 @@ std::size_t count_below(const std::vector<double>& distances, double tau) {
 TanksAndTemplesFigures tanks_and_temples_figures(const std::vector<Vec3>& reconstruction,
                                                  const std::vector<Vec3>& ground_truth, const CropVolume& crop,
                                                  const TanksAndTemplesOptions& options, const ProgressFn& progress,
-                                                 const std::array<std::string, 2>& names) {
+                                                 const std::array<std::string, 2>& names,
+                                                 TanksAndTemplesClouds* clouds) {
   for (const auto& [name, value] : {std::pair{"tau", options.tau}, {"voxel size", options.voxel_size}}) {
     if (!(std::isfinite(value) && value > 0)) {
       throw Error(fmt::format("Tanks and Temples protocol: {} {}; expected a length > 0", name, value));
@@ -98,6 +100,10 @@ TanksAndTemplesFigures tanks_and_temples_figures(const std::vector<Vec3>& recons
   f.ground_truth_thinned = target.size();
   step(1);
   if (source.empty() || target.empty()) {
+    if (clouds) {  // no point to be near: every distance beyond any
+      const double none = std::numeric_limits<double>::infinity();
+      *clouds = {source, target, std::vector<double>(source.size(), none), std::vector<double>(target.size(), none)};
+    }
     step(kSteps);
     return f;
   }
@@ -114,6 +120,7 @@ TanksAndTemplesFigures tanks_and_temples_figures(const std::vector<Vec3>& recons
   f.recall = static_cast<double>(f.recall_counted) / static_cast<double>(target.size());
   // The script's expression, in its order (it divides by zero where P + R is 0; the limit is 0).
   f.fscore = f.precision + f.recall > 0 ? 2 * f.recall * f.precision / (f.recall + f.precision) : 0;
+  if (clouds) *clouds = {source, target, precision_distances, recall_distances};
   f.edges = histogram_edges(options.tau * options.plot_stretch, options.tau / 100);
   f.cumulative_precision = cumulative_shares(std::move(precision_distances), f.edges);
   f.cumulative_recall = cumulative_shares(std::move(recall_distances), f.edges);

@@ -39,6 +39,13 @@ struct TanksAndTemplesFigures {
   std::vector<double> edges, cumulative_precision, cumulative_recall;
 };
 
+// What the toolbox writes for viewing (evaluation.py's <scene>.precision.ply and .recall.ply): each
+// cloud cropped and thinned, and each point's distance to the other (precision's side, then recall's).
+struct TanksAndTemplesClouds {
+  std::vector<Vec3> reconstruction, ground_truth;
+  std::vector<double> precision_distances, recall_distances;
+};
+
 // Open3D's PointCloud::transform: each point (x, y, z, 1) times the 4 x 4 matrix, divided by the
 // result's w, the products summed in Eigen's order.
 void transform_points(const Eigen::Matrix4d& transformation, std::vector<Vec3>& points);
@@ -51,12 +58,14 @@ std::vector<double> cumulative_shares(std::vector<double> distances, const std::
 
 // The protocol on `reconstruction` (already aligned: transform_points) against `ground_truth`,
 // both as points, named in messages by `names` (the reconstruction's, the ground truth's).
-// `progress` hears its steps ("protocol steps"). Throws roving::Error for a tau or a voxel size
+// `progress` hears its steps ("protocol steps"); `clouds`, where given, receives the thinned clouds
+// and their distances. Throws roving::Error for a tau or a voxel size
 // that is not finite and > 0, one too small for a cloud's extent, or a plot_stretch not >= 1.
 TanksAndTemplesFigures tanks_and_temples_figures(const std::vector<Vec3>& reconstruction,
                                                  const std::vector<Vec3>& ground_truth, const CropVolume& crop,
                                                  const TanksAndTemplesOptions& options, const ProgressFn& progress = {},
                                                  const std::array<std::string, 2>& names = {"reconstruction",
-                                                                                            "ground truth"});
+                                                                                            "ground truth"},
+                                                 TanksAndTemplesClouds* clouds = nullptr);
 
 }  // namespace roving

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# Records the Tanks and Temples toolbox's own figures on this folder's scene (tests/tnt_test.cpp
-# holds them):
+# Records the Tanks and Temples toolbox's own figures on this folder's scene, and digests of the
+# coloured viewing files it writes (tests/tnt_test.cpp holds them):
 #   bash tests/data/tnt/record_tnt.sh /path/to/TanksAndTemples
 # (recorded at its commit 3c2c212, 2022-10-29).
 # The toolbox (github.com/isl-org/TanksAndTemples, python_toolbox/evaluation) run by Debian 12's
@@ -57,6 +57,36 @@ for values in (edges_s, cum_s, cum_t):
     print(" ".join(repr(float(v)) for v in values))
 PY
 }
+# The viewing files EvaluateHisto wrote for the last reconstruction recorded (write_color_distances):
+# per file its point count, the sha256 of its points sorted, each as x y z (float64, little-endian)
+# and red green blue (bytes), and how many points have each colour.
+record_plys() {  # golden file
+  /usr/bin/python3 - "$work" "$commit" >"$out/$1" <<'PY'
+import hashlib, os, sys
+import numpy as np
+work, commit = sys.argv[1:]
+print(f"# TanksAndTemples {commit} EvaluateHisto's Bench.precision.ply and Bench.recall.ply (write_color_distances,")
+print("# hot_r of min(d, 3 tau) / (3 tau)); per file: points, sha256 of the records (x y z float64, r g b uint8)")
+print("# sorted by x, y, z, r, g, b; then each colour's count")
+types = {"double": "<f8", "float": "<f4", "uchar": "u1"}
+for name in ("precision", "recall"):
+    data = open(os.path.join(work, f"Bench.{name}.ply"), "rb").read()
+    end = data.index(b"end_header\n") + len(b"end_header\n")
+    header = data[:end].decode().splitlines()
+    assert "format binary_little_endian 1.0" in header
+    fields = [(line.split()[2], types[line.split()[1]]) for line in header if line.startswith("property")]
+    rows = np.frombuffer(data[end:], dtype=np.dtype(fields))
+    records = sorted(zip(rows["x"].tolist(), rows["y"].tolist(), rows["z"].tolist(),
+                         rows["red"].tolist(), rows["green"].tolist(), rows["blue"].tolist()))
+    digest = hashlib.sha256()
+    for x, y, z, r, g, b in records:
+        digest.update(np.array([x, y, z], "<f8").tobytes() + bytes([r, g, b]))
+    print(name, len(records), digest.hexdigest())
+    colours, counts = np.unique(np.stack([rows["red"], rows["green"], rows["blue"]], 1), axis=0, return_counts=True)
+    print(" ".join(f"{r},{g},{b}:{n}" for (r, g, b), n in zip(colours.tolist(), counts.tolist())))
+PY
+}
 record mesh.txt Bench_mesh.ply
 record points.txt Bench_points.ply
+record_plys points_plys.txt
 cp "$work/PR_Bench_@d_th_0_0100.png" "$out/toolbox_curves.png"
