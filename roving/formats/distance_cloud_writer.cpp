@@ -60,7 +60,7 @@ std::array<std::uint8_t, 3> hot_r_colour(double t) {
   const std::size_t entry = std::size_t(std::clamp(scaled, 0.0, double(kEntries - 1)));
   std::array<std::uint8_t, 3> colour;
   for (int c = 0; c < 3; ++c) {
-    // Open3D's PLY writer (utility::ColorToUint8): the value clamped to [0, 1], times 255, rounded.
+    // Open3D's PLY writer: the value clamped to [0, 1], times 255, rounded (the toolbox's files agree).
     colour[std::size_t(c)] = std::uint8_t(std::round(std::clamp(tables[std::size_t(c)][entry], 0.0, 1.0) * 255.0));
   }
   return colour;
