@@ -1,4 +1,4 @@
-# Sourced by build.sh and package.sh: `cmake ... "${cache_options[@]}"` compiles through ccache
+# Sourced by build.sh, package.sh and test-sanitizers.sh: `cmake ... "${cache_options[@]}"` compiles through ccache
 # where it is installed, keyed on paths relative to the checkout (CCACHE_BASEDIR), so that the
 # Debian package's build (build-deb/: the same sources and flags) takes build/'s objects instead of
 # compiling them a second time.
