@@ -354,4 +354,103 @@ TEST(CliStreamed, BadStreamedReferenceGetsOneLine) {
   EXPECT_FALSE(fs::exists(report));
 }
 
+
+// Igea as a binary STL: each facet's corners the PLY's vertices, which read_stl merges back by
+// their bits into its 134,345 vertices.
+std::string igea_as_stl(const Igea& igea) {
+  constexpr std::uint32_t kFacets = 268686;
+  std::string stl(80, '\0');
+  stl.append(reinterpret_cast<const char*>(&kFacets), sizeof kFacets);
+  for (std::size_t f = 0; f < kFacets; ++f) {
+    char record[50] = {};
+    for (int c = 0; c < 3; ++c) {
+      std::int32_t v = 0;
+      std::memcpy(&v, &igea.bytes[igea.faces + 13 * f + 1 + 4 * c], sizeof v);
+      std::memcpy(record + 12 + 12 * c, &igea.bytes[igea.body + 12 * static_cast<std::size_t>(v)], 12);
+    }
+    stl.append(record, sizeof record);
+  }
+  return stl;
+}
+
+void set_corner(std::string& stl, std::size_t facet, int corner, float x, float y, float z) {
+  const float xyz[3] = {x, y, z};
+  std::memcpy(&stl[84 + 50 * facet + 12 + 12 * corner], xyz, sizeof xyz);
+}
+
+// A binary STL REF streams too, with the report its whole mesh gives: read_stl merges corners by
+// their bits into vertices, so the streamed pass counts the distinct corners (0 and -0 apart),
+// drops facets repeating a corner and leaves the corners only they have unreferenced.
+TEST(CliStreamed, BinaryStlGivesTheWholeReport) {
+  const Folder folder;
+  const Igea igea;
+  std::string stl = igea_as_stl(igea);
+  std::memcpy(&stl[84 + 50 * 100 + 24], &stl[84 + 50 * 100 + 12], 12);  // corner 1 on corner 0: dropped
+  set_corner(stl, 5000, 0, 100, 100, 100);  // and a facet of corners no other facet has: two
+  set_corner(stl, 5000, 1, 100, 100, 100);  // unreferenced vertices, far outside the box
+  set_corner(stl, 5000, 2, -100, -100, -100);
+  set_corner(stl, 200000, 0, 0.0f, 0.01f, 0.0f);  // 0 and -0 are different corners: a kept facet
+  set_corner(stl, 200000, 1, -0.0f, 0.01f, 0.0f);  // of zero area
+  set_corner(stl, 200000, 2, 0.001f, 0.01f, 0.0f);
+  const std::string ref = folder.file("igea.stl", stl);
+  for (const char* options : {"", "--method cgal --semantics closest --hausdorff-bound none",
+                              "--semantics closest --hausdorff-bound 1e-3"}) {  // the last: REF as small meshes
+    SCOPED_TRACE(options);
+    const std::string pair = fmt::format("measure {} {} {} --quiet --json -", ref, igea.path, options);
+    const CliRun whole = run_cli(pair + " --chunk 0");
+    ASSERT_EQ(whole.exit_code, 0) << whole.err;
+    const CliRun run = run_cli(pair + " --chunk 4095");
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    nlohmann::json one = nlohmann::json::parse(whole.out);
+    nlohmann::json streamed = nlohmann::json::parse(run.out);
+    EXPECT_EQ(one["reference"]["dropped_repeated_vertex_faces"], 2);
+    EXPECT_EQ(one["reference"]["unreferenced_vertices"], 2);
+    EXPECT_GE(one["samples"]["skipped_degenerate_faces"], 1);
+    EXPECT_LT(one["reference"]["diagonal"].get<double>(), 1);
+    ASSERT_TRUE(streamed["samples"].contains("streamed"));
+    EXPECT_EQ(streamed["samples"]["streamed"]["chunks"], (268686 + 4094) / 4095);
+    streamed["samples"].erase("streamed");
+    if (one.contains("hausdorff_certified")) {  // bounded block by block: the intervals meet
+      EXPECT_LE(streamed["hausdorff_certified"]["lower"], one["hausdorff_certified"]["upper"]);
+      EXPECT_LE(one["hausdorff_certified"]["lower"], streamed["hausdorff_certified"]["upper"]);
+      one.erase("hausdorff_certified");
+      streamed.erase("hausdorff_certified");
+    }
+    expect_same_report(one, streamed);
+  }
+  // A triangle soup: no facet shares a corner, so there are six times the vertices the corner set
+  // expects of a closed mesh, and it grows.
+  std::string soup(80, '\0');
+  constexpr std::uint32_t kSoup = 3000;
+  soup.append(reinterpret_cast<const char*>(&kSoup), sizeof kSoup);
+  for (std::uint32_t f = 0; f < kSoup; ++f) {
+    soup.append(50, '\0');
+    const float x = static_cast<float>(f);
+    set_corner(soup, f, 0, x, 0, 0);
+    set_corner(soup, f, 1, x, 1, 0);
+    set_corner(soup, f, 2, x + 0.5f, 0, 1);
+  }
+  const std::string soup_path = folder.file("soup.stl", soup);
+  const std::string soup_pair = fmt::format("measure {} {} --quiet --json -", soup_path, ref);
+  const CliRun whole_soup = run_cli(soup_pair + " --chunk 0"), streamed_soup = run_cli(soup_pair + " --chunk 1000");
+  ASSERT_EQ(whole_soup.exit_code, 0) << whole_soup.err;
+  ASSERT_EQ(streamed_soup.exit_code, 0) << streamed_soup.err;
+  nlohmann::json soup_streamed = nlohmann::json::parse(streamed_soup.out);
+  EXPECT_EQ(soup_streamed["reference"]["vertices"], 3 * kSoup);
+  EXPECT_EQ(soup_streamed["samples"]["streamed"]["chunks"], 3);
+  soup_streamed["samples"].erase("streamed");
+  expect_same_report(nlohmann::json::parse(whole_soup.out), soup_streamed);
+
+  // A corner that is not a number: one line naming the facet, no report. A file whose size is not
+  // its count's is not streamed; read whole, it fails as ever.
+  const std::string report = folder.file("report.json");
+  std::string not_finite = stl;
+  set_corner(not_finite, 42, 1, 0.0f, std::nanf(""), 0.0f);
+  expect_error(fmt::format("measure {} {} --chunk 1000 --json {}", folder.file("nan.stl", not_finite), igea.path, report),
+               {"nan.stl", "facet 42 corner 1 has a non-finite coordinate", "expected finite"});
+  expect_error(fmt::format("measure {} {} --chunk 1000 --json {}", folder.file("long.stl", stl + "x"), igea.path, report),
+               {"long.stl", "trailing data", "268686 triangles"});
+  EXPECT_FALSE(fs::exists(report));
+}
+
 }  // namespace

@@ -795,21 +795,17 @@ bool reference_only_sampled(const MeasureArguments& args, const MeasurePlan& pla
          args.html_path.empty();
 }
 
-// REF's file, to be read a block of faces at a time, where it is a binary PLY of plain triangles
-// with more faces than --chunk and nothing asked for needs it whole: one direction of face samples
-// by a method that measures each sample alone (not a GL method, whose views see all samples), and
-// no output that reads REF or every sample after the measurement.
+// REF's file, to be read a block of faces at a time, where it is a binary PLY of plain triangles or
+// a binary STL with more faces than --chunk and nothing asked for needs it whole: one direction of
+// face samples by a method that measures each sample alone (not a GL method, whose views see all
+// samples), and no output that reads REF or every sample after the measurement.
 std::unique_ptr<TriangleStream> reference_stream(const MeasureArguments& args, const MeasurePlan& plan) {
   const bool wanted = plan.chunk_faces > 0 && reference_only_sampled(args, plan, true) && !plan.pcc_only && !plan.dtu &&
                       !plan.tnt && !plan.shard && !plan.correspondences && plan.thresholds.empty() &&
                       args.samples_csv_path.empty() && plan.sample_spec.kind == SampleSpec::Kind::Faces &&
                       !is_gl_method(args.method) &&
-                      (!plan.reference_type || *plan.reference_type == ModelType::Mesh) &&
-                      std::filesystem::path(args.reference_path).extension() == ".ply";
-  if (!wanted) return nullptr;
-  const std::optional<PlyTriangleLayout> layout = ply_triangle_layout(args.reference_path);
-  if (!layout || layout->face_count <= plan.chunk_faces) return nullptr;
-  return std::make_unique<TriangleStream>(args.reference_path, *layout);
+                      (!plan.reference_type || *plan.reference_type == ModelType::Mesh);
+  return wanted ? open_triangle_stream(args.reference_path, plan.chunk_faces) : nullptr;
 }
 
 // The model a streamed REF stands as in the report: what its whole mesh would say of itself.

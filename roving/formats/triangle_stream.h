@@ -1,50 +1,57 @@
-// A binary PLY's triangles read a block at a time, for a reference too large to hold whole: its
-// vertices are held as the file stores them (float or double: 12 or 24 bytes each, where a
-// loaded mesh holds 24 per vertex and 12 per triangle), its faces read from the file per block.
-// Every value is checked as read_ply checks it; faces repeating a vertex are dropped and counted.
+// A reference's triangles read a block at a time, for a reference too large to hold whole: a
+// binary PLY's (ply_triangle_stream.h) or a binary STL's (stl_triangle_stream.h). Every value is
+// checked as the whole file's reader checks it; faces repeating a vertex are dropped and counted.
 #pragma once
 
-#include <cstdio>
+#include <cstddef>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "roving/core/triangle_mesh.h"
-#include "roving/formats/ply_reader.h"
 
 namespace roving {
 
+// REF's vertices as its whole mesh counts them.
+struct VertexCensus {
+  std::size_t vertices = 0, unreferenced = 0;
+  BoundingBox box;  // of the vertices a kept face uses
+};
+
 class TriangleStream {
  public:
-  // Reads the vertices; throws roving::Error naming `path` on a non-finite coordinate or a read
-  // that fails.
-  TriangleStream(const std::string& path, const PlyTriangleLayout& layout);
+  virtual ~TriangleStream() = default;
 
   const std::string& path() const { return path_; }
-  std::size_t vertex_count() const { return layout_.vertex_count; }
-  std::size_t face_count() const { return layout_.face_count; }  // as declared, dropped ones included
-  Vec3 position(int vertex) const;
+  std::size_t face_count() const { return face_count_; }  // the file's, dropped ones included
 
   // The next faces, up to `count` of the file's, as triangles (the dropped ones left out); false
-  // when none is left. Throws roving::Error naming the face on a count other than 3 or an index
-  // out of range.
-  bool next(std::size_t count, std::vector<Triangle>& triangles);
+  // when none is left. Their corners are numbers for position(), below position_count(), valid
+  // until the next call. Throws roving::Error naming the file and the face on a bad face.
+  virtual bool next(std::size_t count, std::vector<Triangle>& triangles) = 0;
+  virtual Vec3 position(int corner) const = 0;
+  virtual std::size_t position_count() const = 0;
+
   // Back to the first face, for another pass.
-  void rewind();
+  void rewind() {
+    next_face_ = 0;
+    dropped_ = 0;
+  }
   // Faces dropped so far for repeating a vertex (of the file's faces read so far in this pass).
   std::size_t dropped_repeated_vertex_faces() const { return dropped_; }
+  // The vertices, counted in the first pass that reads every face (throws before).
+  virtual VertexCensus census() const = 0;
 
- private:
+ protected:
+  TriangleStream(std::string path, std::size_t face_count) : path_(std::move(path)), face_count_(face_count) {}
+
   std::string path_;
-  PlyTriangleLayout layout_;
-  struct CloseFile {
-    void operator()(std::FILE* file) const { std::fclose(file); }
-  };
-  std::unique_ptr<std::FILE, CloseFile> file_;  // closed however the constructor ends
-  std::vector<float> float_positions_;    // x y z per vertex, where the file stores float
-  std::vector<double> double_positions_;  // or double
-  std::vector<char> buffer_;
+  std::size_t face_count_ = 0;
   std::size_t next_face_ = 0, dropped_ = 0;
 };
+
+// `path`'s stream where it is a binary PLY of plain triangles (ply_triangle_layout) or a binary STL
+// with more than `more_faces_than` faces; nullptr for any other file (read it whole).
+std::unique_ptr<TriangleStream> open_triangle_stream(const std::string& path, std::size_t more_faces_than);
 
 }  // namespace roving

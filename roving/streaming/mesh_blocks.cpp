@@ -6,13 +6,14 @@
 namespace roving {
 
 MeshBlocks::MeshBlocks(TriangleStream& stream, std::size_t chunk_faces)
-    : stream_(stream), chunk_faces_(std::max<std::size_t>(chunk_faces, 1)), local_(stream.vertex_count(), -1) {
+    : stream_(stream), chunk_faces_(std::max<std::size_t>(chunk_faces, 1)) {
   stream_.rewind();
 }
 
 bool MeshBlocks::next(TriangleMesh& block) {
   if (!stream_.next(chunk_faces_, triangles_)) return false;
   faces_read_ = std::min(faces_read_ + chunk_faces_, stream_.face_count());
+  if (local_.size() < stream_.position_count()) local_.resize(stream_.position_count(), -1);
   std::vector<int> used;  // the file's vertices, in the block's order
   std::vector<Vec3> positions;
   for (Triangle& t : triangles_) {

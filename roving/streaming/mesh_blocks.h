@@ -24,7 +24,7 @@ class MeshBlocks {
   TriangleStream& stream_;
   std::size_t chunk_faces_;
   std::size_t faces_read_ = 0;
-  std::vector<int> local_;  // the block's number of each of the file's vertices, -1 where unused
+  std::vector<int> local_;  // the block's number of each of the stream's positions, -1 where unused
   std::vector<Triangle> triangles_;
 };
 

@@ -59,17 +59,12 @@ SampleSet face_samples(const TriangleStream& stream, const std::vector<Triangle>
 
 StreamedReference summarise(TriangleStream& stream, std::size_t chunk_faces, const ProgressFn& progress) {
   TriangleMesh::Summary summary;
-  summary.vertices = stream.vertex_count();
-  std::vector<bool> referenced(stream.vertex_count(), false);
   std::vector<Triangle> triangles;
   double block_area = 0;  // TriangleMesh's current block of kAreaBlock faces
   stream.rewind();
   for (std::size_t read = 0; stream.next(chunk_faces, triangles);) {
     read = std::min(read + chunk_faces, stream.face_count());
     if (progress) progress("faces", read, stream.face_count());
-    for (const Triangle& t : triangles) {
-      for (const int corner : t) referenced[corner] = true;
-    }
     for (const TriangleMesh::FaceShape& shape : shapes_of(stream, triangles)) {
       summary.degenerate_triangles += shape.degenerate;
       block_area += shape.area();
@@ -80,13 +75,10 @@ StreamedReference summarise(TriangleStream& stream, std::size_t chunk_faces, con
     }
   }
   if (summary.triangles % TriangleMesh::kAreaBlock != 0) summary.area += block_area;
-  for (std::size_t v = 0; v < referenced.size(); ++v) {
-    if (referenced[v]) {
-      summary.box.extend(stream.position(static_cast<int>(v)));
-    } else {
-      ++summary.unreferenced_vertices;
-    }
-  }
+  const VertexCensus vertices = stream.census();
+  summary.vertices = vertices.vertices;
+  summary.unreferenced_vertices = vertices.unreferenced;
+  summary.box = vertices.box;
   return {TriangleMesh(summary), stream.dropped_repeated_vertex_faces()};
 }
 
