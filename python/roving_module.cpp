@@ -481,7 +481,7 @@ method does not name), barycentric (K x 3: test_point's weights of hit_face's co
 there is no face), and where they apply hit_face (TEST's face at the hit), resolved_by (codes in
 roving.resolved_by), reference_colour, test_colour (K x 3, 8-bit code values) and delta_e (CIEDE2000).
 
-per_sample: False leaves the per-sample arrays out; then, as in the command, a binary PLY or STL REF with
+per_sample: False leaves the per-sample arrays out; then, as in the command, a binary PLY or STL, or OBJ, REF with
   more faces than `chunk` is read and measured a block of faces at a time (report["samples"]
   ["streamed"]), in the command's memory rather than about 85 bytes a face.
 

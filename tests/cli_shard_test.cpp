@@ -453,4 +453,97 @@ TEST(CliStreamed, BinaryStlGivesTheWholeReport) {
   EXPECT_FALSE(fs::exists(report));
 }
 
+
+// Igea as an OBJ of the records people meet: comments, groups, normals, texture coordinates,
+// relative indices, a polygon, a face repeating a vertex and a vertex defined after the faces that
+// no face uses. Its lines, to be changed by the tests.
+std::vector<std::string> igea_as_obj_lines(const Igea& igea) {
+  std::vector<std::string> lines = {"# Igea", "o igea", "vt 0.25 0.75", "vn 0 0 1"};
+  for (std::size_t v = 0; v < 134345; ++v) {
+    float xyz[3];
+    std::memcpy(xyz, &igea.bytes[igea.body + 12 * v], sizeof xyz);
+    lines.push_back(fmt::format("v {:.9g} {:.9g} {:.9g}", xyz[0], xyz[1], xyz[2]));
+  }
+  lines.push_back("g face");
+  for (std::size_t f = 0; f < 268686; ++f) {
+    std::int32_t c[3];
+    std::memcpy(c, &igea.bytes[igea.faces + 13 * f + 1], sizeof c);
+    if (f % 3 == 0) {
+      lines.push_back(fmt::format("f {}/1/1 {}//1 {}", c[0] + 1, c[1] + 1, c[2] + 1));
+    } else {  // relative: counted back from the vertices defined so far
+      lines.push_back(fmt::format("f {} {} {}", c[0] - 134345, c[1] - 134345, c[2] - 134345));
+    }
+  }
+  lines.push_back("f 1 2 3 4");  // a quad: two triangles
+  lines.push_back("f 5 6 5");    // dropped
+  lines.push_back("v 9 9 9");    // no face uses it
+  return lines;
+}
+
+std::string joined(const std::vector<std::string>& lines) {
+  std::string text;
+  for (const std::string& line : lines) text += line + "\n";
+  return text;
+}
+
+// An OBJ REF streams too: the first pass reads its vertices, each block parses its faces from the
+// text where the last stopped, with the whole read's checks and counts.
+TEST(CliStreamed, ObjGivesTheWholeReport) {
+  const Folder folder;
+  const Igea igea;
+  const std::vector<std::string> lines = igea_as_obj_lines(igea);
+  const std::string ref = folder.file("igea.obj", joined(lines));
+  for (const char* options : {"", "--method cgal --semantics closest --hausdorff-bound none"}) {
+    SCOPED_TRACE(options);
+    const std::string pair = fmt::format("measure {} {} {} --quiet --json -", ref, igea.path, options);
+    const CliRun whole = run_cli(pair + " --chunk 0");
+    ASSERT_EQ(whole.exit_code, 0) << whole.err;
+    const CliRun run = run_cli(pair + " --chunk 4095");
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    const nlohmann::json one = nlohmann::json::parse(whole.out);
+    nlohmann::json streamed = nlohmann::json::parse(run.out);
+    EXPECT_EQ(one["reference"]["dropped_repeated_vertex_faces"], 1);
+    EXPECT_EQ(one["reference"]["triangulated_polygons"], 1);
+    EXPECT_EQ(one["reference"]["unreferenced_vertices"], 1);
+    EXPECT_EQ(one["reference"]["triangles"], 268686 + 2);
+    ASSERT_TRUE(streamed["samples"].contains("streamed"));
+    EXPECT_EQ(streamed["samples"]["streamed"]["chunks"], (268686 + 2 + 4094) / 4095);
+    streamed["samples"].erase("streamed");
+    expect_same_report(one, streamed);
+  }
+  // What carries colour is read whole: a vertex colour, a material library.
+  std::vector<std::string> coloured = lines;
+  for (std::string& line : coloured) {
+    if (line.rfind("v ", 0) == 0) line += " 0.5 0.5 0.5";
+  }
+  std::vector<std::string> materials = lines;
+  materials.insert(materials.begin(), "mtllib none.mtl");
+  folder.file("none.mtl", "newmtl grey\nKd 0.5 0.5 0.5\n");
+  materials.insert(materials.begin() + 1, "usemtl grey");
+  for (const auto& [name, text] : {std::pair{"coloured.obj", joined(coloured)}, std::pair{"mtl.obj", joined(materials)}}) {
+    const CliRun run = run_cli(fmt::format("measure {} {} --quiet --json - --chunk 4095", folder.file(name, text), igea.path));
+    ASSERT_EQ(run.exit_code, 0) << name << run.err;
+    EXPECT_EQ(run.out.find("\"streamed\""), std::string::npos) << name;
+  }
+  // Bad records: the line the whole read names, and no report.
+  const std::string report = folder.file("report.json");
+  const auto expect_bad = [&](std::size_t line, const std::string& record, const std::string& name,
+                              const char* expected) {
+    std::vector<std::string> bad = lines;
+    bad[line - 1] = record;
+    const std::string path = folder.file(name, joined(bad));
+    const std::string where = fmt::format("{}:{}:", name, line);
+    for (const char* chunk : {"0", "4095"}) {
+      expect_error(fmt::format("measure {} {} --chunk {} --json {}", path, igea.path, chunk, report),
+                   {where.c_str(), expected});
+    }
+  };
+  expect_bad(4 + 134345 + 1 + 200000, "f 1 2 999999", "far.obj", "face refers to vertex 999999; expected 1..134345");
+  expect_bad(4 + 134345 + 1 + 250000, "f 1 2", "short.obj", "expected at least 3 corners in 'f', found 2");
+  expect_bad(4 + 134345 + 1 + 3, "f 1/7 2 3", "uv.obj", "texture coordinate '7'; expected 1..1");
+  expect_bad(4 + 1000, "v 1 2 x", "vertex.obj", "expected 3 numbers after 'v', found 'x'");
+  expect_bad(3, "vt 0.5 inf", "vt.obj", "expected 2 finite numbers after 'vt'");
+  EXPECT_FALSE(fs::exists(report));
+}
+
 }  // namespace

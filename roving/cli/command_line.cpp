@@ -284,7 +284,7 @@ std::unique_ptr<CommandLine> make_command_line() {
                       "with --shard: the part to write (17 bytes per sample per direction, 25 with --symmetric, 24 more for colour; and the models' description)");
   measure->add_option(
              "--chunk", args.chunk,
-             "a binary PLY or STL REF with more faces than this is read, sampled and measured this many faces at a time, "
+             "a binary PLY or STL, or OBJ, REF with more faces than this is read, sampled and measured this many faces at a time, "
              "in bounded memory with the same figures, where nothing asked for needs it whole (one direction, face "
              "samples, an exact or nearest-point method, no threshold, per-sample output or picture; the certified "
              "Hausdorff interval is bounded block by block); 0: always read whole")

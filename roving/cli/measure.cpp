@@ -795,8 +795,8 @@ bool reference_only_sampled(const MeasureArguments& args, const MeasurePlan& pla
          args.html_path.empty();
 }
 
-// REF's file, to be read a block of faces at a time, where it is a binary PLY of plain triangles or
-// a binary STL with more faces than --chunk and nothing asked for needs it whole: one direction of
+// REF's file, to be read a block of faces at a time, where it is a binary PLY of plain triangles, a
+// binary STL or a plain OBJ with more faces than --chunk and nothing asked for needs it whole: one direction of
 // face samples by a method that measures each sample alone (not a GL method, whose views see all
 // samples), and no output that reads REF or every sample after the measurement.
 std::unique_ptr<TriangleStream> reference_stream(const MeasureArguments& args, const MeasurePlan& plan) {
@@ -816,6 +816,7 @@ std::unique_ptr<Model> streamed_model(TriangleStream& stream, std::size_t chunk_
   model->mesh.path = stream.path();
   model->mesh.mesh = std::move(summary.summary);
   model->mesh.dropped_repeated_vertex_faces = summary.dropped_repeated_vertex_faces;
+  model->mesh.triangulated_polygons = summary.triangulated_polygons;
   return model;
 }
 

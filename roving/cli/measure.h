@@ -63,7 +63,7 @@ struct MeasureArguments {
   // --shard I/N: only the I-th of N slices of the samples, written as a part to --shard-out for
   // `roving merge` (merge.h).
   std::string shard, shard_out;
-  // --chunk FACES: a binary PLY or STL REF with more faces than this is read, sampled and measured this
+  // --chunk FACES: a binary PLY or STL, or OBJ, REF with more faces than this is read, sampled and measured this
   // many faces at a time (where nothing asked for needs it whole); 0: always read whole.
   std::size_t chunk = kDefaultChunkFaces;
   // The words of the command line that decide the figures (REF, TEST and every option given but

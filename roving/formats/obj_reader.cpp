@@ -10,18 +10,10 @@
 
 #include "file_bytes.h"
 #include "mtl_reader.h"
+#include "obj_records.h"
 #include "roving/core/error.h"
 
 namespace roving {
-namespace {
-
-// A 1-based or negative (relative) OBJ index resolved against `count` records so far; -1 when out of range.
-long long resolve_index(long long index, long long count) {
-  const long long resolved = index > 0 ? index - 1 : count + index;
-  return index == 0 || resolved < 0 || resolved >= count ? -1 : resolved;
-}
-
-}  // namespace
 
 LoadedMesh read_obj(const std::string& path) {
   const FileBytes file(path, "a .obj mesh");
@@ -44,30 +36,17 @@ LoadedMesh read_obj(const std::string& path) {
   std::vector<int> corners, corner_uv;
   std::string_view line;
   while (lines.next_line(line)) {
-    const auto fail = [&](const std::string& what) {
+    const obj::Fail fail = [&](const std::string& what) {
       return Error(fmt::format("{}:{}: {}", path, lines.line_number(), what));
     };
     std::string_view rest = line;
     const std::string_view keyword = next_token(rest);
     if (keyword == "v") {
-      double xyz[3];
-      for (double& coordinate : xyz) {
-        const std::string_view token = next_token(rest);
-        if (!parse_number(token, coordinate)) {
-          throw fail(fmt::format("expected 3 numbers after 'v', found {}", quoted(token)));
-        }
-      }
-      positions.emplace_back(xyz[0], xyz[1], xyz[2]);
-      // Three more numbers are a colour; one more is the homogeneous w, ignored as before.
-      std::string_view probe = rest;
+      Vec3 position;
       double rgb[3];
-      int given = 0;
-      for (std::string_view token = next_token(probe); !token.empty() && given < 4;
-           token = next_token(probe)) {
-        if (given < 3 && !parse_number(token, rgb[given])) break;
-        ++given;
-      }
-      if (given == 3) {
+      const bool coloured = obj::parse_vertex(rest, position, rgb, fail);
+      positions.push_back(position);
+      if (coloured) {
         for (const double c : rgb) {
           if (!(c >= 0 && c <= 1)) {
             throw fail(fmt::format("vertex colour ({}, {}, {}); expected fractions within [0, 1]", rgb[0],
@@ -84,57 +63,12 @@ LoadedMesh read_obj(const std::string& path) {
       }
     } else if (keyword == "vt") {
       double uv[2];
-      for (double& t : uv) {
-        const std::string_view token = next_token(rest);
-        if (!parse_number(token, t) || !std::isfinite(t)) {
-          throw fail(fmt::format("expected 2 finite numbers after 'vt', found {}", quoted(token)));
-        }
-      }
+      obj::parse_texture_coordinate(rest, uv, fail);
       coordinates.emplace_back(uv[0], 1 - uv[1]);  // OBJ's v runs up from the image's bottom row
     } else if (keyword == "f") {
-      corners.clear();
-      corner_uv.clear();
-      for (std::string_view token = next_token(rest); !token.empty(); token = next_token(rest)) {
-        // v, v/vt, v/vt/vn or v//vn.
-        const std::size_t slash = token.find('/');
-        const std::string_view index_text = token.substr(0, slash);
-        long long index = 0;
-        if (!parse_number(index_text, index)) {
-          throw fail(fmt::format("expected a vertex index in 'f', found '{}'", token));
-        }
-        const long long count = static_cast<long long>(positions.size());
-        const long long resolved = resolve_index(index, count);
-        if (resolved < 0) {
-          throw fail(
-              fmt::format("face refers to vertex {}; expected 1..{} or -1..-{} (vertices "
-                          "defined so far)",
-                          index, count, count));
-        }
-        corners.push_back(static_cast<int>(resolved));
-        long long uv = -1;
-        if (slash != std::string_view::npos) {
-          const std::string_view after = token.substr(slash + 1);
-          const std::string_view uv_text = after.substr(0, after.find('/'));
-          if (!uv_text.empty()) {
-            const long long uv_count = static_cast<long long>(coordinates.size());
-            if (!parse_number(uv_text, index) || (uv = resolve_index(index, uv_count)) < 0) {
-              throw fail(
-                  fmt::format("face refers to texture coordinate {}; expected 1..{} or -1..-{} ('vt' "
-                              "defined so far)",
-                              quoted(uv_text), uv_count, uv_count));
-            }
-          }
-        }
-        corner_uv.push_back(static_cast<int>(uv));
-      }
-      if (corners.size() < 3) {
-        throw fail(fmt::format("expected at least 3 corners in 'f', found {}", corners.size()));
-      }
-      bool repeated = false;
-      for (std::size_t i = 0; i < corners.size() && !repeated; ++i) {
-        for (std::size_t j = i + 1; j < corners.size(); ++j) repeated |= corners[i] == corners[j];
-      }
-      if (repeated) {
+      obj::parse_face(rest, static_cast<long long>(positions.size()), static_cast<long long>(coordinates.size()),
+                      corners, corner_uv, fail);
+      if (obj::repeats_a_vertex(corners)) {
         ++loaded.dropped_repeated_vertex_faces;
         continue;
       }

@@ -5,6 +5,7 @@
 #include <cctype>
 #include <filesystem>
 
+#include "roving/formats/obj_triangle_stream.h"
 #include "roving/formats/ply_triangle_stream.h"
 #include "roving/formats/stl_triangle_stream.h"
 
@@ -19,6 +20,7 @@ std::unique_ptr<TriangleStream> open_triangle_stream(const std::string& path, st
     if (!layout || layout->face_count <= more_faces_than) return nullptr;
     return std::make_unique<PlyTriangleStream>(path, *layout);
   }
+  if (extension == ".obj") return ObjTriangleStream::open(path, more_faces_than);
   if (extension == ".stl") {
     const std::optional<std::size_t> facets = binary_stl_facets(path);
     if (!facets || *facets <= more_faces_than) return nullptr;

@@ -1,5 +1,6 @@
 // A reference's triangles read a block at a time, for a reference too large to hold whole: a
-// binary PLY's (ply_triangle_stream.h) or a binary STL's (stl_triangle_stream.h). Every value is
+// binary PLY's (ply_triangle_stream.h), a binary STL's (stl_triangle_stream.h) or an OBJ's
+// (obj_triangle_stream.h). Every value is
 // checked as the whole file's reader checks it; faces repeating a vertex are dropped and counted.
 #pragma once
 
@@ -36,22 +37,29 @@ class TriangleStream {
   void rewind() {
     next_face_ = 0;
     dropped_ = 0;
+    triangulated_ = 0;
+    restart();
   }
-  // Faces dropped so far for repeating a vertex (of the file's faces read so far in this pass).
+  // Faces dropped so far for repeating a vertex (of the file's faces read so far in this pass), and
+  // polygons of more than 3 corners fan-triangulated (an OBJ's).
   std::size_t dropped_repeated_vertex_faces() const { return dropped_; }
+  std::size_t triangulated_polygons() const { return triangulated_; }
   // The vertices, counted in the first pass that reads every face (throws before).
   virtual VertexCensus census() const = 0;
 
  protected:
   TriangleStream(std::string path, std::size_t face_count) : path_(std::move(path)), face_count_(face_count) {}
 
+  virtual void restart() {}  // what rewind() resets beyond the counts
+
   std::string path_;
   std::size_t face_count_ = 0;
-  std::size_t next_face_ = 0, dropped_ = 0;
+  std::size_t next_face_ = 0, dropped_ = 0, triangulated_ = 0;
 };
 
-// `path`'s stream where it is a binary PLY of plain triangles (ply_triangle_layout) or a binary STL
-// with more than `more_faces_than` faces; nullptr for any other file (read it whole).
+// `path`'s stream where it is a binary PLY of plain triangles (ply_triangle_layout), a binary STL
+// or an OBJ without colour or materials, with more than `more_faces_than` faces; nullptr for any
+// other file (read it whole).
 std::unique_ptr<TriangleStream> open_triangle_stream(const std::string& path, std::size_t more_faces_than);
 
 }  // namespace roving

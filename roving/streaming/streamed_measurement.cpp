@@ -79,7 +79,7 @@ StreamedReference summarise(TriangleStream& stream, std::size_t chunk_faces, con
   summary.vertices = vertices.vertices;
   summary.unreferenced_vertices = vertices.unreferenced;
   summary.box = vertices.box;
-  return {TriangleMesh(summary), stream.dropped_repeated_vertex_faces()};
+  return {TriangleMesh(summary), stream.dropped_repeated_vertex_faces(), stream.triangulated_polygons()};
 }
 
 StreamedResult measure_streamed(TriangleStream& stream, DistanceMethod& method, const DistanceOptions& options,

@@ -25,7 +25,7 @@ constexpr std::size_t kDefaultChunkFaces = std::size_t{1} << 20;
 // repeating a vertex.
 struct StreamedReference {
   TriangleMesh summary;
-  std::size_t dropped_repeated_vertex_faces = 0;
+  std::size_t dropped_repeated_vertex_faces = 0, triangulated_polygons = 0;
 };
 // `progress` hears of the file's faces read.
 StreamedReference summarise(TriangleStream& stream, std::size_t chunk_faces, const ProgressFn& progress = {});

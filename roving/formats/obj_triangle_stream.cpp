@@ -1,0 +1,137 @@
+// An OBJ's triangles a block of faces at a time (obj_triangle_stream.h).
+#include "obj_triangle_stream.h"
+
+#include <fmt/format.h>
+#include <sys/mman.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <stdexcept>
+#include <string_view>
+
+#include "roving/core/error.h"
+#include "roving/formats/obj_records.h"
+
+namespace roving {
+ObjTriangleStream::ObjTriangleStream(const std::string& path)
+    : TriangleStream(path, 0), file_(path, "a .obj mesh") {}
+
+std::unique_ptr<ObjTriangleStream> ObjTriangleStream::open(const std::string& path, std::size_t more_faces_than) {
+  std::unique_ptr<ObjTriangleStream> stream(new ObjTriangleStream(path));
+  const std::string_view text = stream->file_.bytes();
+  if ((text.size() + 1) / 8 <= more_faces_than) return nullptr;  // "f 1 2 3\n": no face takes fewer bytes
+  // The faces first, counted (a quick pass: lines whose first token is 'f'), then the vertices.
+  LineCursor face_lines(text);
+  for (std::string_view line; face_lines.next_line(line);) {
+    stream->face_count_ += next_token(line) == "f";
+    if ((face_lines.line_number() & 0xFFFF) == 0) stream->release_before(face_lines.offset());
+  }
+  stream->restart();
+  if (stream->face_count_ <= more_faces_than) return nullptr;
+  // The vertices, checked as read_obj checks them.
+  LineCursor lines(text);
+  for (std::string_view line; lines.next_line(line);) {
+    const obj::Fail fail = [&](const std::string& what) {
+      return Error(fmt::format("{}:{}: {}", path, lines.line_number(), what));
+    };
+    std::string_view rest = line;
+    const std::string_view keyword = next_token(rest);
+    if (keyword == "v") {
+      Vec3 position;
+      double rgb[3];
+      if (obj::parse_vertex(rest, position, rgb, fail)) return nullptr;  // a colour: read whole
+      stream->positions_.push_back(position);
+    } else if (keyword == "vt") {
+      double uv[2];
+      obj::parse_texture_coordinate(rest, uv, fail);
+    } else if (keyword == "mtllib" || keyword == "usemtl") {
+      return nullptr;
+    }
+    if ((lines.line_number() & 0xFFFF) == 0) stream->release_before(lines.offset());
+  }
+  stream->restart();
+  for (std::size_t v = 0; v < stream->positions_.size(); ++v) {
+    if (!stream->positions_[v].allFinite()) {
+      const Vec3& p = stream->positions_[v];
+      throw Error(fmt::format("{}: vertex {} has a non-finite coordinate ({}, {}, {}); expected finite numbers", path,
+                              v, p.x(), p.y(), p.z()));
+    }
+  }
+  stream->referenced_.assign(stream->positions_.size(), false);
+  return stream;
+}
+
+bool ObjTriangleStream::next(std::size_t count, std::vector<Triangle>& triangles) {
+  triangles.clear();
+  const std::string_view text = file_.bytes();
+  LineCursor lines(text, at_.offset);
+  std::size_t faces = 0;
+  std::string_view line;
+  while (faces < count && lines.next_line(line)) {
+    std::string_view rest = line;
+    const std::string_view keyword = next_token(rest);
+    if (keyword == "v") {
+      ++at_.vertices;
+    } else if (keyword == "vt") {
+      ++at_.texture_coordinates;
+    } else if (keyword == "f") {
+      ++faces;
+      const obj::Fail fail = [&](const std::string& what) {
+        return Error(fmt::format("{}:{}: {}", path_, at_.lines + lines.line_number(), what));
+      };
+      obj::parse_face(rest, static_cast<long long>(at_.vertices), static_cast<long long>(at_.texture_coordinates),
+                      corners_, corner_uv_, fail);
+      if (obj::repeats_a_vertex(corners_)) {
+        ++dropped_;
+        continue;
+      }
+      if (corners_.size() > 3) ++triangulated_;
+      for (std::size_t i = 1; i + 1 < corners_.size(); ++i) {
+        triangles.push_back({corners_[0], corners_[i], corners_[i + 1]});
+      }
+      if (!census_) {
+        for (const int v : corners_) referenced_[v] = true;
+      }
+    }
+  }
+  at_.lines += lines.line_number();
+  at_.offset = lines.offset();
+  release_before(at_.offset);
+  next_face_ += faces;
+  if (faces > 0) return true;
+  if (!census_) {
+    VertexCensus census;
+    census.vertices = positions_.size();
+    for (std::size_t v = 0; v < positions_.size(); ++v) {
+      if (referenced_[v]) {
+        census.box.extend(positions_[v]);
+      } else {
+        ++census.unreferenced;
+      }
+    }
+    census_ = census;
+    referenced_ = {};
+  }
+  return false;
+}
+
+void ObjTriangleStream::release_before(std::size_t end) {
+  static const std::size_t page = static_cast<std::size_t>(sysconf(_SC_PAGESIZE));
+  const std::size_t from = released_ / page * page, to = end / page * page;
+  if (to <= from) return;
+  madvise(const_cast<char*>(file_.bytes().data()) + from, to - from, MADV_DONTNEED);
+  released_ = to;
+}
+
+void ObjTriangleStream::restart() {
+  release_before(file_.size());
+  at_ = {};
+  released_ = 0;
+}
+
+VertexCensus ObjTriangleStream::census() const {
+  if (!census_) throw std::logic_error("ObjTriangleStream::census before a whole pass");
+  return *census_;
+}
+
+}  // namespace roving
