@@ -295,6 +295,23 @@ TEST(CliStreamed, ReferenceReadInChunksGivesTheWholeReport) {
   }
 }
 
+// `pair` (a measure command line) with REF read whole and `chunk` faces at a time: both reports,
+// the streamed one checked to say so and with that said left out.
+struct WholeAndStreamed {
+  nlohmann::json whole, streamed;
+};
+WholeAndStreamed whole_and_streamed(const std::string& pair, std::size_t chunk, std::size_t faces) {
+  const CliRun whole = run_cli(pair + " --chunk 0");
+  EXPECT_EQ(whole.exit_code, 0) << whole.err;
+  const CliRun run = run_cli(fmt::format("{} --chunk {}", pair, chunk));
+  EXPECT_EQ(run.exit_code, 0) << run.err;
+  if (whole.exit_code != 0 || run.exit_code != 0) return {};
+  WholeAndStreamed reports{nlohmann::json::parse(whole.out), nlohmann::json::parse(run.out)};
+  EXPECT_EQ(reports.streamed["samples"]["streamed"]["chunks"], (faces + chunk - 1) / chunk) << pair;
+  reports.streamed["samples"].erase("streamed");
+  return reports;
+}
+
 // What the whole mesh says of itself, found by the streamed pass alike: faces repeating a vertex
 // dropped and counted, zero-area faces skipped, unreferenced vertices left out of the box.
 TEST(CliStreamed, SummaryCountsWhatTheWholeMeshCounts) {
@@ -315,19 +332,12 @@ TEST(CliStreamed, SummaryCountsWhatTheWholeMeshCounts) {
   const float far[6] = {100, 100, 100, -100, -100, -100};  // after the last vertex (the header kept its size)
   bytes.insert(igea.faces, reinterpret_cast<const char*>(far), sizeof far);
   const std::string ref = folder.file("odd.ply", bytes);
-  const std::string pair = fmt::format("measure {} {} --quiet --json -", ref, igea.path);
-  const CliRun whole = run_cli(pair + " --chunk 0");
-  ASSERT_EQ(whole.exit_code, 0) << whole.err;
-  const CliRun run = run_cli(pair + " --chunk 4095");
-  ASSERT_EQ(run.exit_code, 0) << run.err;
-  const nlohmann::json one = nlohmann::json::parse(whole.out);
-  nlohmann::json streamed = nlohmann::json::parse(run.out);
+  const auto [one, streamed] = whole_and_streamed(fmt::format("measure {} {} --quiet --json -", ref, igea.path), 4095,
+                                                  268686);
   EXPECT_EQ(one["reference"]["dropped_repeated_vertex_faces"], 2);
   EXPECT_EQ(one["reference"]["unreferenced_vertices"], 2);
   EXPECT_GE(one["samples"]["skipped_degenerate_faces"], 1);  // and any other face on the edge 11-13
   EXPECT_LT(one["reference"]["diagonal"].get<double>(), 1);
-  ASSERT_TRUE(streamed["samples"].contains("streamed"));
-  streamed["samples"].erase("streamed");
   expect_same_report(one, streamed);
 }
 
@@ -396,20 +406,12 @@ TEST(CliStreamed, BinaryStlGivesTheWholeReport) {
   for (const char* options : {"", "--method cgal --semantics closest --hausdorff-bound none",
                               "--semantics closest --hausdorff-bound 1e-3"}) {  // the last: REF as small meshes
     SCOPED_TRACE(options);
-    const std::string pair = fmt::format("measure {} {} {} --quiet --json -", ref, igea.path, options);
-    const CliRun whole = run_cli(pair + " --chunk 0");
-    ASSERT_EQ(whole.exit_code, 0) << whole.err;
-    const CliRun run = run_cli(pair + " --chunk 4095");
-    ASSERT_EQ(run.exit_code, 0) << run.err;
-    nlohmann::json one = nlohmann::json::parse(whole.out);
-    nlohmann::json streamed = nlohmann::json::parse(run.out);
+    auto [one, streamed] =
+        whole_and_streamed(fmt::format("measure {} {} {} --quiet --json -", ref, igea.path, options), 4095, 268686);
     EXPECT_EQ(one["reference"]["dropped_repeated_vertex_faces"], 2);
     EXPECT_EQ(one["reference"]["unreferenced_vertices"], 2);
     EXPECT_GE(one["samples"]["skipped_degenerate_faces"], 1);
     EXPECT_LT(one["reference"]["diagonal"].get<double>(), 1);
-    ASSERT_TRUE(streamed["samples"].contains("streamed"));
-    EXPECT_EQ(streamed["samples"]["streamed"]["chunks"], (268686 + 4094) / 4095);
-    streamed["samples"].erase("streamed");
     if (one.contains("hausdorff_certified")) {  // bounded block by block: the intervals meet
       EXPECT_LE(streamed["hausdorff_certified"]["lower"], one["hausdorff_certified"]["upper"]);
       EXPECT_LE(one["hausdorff_certified"]["lower"], streamed["hausdorff_certified"]["upper"]);
@@ -431,15 +433,10 @@ TEST(CliStreamed, BinaryStlGivesTheWholeReport) {
     set_corner(soup, f, 2, x + 0.5f, 0, 1);
   }
   const std::string soup_path = folder.file("soup.stl", soup);
-  const std::string soup_pair = fmt::format("measure {} {} --quiet --json -", soup_path, ref);
-  const CliRun whole_soup = run_cli(soup_pair + " --chunk 0"), streamed_soup = run_cli(soup_pair + " --chunk 1000");
-  ASSERT_EQ(whole_soup.exit_code, 0) << whole_soup.err;
-  ASSERT_EQ(streamed_soup.exit_code, 0) << streamed_soup.err;
-  nlohmann::json soup_streamed = nlohmann::json::parse(streamed_soup.out);
-  EXPECT_EQ(soup_streamed["reference"]["vertices"], 3 * kSoup);
-  EXPECT_EQ(soup_streamed["samples"]["streamed"]["chunks"], 3);
-  soup_streamed["samples"].erase("streamed");
-  expect_same_report(nlohmann::json::parse(whole_soup.out), soup_streamed);
+  const auto [whole_soup, streamed_soup] =
+      whole_and_streamed(fmt::format("measure {} {} --quiet --json -", soup_path, ref), 1000, kSoup);
+  EXPECT_EQ(streamed_soup["reference"]["vertices"], 3 * kSoup);
+  expect_same_report(whole_soup, streamed_soup);
 
   // A corner that is not a number: one line naming the facet, no report. A file whose size is not
   // its count's is not streamed; read whole, it fails as ever.
@@ -495,20 +492,12 @@ TEST(CliStreamed, ObjGivesTheWholeReport) {
   const std::string ref = folder.file("igea.obj", joined(lines));
   for (const char* options : {"", "--method cgal --semantics closest --hausdorff-bound none"}) {
     SCOPED_TRACE(options);
-    const std::string pair = fmt::format("measure {} {} {} --quiet --json -", ref, igea.path, options);
-    const CliRun whole = run_cli(pair + " --chunk 0");
-    ASSERT_EQ(whole.exit_code, 0) << whole.err;
-    const CliRun run = run_cli(pair + " --chunk 4095");
-    ASSERT_EQ(run.exit_code, 0) << run.err;
-    const nlohmann::json one = nlohmann::json::parse(whole.out);
-    nlohmann::json streamed = nlohmann::json::parse(run.out);
+    const auto [one, streamed] = whole_and_streamed(
+        fmt::format("measure {} {} {} --quiet --json -", ref, igea.path, options), 4095, 268686 + 2);
     EXPECT_EQ(one["reference"]["dropped_repeated_vertex_faces"], 1);
     EXPECT_EQ(one["reference"]["triangulated_polygons"], 1);
     EXPECT_EQ(one["reference"]["unreferenced_vertices"], 1);
     EXPECT_EQ(one["reference"]["triangles"], 268686 + 2);
-    ASSERT_TRUE(streamed["samples"].contains("streamed"));
-    EXPECT_EQ(streamed["samples"]["streamed"]["chunks"], (268686 + 2 + 4094) / 4095);
-    streamed["samples"].erase("streamed");
     expect_same_report(one, streamed);
   }
   // What carries colour is read whole: a vertex colour, a material library.

@@ -34,11 +34,9 @@ LoadedMesh read_obj(const std::string& path) {
 
   LoadedMesh loaded;
   std::vector<int> corners, corner_uv;
+  const obj::Fail fail = obj::line_error(path, lines);
   std::string_view line;
   while (lines.next_line(line)) {
-    const obj::Fail fail = [&](const std::string& what) {
-      return Error(fmt::format("{}:{}: {}", path, lines.line_number(), what));
-    };
     std::string_view rest = line;
     const std::string_view keyword = next_token(rest);
     if (keyword == "v") {

@@ -5,7 +5,6 @@
 
 #include <cmath>
 
-#include "file_bytes.h"
 
 namespace roving::obj {
 namespace {
@@ -17,6 +16,12 @@ long long resolve_index(long long index, long long count) {
 }
 
 }  // namespace
+
+Fail line_error(const std::string& path, const LineCursor& lines, std::size_t lines_before) {
+  return [&path, &lines, lines_before](const std::string& what) {
+    return Error(fmt::format("{}:{}: {}", path, lines_before + lines.line_number(), what));
+  };
+}
 
 bool parse_vertex(std::string_view rest, Vec3& position, double rgb[3], const Fail& fail) {
   double xyz[3];

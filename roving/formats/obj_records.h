@@ -9,11 +9,14 @@
 
 #include "roving/core/error.h"
 #include "roving/core/triangle_mesh.h"
+#include "roving/formats/file_bytes.h"
 
 namespace roving::obj {
 
 // The error for the current line: "PATH:LINE: what".
 using Fail = std::function<Error(const std::string& what)>;
+// That of `lines`' current line, numbered after `lines_before` lines (where the cursor began).
+Fail line_error(const std::string& path, const LineCursor& lines, std::size_t lines_before = 0);
 
 // 'v x y z [r g b | w]' after the keyword: the position, and true with `rgb` where three more
 // numbers follow (a colour; one more is the homogeneous w, ignored).

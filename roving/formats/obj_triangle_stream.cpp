@@ -30,10 +30,8 @@ std::unique_ptr<ObjTriangleStream> ObjTriangleStream::open(const std::string& pa
   if (stream->face_count_ <= more_faces_than) return nullptr;
   // The vertices, checked as read_obj checks them.
   LineCursor lines(text);
+  const obj::Fail fail = obj::line_error(path, lines);
   for (std::string_view line; lines.next_line(line);) {
-    const obj::Fail fail = [&](const std::string& what) {
-      return Error(fmt::format("{}:{}: {}", path, lines.line_number(), what));
-    };
     std::string_view rest = line;
     const std::string_view keyword = next_token(rest);
     if (keyword == "v") {
@@ -65,6 +63,7 @@ bool ObjTriangleStream::next(std::size_t count, std::vector<Triangle>& triangles
   triangles.clear();
   const std::string_view text = file_.bytes();
   LineCursor lines(text, at_.offset);
+  const obj::Fail fail = obj::line_error(path_, lines, at_.lines);
   std::size_t faces = 0;
   std::string_view line;
   while (faces < count && lines.next_line(line)) {
@@ -76,9 +75,6 @@ bool ObjTriangleStream::next(std::size_t count, std::vector<Triangle>& triangles
       ++at_.texture_coordinates;
     } else if (keyword == "f") {
       ++faces;
-      const obj::Fail fail = [&](const std::string& what) {
-        return Error(fmt::format("{}:{}: {}", path_, at_.lines + lines.line_number(), what));
-      };
       obj::parse_face(rest, static_cast<long long>(at_.vertices), static_cast<long long>(at_.texture_coordinates),
                       corners_, corner_uv_, fail);
       if (obj::repeats_a_vertex(corners_)) {
