@@ -164,6 +164,27 @@ TEST(Statistics, PercentilesAreNearestRankOfTheSortedMagnitudes) {
   EXPECT_EQ(s.p99, rank(99));
 }
 
+// The hits' k-th |d| read past the no-hits (each kept as h): hits below h, equal to h and beyond it
+// (closest point reports past h), at every rank.
+TEST(Statistics, HitMagnitudesAreTheHitsOwnOrderStatistics) {
+  const double h = 0.5;
+  std::mt19937 random(11);
+  std::uniform_real_distribution<double> uniform(-1, 1);
+  std::bernoulli_distribution missed(0.3), at_h(0.05);
+  StatisticsAccumulator statistics(h);
+  std::vector<double> hits;
+  for (int k = 0; k < 2001; ++k) {
+    const bool hit = !missed(random);
+    const double d = at_h(random) ? -h : uniform(random);
+    statistics.add(d, hit, 1.0);
+    if (hit) hits.push_back(std::abs(d));
+  }
+  statistics.finish();
+  std::sort(hits.begin(), hits.end());
+  for (std::size_t k = 0; k < hits.size(); ++k) ASSERT_EQ(statistics.hit_magnitude(k), hits[k]) << "rank " << k;
+  EXPECT_THROW(statistics.hit_magnitude(hits.size()), Error);
+}
+
 TEST(Statistics, RejectsEmptyAndMismatchedInput) {
   EXPECT_THROW(compute_statistics({}, {}, {}, 1.0), Error);
   EXPECT_THROW(compute_statistics({1.0}, {1, 1}, {}, 1.0), Error);

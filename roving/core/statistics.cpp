@@ -94,6 +94,21 @@ Statistics StatisticsAccumulator::finish() {
   return s;
 }
 
+double StatisticsAccumulator::hit_magnitude(std::size_t k) {
+  if (k >= s_.hit_count) {
+    throw Error(fmt::format("statistics: asked for the hits' |d| of rank {}, found {} hits", k, s_.hit_count));
+  }
+  // The no-hits are c values h among the hits' |d|: below h the k-th value is the hits' own; at or
+  // above it, the hits' k-th is the (k + c)-th, past the c values h (which is h itself where hits
+  // equal to h fill the gap).
+  auto at = magnitudes_.begin() + static_cast<std::ptrdiff_t>(k);
+  std::nth_element(magnitudes_.begin(), at, magnitudes_.end());
+  if (*at < max_error_) return *at;
+  const auto past = at + static_cast<std::ptrdiff_t>(magnitudes_.size() - s_.hit_count);
+  std::nth_element(at, past, magnitudes_.end());
+  return *past;
+}
+
 Statistics compute_statistics(const std::vector<double>& signed_distance,
                               const std::vector<std::uint8_t>& hit, const std::vector<double>& weights,
                               double max_error, std::size_t histogram_bins) {

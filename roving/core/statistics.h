@@ -54,6 +54,10 @@ class StatisticsAccumulator {
   std::size_t count() const { return magnitudes_.size(); }
   // The statistics of every sample added; throws roving::Error when there is none.
   Statistics finish();
+  // The k-th smallest |d| (from 0) among the hits, read from the |d| kept for the percentiles (where
+  // each no-hit stands as h), so that a caller needs no array of the hits' own; throws roving::Error
+  // where k is not below the hit count. Reorders what is kept: call it after finish().
+  double hit_magnitude(std::size_t k);
 
  private:
   double max_error_, bin_width_;

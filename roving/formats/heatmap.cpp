@@ -75,10 +75,12 @@ double percentile_99(std::vector<float> values, double fallback) {
   values.erase(std::remove_if(values.begin(), values.end(), [](float v) { return std::isnan(v); }),
                values.end());
   if (values.empty()) return fallback;
-  const auto at = values.begin() + static_cast<std::ptrdiff_t>(0.99 * (values.size() - 1));
+  const auto at = values.begin() + static_cast<std::ptrdiff_t>(percentile_99_rank(values.size()));
   std::nth_element(values.begin(), at, values.end());
   return *at > 0 ? *at : fallback;
 }
+
+std::size_t percentile_99_rank(std::size_t count) { return static_cast<std::size_t>(0.99 * (count - 1)); }
 
 std::vector<float> distances_or_nan(const DistanceResult& result) {
   std::vector<float> d(result.hit.size(), std::numeric_limits<float>::quiet_NaN());

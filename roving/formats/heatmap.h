@@ -50,6 +50,8 @@ std::vector<float> heatmap_values(const TriangleMesh* surface, const HeatmapLayo
 double default_heatmap_range(const DistanceResult& result, double fallback);
 // The 99th percentile of the values that are not NaN; `fallback` where there is none or it is 0.
 double percentile_99(std::vector<float> values, double fallback);
+// The rank (from 0) percentile_99 takes among `count` values (count > 0).
+std::size_t percentile_99_rank(std::size_t count);
 // d where a sample hit, NaN where it did not.
 std::vector<float> distances_or_nan(const DistanceResult& result);
 

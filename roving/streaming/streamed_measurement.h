@@ -1,5 +1,5 @@
 // A reference measured a block of its faces at a time, read from its file as they are needed
-// (triangle_stream.h), so that a measurement's memory is TEST's search structure, a PLY REF's
+// (triangle_stream.h), so that a measurement's memory is TEST's search structure, REF's
 // vertices, one block and 8 bytes a sample (|d|, for the exact percentiles), not the whole
 // reference and its samples (about 85 bytes a triangle). Every figure is the one the whole
 // reference gives, bit for bit: the same samples, measured alike, folded into the statistics in
