@@ -14,6 +14,7 @@
 #include "roving/formats/obj_records.h"
 
 namespace roving {
+
 ObjTriangleStream::ObjTriangleStream(const std::string& path)
     : TriangleStream(path, 0), file_(path, "a .obj mesh") {}
 
@@ -40,7 +41,9 @@ std::unique_ptr<ObjTriangleStream> ObjTriangleStream::open(const std::string& pa
   // The vertices, checked as read_obj checks them.
   LineCursor lines(text);
   const obj::Fail fail = obj::line_error(path, lines);
-  for (std::string_view line; lines.next_line(line);) {
+  Place before_line;  // where the line just read starts, and the records before it
+  bool found_face = false;
+  for (std::string_view line; lines.next_line(line); before_line.offset = lines.offset(), ++before_line.lines) {
     std::string_view rest = line;
     const std::string_view keyword = next_token(rest);
     if (keyword == "v") {
@@ -48,11 +51,16 @@ std::unique_ptr<ObjTriangleStream> ObjTriangleStream::open(const std::string& pa
       double rgb[3];
       if (obj::parse_vertex(rest, position, rgb, fail)) return nullptr;  // a colour: read whole
       stream->positions_.push_back(position);
+      ++before_line.vertices;
     } else if (keyword == "vt") {
       double uv[2];
       obj::parse_texture_coordinate(rest, uv, fail);
+      ++before_line.texture_coordinates;
     } else if (keyword == "mtllib" || keyword == "usemtl") {
       return nullptr;
+    } else if (keyword == "f" && !found_face) {
+      stream->first_face_ = before_line;
+      found_face = true;
     }
     if ((lines.line_number() & 0xFFFF) == 0) stream->release_before(lines.offset());
   }
@@ -98,6 +106,7 @@ bool ObjTriangleStream::next(std::size_t count, std::vector<Triangle>& triangles
         for (const int v : corners_) referenced_[v] = true;
       }
     }
+    if ((lines.line_number() & 0xFFFF) == 0) release_before(lines.offset());  // a long run of other lines
   }
   at_.lines += lines.line_number();
   at_.offset = lines.offset();
@@ -130,7 +139,7 @@ void ObjTriangleStream::release_before(std::size_t end) {
 
 void ObjTriangleStream::restart() {
   release_before(file_.size());
-  at_ = {};
+  at_ = first_face_;
   released_ = 0;
 }
 

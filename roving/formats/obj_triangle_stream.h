@@ -1,8 +1,9 @@
 // An OBJ's triangles a block of faces at a time (triangle_stream.h). A first pass reads the
 // vertices (24 bytes each, as a whole read holds them) and counts the faces; each block then
-// parses its faces from the text where the last one stopped, fan-triangulated and checked as
-// read_obj does, with the vertices and texture coordinates defined so far. The file is mapped,
-// and the pages a pass has left behind are handed back, so the text never sits in memory whole.
+// parses its faces from the text where the last one stopped (the first block from the first face,
+// past the vertices before it), fan-triangulated and checked as read_obj does, with the vertices
+// and texture coordinates defined so far. The file is mapped, and the pages a pass has left
+// behind are handed back, so the text never sits in memory whole.
 // Files with vertex colours or materials are read whole (what they carry needs every face).
 #pragma once
 
@@ -41,7 +42,7 @@ class ObjTriangleStream final : public TriangleStream {
   };
   FileBytes file_;
   std::vector<Vec3> positions_;
-  Place at_;
+  Place at_, first_face_;  // a pass over the faces starts at the first (the vertices before it are read)
   std::size_t released_ = 0;       // pages before this byte were handed back in this pass
   std::vector<bool> referenced_;   // by a kept face, until the first pass ends
   std::optional<VertexCensus> census_;
