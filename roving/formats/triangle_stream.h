@@ -1,7 +1,7 @@
 // A reference's triangles read a block at a time, for a reference too large to hold whole: a
 // binary PLY's (ply_triangle_stream.h), a binary STL's (stl_triangle_stream.h) or an OBJ's
-// (obj_triangle_stream.h). Every value is
-// checked as the whole file's reader checks it; faces repeating a vertex are dropped and counted.
+// (obj_triangle_stream.h). Every value is checked as the whole file's reader checks it; faces
+// repeating a vertex are dropped and counted.
 #pragma once
 
 #include <cstddef>
