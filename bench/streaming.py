@@ -4,7 +4,8 @@
 Measures the bunny split to 10^7 and 10^8 triangles (REF) against the 1.5 M-triangle TEST, first-hit,
 closest (the distances alone: --hausdorff-bound none) and closest with its default certified Hausdorff
 interval, each in its own process so that its peak resident memory is its own (os.wait4's ru_maxrss):
-streamed (the default, `--chunk` 2^20 faces a block) and read whole (`--chunk 0`). Checked before
+streamed (the default, `--chunk` 2^20 faces a block) and read whole (`--chunk 0`); REF as binary PLY,
+and first-hit also as binary STL and as OBJ. Checked before
 reported: the streamed report's figures equal the whole one's, every field but the times and how it
 ran; the certified intervals, bounded a block at a time, meet the whole run's and are as narrow as
 asked. Writes results/streaming.md with wall time, peak RSS, bytes per REF triangle and samples/s, and
@@ -27,7 +28,7 @@ import time
 GOAL_RSS = 2.5e9  # bytes, at 10^8 triangles
 GOAL_LINEAR = 1.15  # the 10^8 wall over the 10^7 wall times the triangles' ratio
 
-# (name, REF file, semantics arguments, modes)
+# (name, REF file, semantics, arguments, modes)
 RUNS = [
     ("10^7", "scaling/ref-n12.ply", "first-hit", [], ["streamed", "whole"]),
     ("10^7", "scaling/ref-n12.ply", "closest", ["--semantics", "closest"], ["streamed", "whole"]),
@@ -37,9 +38,15 @@ RUNS = [
      ["streamed", "whole"]),
     ("10^8", "scaling-large/ref-n38.ply", "closest, certified",
      ["--semantics", "closest", "--hausdorff-bound", "0.01%"], ["streamed"]),
+    # The same REF as binary STL and as OBJ, the other formats a REF streams from.
+    ("10^7", "scaling-large/ref-n12.stl", "first-hit", [], ["streamed", "whole"]),
+    ("10^8", "scaling-large/ref-n38.stl", "first-hit", [], ["streamed"]),
+    ("10^7", "scaling-large/ref-n12.obj", "first-hit", [], ["streamed", "whole"]),
+    ("10^8", "scaling-large/ref-n38.obj", "first-hit", [], ["streamed"]),
 ]
-SCALING_LARGE = "scaling-large/ref-n38.ply"
+SCALING_LARGE = "scaling-large/ref-n38.obj"  # the last file roving-datasets --scaling-large writes
 TEST = "scaling/test-n12.ply"
+FORMATS = {".ply": "binary PLY", ".stl": "binary STL", ".obj": "OBJ"}
 INCIDENTAL = {"seconds", "command_line", "provenance", "streamed", "tool"}
 
 
@@ -112,24 +119,26 @@ def main():
 
     rows, failures = [], []
     for size, ref, semantics, arguments, modes in RUNS:
+        form = FORMATS[os.path.splitext(ref)[1]]
+        what = f"{size} {form} {semantics}"
         reports = {}
         for mode in modes:
             report, rss, wall = measure(args.roving, os.path.join(args.data, ref), os.path.join(args.data, TEST),
                                         arguments + (["--chunk", "0"] if mode == "whole" else []))
             if (mode == "streamed") != ("streamed" in report["samples"]):
-                failures.append(f"{size} {semantics} {mode}: the report says the reference was "
+                failures.append(f"{what} {mode}: the report says the reference was "
                                 f"{'read whole' if mode == 'streamed' else 'streamed'}")
             reports[mode] = report
-            rows.append({"size": size, "semantics": semantics, "mode": mode, "wall": wall, "rss": rss,
+            rows.append({"size": size, "format": form, "semantics": semantics, "mode": mode, "wall": wall, "rss": rss,
                          "triangles": report["reference"]["triangles"], "samples": report["samples"]["count"],
                          "load": report["seconds"]["load_reference"], "query": report["seconds"]["query"],
                          "usiad": report["statistics"]["usiad"],
                          "certified": report.get("hausdorff_certified", {}).get("seconds")})
-            print(f"{size} {semantics} {mode}: {wall:.1f} s, {rss / 2**20:.0f} MiB", file=sys.stderr)
+            print(f"{what} {mode}: {wall:.1f} s, {rss / 2**20:.0f} MiB", file=sys.stderr)
         if len(reports) == 2:
-            failures += compare(f"{size} {semantics}", reports["streamed"], reports["whole"])
+            failures += compare(what, reports["streamed"], reports["whole"])
         elif "hausdorff_certified" in reports["streamed"]:
-            failures += check_interval(f"{size} {semantics}", reports["streamed"])
+            failures += check_interval(what, reports["streamed"])
     write_markdown(rows, failures, args)
     if failures:
         print("\n".join(failures), file=sys.stderr)
@@ -138,14 +147,16 @@ def main():
 
 
 def write_markdown(rows, failures, args):
-    def row_of(size, semantics, mode):
-        return next((r for r in rows if (r["size"], r["semantics"], r["mode"]) == (size, semantics, mode)), None)
+    def row_of(size, form, semantics, mode):
+        return next((r for r in rows if (r["size"], r["format"], r["semantics"], r["mode"]) ==
+                     (size, form, semantics, mode)), None)
 
     lines = [
         "# One pair of any size: REF streamed a block of faces at a time",
         "",
         "Produced by `python3 bench/streaming.py` (pairs from `roving-datasets --scaling` and `--scaling-large`).",
-        "REF: the normalised bunny with every triangle split into 12^2 (10^7 triangles) and 38^2 (10^8); TEST:",
+        "REF: the normalised bunny with every triangle split into 12^2 (10^7 triangles) and 38^2 (10^8), as",
+        "binary PLY, and as binary STL and OBJ (its float coordinates in the fewest digits that read back); TEST:",
         "its 10,459-triangle decimation, perturbed by 0.5% of the diagonal, split into 12^2 (1.5 M triangles).",
         "Face samples (one per REF triangle), h = 5% of the diagonal, Embree; *closest* is the distances alone",
         "(`--hausdorff-bound none`), *closest, certified* adds the certified Hausdorff interval at its default",
@@ -157,37 +168,39 @@ def write_markdown(rows, failures, args):
         "",
         f"Machine: {platform.machine()}, {os.cpu_count()} cores, {platform.platform()}.",
         "",
-        "| REF | semantics | REF read | wall s | load REF s | query s | certified bound s | samples/s (wall) "
-        "| peak RSS MiB | bytes / REF triangle |",
-        "|---|---|---|---|---|---|---|---|---|---|",
+        "| REF | REF file | semantics | REF read | wall s | load REF s | query s | certified bound s "
+        "| samples/s (wall) | peak RSS MiB | bytes / REF triangle |",
+        "|---|---|---|---|---|---|---|---|---|---|---|",
     ]
     for r in rows:
-        lines.append(f"| {r['size']} ({r['triangles']:,}) | {r['semantics']} | {r['mode']} | {r['wall']:.1f} "
+        lines.append(f"| {r['size']} ({r['triangles']:,}) | {r['format']} | {r['semantics']} | {r['mode']} | {r['wall']:.1f} "
                      f"| {r['load']:.1f} | {r['query']:.1f} "
                      f"| {'-' if r['certified'] is None else format(r['certified'], '.1f')} "
                      f"| {r['samples'] / r['wall']:.3g} | {r['rss'] / 2**20:,.0f} "
                      f"| {r['rss'] / r['triangles']:.1f} |")
     lines += ["", "Goals at 10^8 (streamed):", ""]
-    for semantics in ("first-hit", "closest", "closest, certified"):
-        small, large = row_of("10^7", semantics, "streamed"), row_of("10^8", semantics, "streamed")
+    for form, semantics in [(f, s) for f in FORMATS.values() for s in ("first-hit", "closest", "closest, certified")]:
+        small, large = row_of("10^7", form, semantics, "streamed"), row_of("10^8", form, semantics, "streamed")
         if not (small and large):
             continue
         linear = large["wall"] / (small["wall"] * large["triangles"] / small["triangles"])
-        lines.append(f"- {semantics}: peak RSS {large['rss'] / 1e9:.2f} GB (goal <= {GOAL_RSS / 1e9:.1f}: "
+        lines.append(f"- {form}, {semantics}: peak RSS {large['rss'] / 1e9:.2f} GB (goal <= {GOAL_RSS / 1e9:.1f}: "
                      f"{'met' if large['rss'] <= GOAL_RSS else '**missed**'}); wall {large['wall']:.1f} s against "
                      f"{small['wall']:.1f} s x {large['triangles'] / small['triangles']:.2f} = {linear:.2f}x linear "
                      f"(goal <= {GOAL_LINEAR}: {'met' if linear <= GOAL_LINEAR else '**missed**'}).")
-    whole, streamed = row_of("10^8", "first-hit", "whole"), row_of("10^8", "first-hit", "streamed")
+    whole, streamed = row_of("10^8", "binary PLY", "first-hit", "whole"), row_of("10^8", "binary PLY", "first-hit", "streamed")
     if whole and streamed:
-        lines.append(f"- Against reading REF whole at 10^8 (first-hit): {whole['wall'] / streamed['wall']:.2f}x the "
+        lines.append(f"- Against reading the PLY REF whole at 10^8 (first-hit): {whole['wall'] / streamed['wall']:.2f}x the "
                      f"speed in {whole['rss'] / streamed['rss']:.1f}x less memory.")
     lines += [
         "",
-        "What a streamed run holds: TEST's search structure, REF's vertices as the file stores them (12 bytes",
-        "each in float), one block of faces with its samples and distances (about 100 MB at 2^20 faces), and",
-        "per sample 12 bytes: |d| in double for the exact percentiles and |d| in float for the heat-map range",
-        "the JSON reports. GL methods read REF whole: their viewpoint sampling draws every sample's views at",
-        "once (docs/measuring.md says which options need REF whole).",
+        "What a streamed run holds: TEST's search structure, REF's vertices (a PLY's as the file stores them,",
+        "12 bytes each in float; an OBJ's as parsed, 24 bytes in double; an STL's none: it stores each facet's",
+        "corners, and its first pass counts the distinct corners in a set freed before the measurement), one",
+        "block of faces with its samples and distances (about 100 MB at 2^20 faces), and per sample 8 bytes:",
+        "|d| in double, from which the exact percentiles and the heat-map range the JSON reports are read.",
+        "GL methods read REF whole: their viewpoint sampling draws every sample's views at once",
+        "(docs/measuring.md says which options need REF whole).",
         "",
         "The certified interval of a streamed REF is bounded in a pass of its own over the same blocks, each",
         "a small mesh of its faces (4 bytes more per REF vertex for their numbering) against TEST's closest-",

@@ -15,6 +15,7 @@
 #include "data_folder.h"
 #include "decimate.h"
 #include "paper_models.h"
+#include "plain_mesh_writers.h"
 #include "roving/core/error.h"
 #include "roving/core/normalise.h"
 #include "roving/core/sample_set.h"
@@ -39,6 +40,15 @@ class Writer {
 
   void mesh(const TriangleMesh& m, const std::string& name, json made_by) {
     save_mesh(m, path(name), true);
+    add(name, std::move(made_by), {{"vertices", m.vertex_count()}, {"triangles", m.triangle_count()}});
+  }
+  // A binary STL or OBJ written without OpenMesh (plain_mesh_writers.h), for meshes too big for it.
+  void plain(const TriangleMesh& m, const std::string& name, json made_by) {
+    if (fs::path(name).extension() == ".stl") {
+      write_binary_stl(m, path(name));
+    } else {
+      write_plain_obj(m, path(name));
+    }
     add(name, std::move(made_by), {{"vertices", m.vertex_count()}, {"triangles", m.triangle_count()}});
   }
   void voxels(const VoxelGrid& g, const std::string& name, json made_by) {
@@ -193,8 +203,9 @@ int main(int argc, char** argv) {
                "decimation, every triangle split into n^2 (n = 1, 2, 4, 8, 12)");
   bool scaling_large = false;
   app.add_flag("--scaling-large", scaling_large,
-               "only the 10^8-triangle reference of the streaming benchmark, into OUT/scaling-large: the bunny with every "
-               "triangle split into 38^2 (100,287,244 triangles, 1.9 GB), measured against --scaling's test-n12.ply");
+               "only the streaming benchmark's references, into OUT/scaling-large: the bunny with every triangle split into "
+               "38^2 (100,287,244 triangles) as binary PLY, binary STL and OBJ (1.9, 5.0 and 4.6 GB), and split into "
+               "12^2 as STL and OBJ; measured against --scaling's test-n12.ply");
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -236,9 +247,15 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (scaling_large) {
+      // Binary PLY, binary STL and OBJ: the three formats a REF streams from, at 10^8 and 10^7.
       Writer scaled((fs::path(out) / "scaling-large").string());
-      scaled.mesh(split_triangles(bunny, 38), "ref-n38.ply",
-                  {{"source", "bunny.ply"}, {"operation", "every triangle split into n^2"}, {"n", 38}});
+      for (int n : {38, 12}) {
+        const TriangleMesh split = split_triangles(bunny, n);
+        const json made_by = {{"source", "bunny.ply"}, {"operation", "every triangle split into n^2"}, {"n", n}};
+        if (n == 38) scaled.mesh(split, "ref-n38.ply", made_by);  // --scaling writes ref-n12.ply
+        scaled.plain(split, fmt::format("ref-n{}.stl", n), made_by);
+        scaled.plain(split, fmt::format("ref-n{}.obj", n), made_by);
+      }
       scaled.finish();
       return 0;
     }
