@@ -23,7 +23,8 @@ bool incidental(const std::string& key) {
   for (const char* name : {"seconds", "command_line", "tool", "merged_from", "distance_queries", "triangles_split"}) {
     if (key == name) return true;
   }
-  return false;
+  const std::string timed = "_seconds";  // a GL method's stages: camera_build_seconds, ...
+  return key.size() > timed.size() && key.compare(key.size() - timed.size(), timed.size(), timed) == 0;
 }
 
 // Every field of `one` equal in `merged` (numbers bit for bit), but the incidental ones; `path`
@@ -248,9 +249,11 @@ TEST(CliStreamed, ReferenceReadInChunksGivesTheWholeReport) {
   const std::string test = folder.file("moved.ply", moved);
   const std::string report = folder.file("report.json");
   // "--max-error 0.04%": four samples in five miss, and the heat-map range is read past them.
+  // Exact roving's cameras are drawn 4,096 tiles a batch: neither block size is a multiple of it.
   for (const char* options : {"", "--semantics nearest", "--method cgal --semantics closest --hausdorff-bound none",
                               "--method v2p-aabb --hausdorff-bound none --histogram-bins 7",
-                              "--semantics closest --hausdorff-bound 1e-5", "--max-error 0.04%"}) {
+                              "--semantics closest --hausdorff-bound 1e-5", "--max-error 0.04%",
+                              "--method roving --max-error 0.2%"}) {
     const std::string pair = fmt::format("measure {} {} {} --quiet --json -", igea.path, test, options);
     const CliRun whole = run_cli(pair + " --chunk 0");
     ASSERT_EQ(whole.exit_code, 0) << whole.err;
@@ -289,7 +292,7 @@ TEST(CliStreamed, ReferenceReadInChunksGivesTheWholeReport) {
   }
   // More faces per block than Igea has, or what needs REF whole: read whole.
   for (const char* options : {"--chunk 300000", "--chunk 1000 --symmetric", "--chunk 1000 --samples vertices",
-                              "--chunk 1000 --method roving"}) {
+                              "--chunk 1000 --method viewpoint", "--chunk 1000 --method cooperative"}) {
     const CliRun run = run_cli(fmt::format("measure {} {} {} --quiet --json -", igea.path, test, options));
     ASSERT_EQ(run.exit_code, 0) << options << run.err;
     EXPECT_EQ(run.out.find("\"streamed\""), std::string::npos) << options;

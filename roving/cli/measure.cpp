@@ -599,6 +599,7 @@ void measure_streamed_direction(const Model& a, const TriangleMesh& test_mesh, T
   plan.method->release();
   d.samples = std::move(streamed.samples);
   d.result.query_seconds = streamed.query_seconds;
+  d.result.gl = std::move(streamed.gl);
   d.statistics = streamed.statistics;
   d.signs = streamed.signs;
   d.heatmap_range = streamed.heatmap_range;
@@ -797,13 +798,13 @@ bool reference_only_sampled(const MeasureArguments& args, const MeasurePlan& pla
 
 // REF's file, to be read a block of faces at a time, where it is a binary PLY of plain triangles, a
 // binary STL or a plain OBJ with more faces than --chunk and nothing asked for needs it whole: one direction of
-// face samples by a method that measures each sample alone (not a GL method, whose views see all
-// samples), and no output that reads REF or every sample after the measurement.
+// face samples by a method whose answers do not depend on every sample at once (not the GL methods
+// that draw views: independent_run()), and no output that reads REF or every sample after the measurement.
 std::unique_ptr<TriangleStream> reference_stream(const MeasureArguments& args, const MeasurePlan& plan) {
   const bool wanted = plan.chunk_faces > 0 && reference_only_sampled(args, plan, true) && !plan.pcc_only && !plan.dtu &&
                       !plan.tnt && !plan.shard && !plan.correspondences && plan.thresholds.empty() &&
                       args.samples_csv_path.empty() && plan.sample_spec.kind == SampleSpec::Kind::Faces &&
-                      !is_gl_method(args.method) &&
+                      plan.method->independent_run() > 0 &&
                       (!plan.reference_type || *plan.reference_type == ModelType::Mesh);
   return wanted ? open_triangle_stream(args.reference_path, plan.chunk_faces) : nullptr;
 }

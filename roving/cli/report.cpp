@@ -96,10 +96,6 @@ nlohmann::json model_json(const Model& model) {
 
 namespace {
 
-std::size_t count(const GlReport& gl, Resolution how) {
-  return static_cast<std::size_t>(std::count(gl.resolved_by.begin(), gl.resolved_by.end(), how));
-}
-
 std::string model_line(const std::string& role, const Model& model) {
   const LoadedMesh& loaded = model.mesh;
   const TriangleMesh& m = loaded.mesh;
@@ -213,15 +209,15 @@ std::string gl_lines(const GlReport& g) {
   std::string out = fmt::format("  GL: {}\n", g.renderer);
   if (g.views_h == 0 && !g.axis_views) {  // exact roving: cameras only
     out += fmt::format("  observations: {} per-sample cameras (exact roving draws no views); unresolved {}\n",
-                       g.sample_cameras, count(g, Resolution::Unresolved));
+                       g.sample_cameras, g.resolved(Resolution::Unresolved));
   } else {
     out += fmt::format(
         "  observations: {} ({} views of {} at {} px + {} per-sample cameras); resolved by views {}, by "
         "cameras {}, unresolved {}\n",
         g.observations(), g.views_rendered,
         g.axis_views ? "the 6 axes" : fmt::format("{}x{}", g.views_h, g.views_v), g.resolution,
-        g.sample_cameras, count(g, Resolution::View), count(g, Resolution::Camera),
-        count(g, Resolution::Unresolved));
+        g.sample_cameras, g.resolved(Resolution::View), g.resolved(Resolution::Camera),
+        g.resolved(Resolution::Unresolved));
   }
   // Only what was rendered: views, cameras, or both.
   std::vector<std::string> precision;
@@ -247,9 +243,9 @@ nlohmann::json gl_json(const GlReport& g) {
                     : g.views_h == 0 ? "none"
                                      : fmt::format("{}x{}", g.views_h, g.views_v)},
           {"resolution", g.resolution},
-          {"resolved_by_view", count(g, Resolution::View)},
-          {"resolved_by_camera", count(g, Resolution::Camera)},
-          {"unresolved", count(g, Resolution::Unresolved)},
+          {"resolved_by_view", g.resolved(Resolution::View)},
+          {"resolved_by_camera", g.resolved(Resolution::Camera)},
+          {"unresolved", g.resolved(Resolution::Unresolved)},
           {"view_pixel_size", g.view_pixel_size},
           {"view_depth_step", g.view_depth_step},
           {"camera_half_width", g.camera_half_width},

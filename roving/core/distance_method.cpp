@@ -52,6 +52,31 @@ MaxErrorSpec parse_max_error(const std::string& text) {
   return spec;
 }
 
+std::size_t GlReport::resolved(Resolution how) const {
+  return earlier_resolved[static_cast<std::size_t>(how)] +
+         static_cast<std::size_t>(std::count(resolved_by.begin(), resolved_by.end(), how));
+}
+
+void GlReport::add_block(const GlReport& block) {
+  for (const Resolution how : {Resolution::Unresolved, Resolution::View, Resolution::Camera}) {
+    earlier_resolved[static_cast<std::size_t>(how)] = resolved(how) + block.resolved(how);
+  }
+  resolved_by.clear();
+  // What the method made of each block alike: its renderer, views and precision.
+  renderer = block.renderer;
+  views_h = block.views_h, views_v = block.views_v, resolution = block.resolution;
+  axis_views = block.axis_views;
+  view_pixel_size = block.view_pixel_size, view_depth_step = block.view_depth_step;
+  camera_half_width = block.camera_half_width, camera_depth_step = block.camera_depth_step;
+  gpu_cameras = block.gpu_cameras;
+  views_rendered += block.views_rendered;
+  sample_cameras += block.sample_cameras;
+  camera_build_seconds += block.camera_build_seconds;
+  camera_render_seconds += block.camera_render_seconds;
+  view_cpu_seconds += block.view_cpu_seconds;
+  view_draw_seconds += block.view_draw_seconds;
+}
+
 std::size_t DistanceResult::hit_count() const {
   return static_cast<std::size_t>(std::count(hit.begin(), hit.end(), std::uint8_t{1}));
 }

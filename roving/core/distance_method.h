@@ -5,6 +5,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <array>
 #include <atomic>
 #include <cstdint>
 #include <functional>
@@ -94,7 +95,15 @@ struct GlReport {
   // CPU threads, beside the drawing; drawing them on the GL thread (draw, read back).
   double view_cpu_seconds = 0, view_draw_seconds = 0;
 
+  // Samples of a streamed REF's earlier blocks, whose resolved_by was let go: how many each way.
+  std::array<std::size_t, 3> earlier_resolved{};
+
   std::size_t observations() const { return views_rendered + sample_cameras; }
+  // How many samples were resolved `how`, earlier blocks' included.
+  std::size_t resolved(Resolution how) const;
+  // Folds in the report of the next block of samples: counts and times add up, and the block's
+  // per-sample record is kept as counts alone.
+  void add_block(const GlReport& block);
 };
 
 // Per-sample output. signed_distance[k] is meaningful only where hit[k] is set.
@@ -139,6 +148,12 @@ class DistanceMethod {
   // Measures every sample; requires build(). Throws roving::Error on bad options
   // (h <= 0 or not finite, unsupported semantics).
   virtual DistanceResult measure(const SampleSet& samples, const DistanceOptions& options) = 0;
+
+  // Samples are answered in runs of this many (1: each alone, as the ray casts and searches
+  // are): a sample's answer may depend on its place in its run (a GL camera's tile), never on
+  // the other runs' samples, so measuring the samples split at multiples of it gives the
+  // answers of one call. 0: every sample's answer depends on them all (views drawn for them all).
+  virtual std::size_t independent_run() const { return 1; }
 
   // Frees what build() made (its BVH, tree or GL scene), so that statistics and output after
   // the query do not hold it too; measure() then needs build() again.

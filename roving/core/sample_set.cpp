@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <charconv>
+#include <iterator>
 #include <random>
 #include <type_traits>
 
@@ -71,6 +72,40 @@ SampleSet SampleSet::slice(std::size_t first, std::size_t last) const {
   subset.skipped_unreferenced_vertices = skipped_unreferenced_vertices;
   subset.skipped_zero_normal_vertices = skipped_zero_normal_vertices;
   return subset;
+}
+
+SampleSet SampleSet::split_off(std::size_t n) {
+  SampleSet rest;
+  const auto move_tail = [&](auto& all, auto& tail) {
+    if (all.size() < n) return;  // an array not filled per sample
+    tail.assign(std::make_move_iterator(all.begin() + n), std::make_move_iterator(all.end()));
+    all.resize(n);
+  };
+  move_tail(positions, rest.positions);
+  move_tail(normals, rest.normals);
+  move_tail(weights, rest.weights);
+  move_tail(elements, rest.elements);
+  rest.kind = kind;
+  return rest;
+}
+
+void SampleSet::append(SampleSet&& more) {
+  const bool none = size() == 0;
+  const auto add = [none](auto& all, auto& tail) {
+    if (none) {
+      all = std::move(tail);
+    } else if (!all.empty()) {  // else not filled per sample
+      all.insert(all.end(), tail.begin(), tail.end());
+    }
+  };
+  add(positions, more.positions);
+  add(normals, more.normals);
+  add(weights, more.weights);
+  add(elements, more.elements);
+  if (kind.empty()) kind = more.kind;
+  skipped_degenerate_faces += more.skipped_degenerate_faces;
+  skipped_unreferenced_vertices += more.skipped_unreferenced_vertices;
+  skipped_zero_normal_vertices += more.skipped_zero_normal_vertices;
 }
 
 namespace {

@@ -48,6 +48,10 @@ struct SampleSet {
   SampleSet head(std::size_t n) const;
   // Samples [first, last) (clamped to the set), with the set's kind and skipped counts: a shard's.
   SampleSet slice(std::size_t first, std::size_t last) const;
+  // Samples [n, size()) moved into a set of their own (with the kind), these kept: n must be <= size().
+  SampleSet split_off(std::size_t n);
+  // `more`'s samples after these, in every array both fill per sample (an empty set takes all).
+  void append(SampleSet&& more);
 };
 
 // Builds samples on `reference`; throws roving::Error if none can be made.

@@ -121,6 +121,9 @@ class GlMethod : public DistanceMethod {
   double build(const TriangleMesh& test) override;
   void release() override { scene_.release(); }
   DistanceResult measure(const SampleSet& samples, const DistanceOptions& options) final;
+  // Views are drawn for every sample given at once (and cooperative's budget of views weighs
+  // them all); exact roving's cameras answer a batch of tiles at a time.
+  std::size_t independent_run() const override { return 0; }
 
  protected:
   // Per-sample answers: record(k, d, how) marks sample k a hit with distance d; `coloured`, when

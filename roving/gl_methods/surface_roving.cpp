@@ -134,6 +134,8 @@ class SurfaceRoving final : public GlMethod {
  public:
   using GlMethod::GlMethod;
   std::string name() const override { return "roving"; }
+  // A camera's answer is its tile's depth: rasterised at the tile's place in its batch's grid.
+  std::size_t independent_run() const override { return kTilesPerBatch; }
 
   void resolve(const SampleSet& samples, double max_error, GlReport& report, const Record& record,
                const Coloured& coloured) override {

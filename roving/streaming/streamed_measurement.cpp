@@ -93,6 +93,8 @@ StreamedReference summarise(TriangleStream& stream, std::size_t chunk_faces, con
 StreamedResult measure_streamed(TriangleStream& stream, DistanceMethod& method, const DistanceOptions& options,
                                 std::size_t histogram_bins, std::size_t chunk_faces, std::size_t expected_samples,
                                 const ProgressFn& progress) {
+  const std::size_t run = method.independent_run();
+  if (run == 0) throw Error(method.name() + ": answers every sample from them all; REF cannot be streamed");
   StreamedResult result;
   result.samples.kind = SampleSpec().to_string();
   StatisticsAccumulator statistics(options.max_error, histogram_bins, expected_samples);
@@ -100,16 +102,17 @@ StreamedResult measure_streamed(TriangleStream& stream, DistanceMethod& method, 
   method.set_progress([&](const char* stage, std::size_t block_done, std::size_t) {
     if (progress) progress(stage, done + block_done, expected_samples);
   });
-  std::vector<Triangle> triangles;
-  stream.rewind();
-  while (stream.next(chunk_faces, triangles)) {
-    ++result.chunks;
-    SampleSet samples = face_samples(stream, triangles);
-    result.samples.skipped_degenerate_faces += samples.skipped_degenerate_faces;
-    if (samples.size() == 0) continue;
+  // The method is given whole runs of samples (independent_run), the rest carried into the next
+  // block's: each sample is answered where one call for them all puts it.
+  SampleSet pending;
+  const auto measure = [&](SampleSet& samples) {
     samples.kind = result.samples.kind;
     const DistanceResult measured = method.measure(samples, options);
     result.query_seconds += measured.query_seconds;
+    if (measured.gl) {
+      if (!result.gl) result.gl.emplace();
+      result.gl->add_block(*measured.gl);
+    }
     for (std::size_t k = 0; k < samples.size(); ++k) {
       const double d = measured.signed_distance[k];
       statistics.add(d, measured.hit[k], samples.weights[k]);
@@ -117,7 +120,21 @@ StreamedResult measure_streamed(TriangleStream& stream, DistanceMethod& method, 
       ++(d > 0 ? result.signs.positive : d < 0 ? result.signs.negative : result.signs.zero);
     }
     done += samples.size();
+  };
+  std::vector<Triangle> triangles;
+  stream.rewind();
+  while (stream.next(chunk_faces, triangles)) {
+    ++result.chunks;
+    SampleSet samples = face_samples(stream, triangles);
+    result.samples.skipped_degenerate_faces += samples.skipped_degenerate_faces;
+    pending.append(std::move(samples));
+    const std::size_t ready = pending.size() / run * run;
+    if (ready == 0) continue;
+    SampleSet rest = pending.split_off(ready);
+    measure(pending);
+    pending = std::move(rest);
   }
+  if (pending.size() > 0) measure(pending);
   method.set_progress({});
   if (statistics.count() == 0) {
     throw Error(fmt::format("reference model gives no 'faces' samples ({} triangles, all degenerate?)",

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cstddef>
+#include <optional>
 
 #include "roving/core/distance_method.h"
 #include "roving/core/sample_set.h"
@@ -37,11 +38,14 @@ struct StreamedResult {
   double heatmap_range = 0;  // default_heatmap_range's: the 99th percentile of the hits' |d|
   std::size_t chunks = 0;
   double query_seconds = 0;
+  std::optional<GlReport> gl;  // a GL method's, its blocks' added up (GlReport::add_block)
 };
 
 // Measures REF's face samples (make_samples' "faces", in its order) against the TEST `method`
 // was built for, `chunk_faces` of the file's faces at a time; `progress` hears of the samples
-// done of `expected_samples`. Throws roving::Error where REF gives no sample.
+// done of `expected_samples`. Samples go to the method in whole runs (independent_run()), so that
+// chunking changes no answer. Throws roving::Error where REF gives no sample, or where the method
+// answers each sample from them all.
 StreamedResult measure_streamed(TriangleStream& stream, DistanceMethod& method, const DistanceOptions& options,
                                 std::size_t histogram_bins, std::size_t chunk_faces, std::size_t expected_samples,
                                 const ProgressFn& progress = {});
