@@ -286,7 +286,7 @@ std::unique_ptr<CommandLine> make_command_line() {
              "--chunk", args.chunk,
              "a binary PLY or STL, or OBJ, REF with more faces than this is read, sampled and measured this many faces at a time, "
              "in bounded memory with the same figures, where nothing asked for needs it whole (one direction, face "
-             "samples, an exact or nearest-point method, no threshold, per-sample output or picture; the certified "
+             "samples, an exact, nearest-point or exact roving (GL cameras) method, no threshold, per-sample output or picture; the certified "
              "Hausdorff interval is bounded block by block); 0: always read whole")
       ->capture_default_str();
   measure->add_option("--samples-out", args.samples_csv_path, "write one CSV row per sample");
