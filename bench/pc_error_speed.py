@@ -9,10 +9,13 @@ cores. Checked before timed: every geometry and colour PSNR must agree within 1e
 The pair is made here (or given with --pair): N points voxelised on a torus at 11 bits with unit
 normals and colours (A), and A requantised to a step of 2 and jittered by one voxel, with noisy
 colours and no normals (B) - a geometry codec's output, duplicates and ties included. pc_error is
-not part of roving: build it from https://github.com/MPEGGroup/mpeg-pcc-dmetric (release-v0.14.2).
+not part of roving: build it from https://github.com/MPEGGroup/mpeg-pcc-dmetric (release-v0.14.2)
+with its optimisation flags (`cmake -S source -B build -DCMAKE_BUILD_TYPE=Release`); its own build.sh
+and a plain `cmake -S source -B build` give no build type, so no -O flag at all, and a pc_error about
+1.6x slower: give that one too with --pc-error-unoptimised to time it beside.
 
-    python3 bench/pc_error_speed.py --roving build/roving/roving --pc-error /path/to/pc_error \\
-        --points 1000000 10000000 --runs 3 --out results
+    python3 bench/pc_error_speed.py --roving build/roving/roving --pc-error /path/to/Release/pc_error \\
+        --pc-error-unoptimised /path/to/build.sh/pc_error --points 1000000 10000000 --runs 3 --out results
 """
 import argparse
 import json
@@ -106,6 +109,10 @@ def timed_section(args, count, folder):
         "roving measure --pcc": [args.roving, "measure", a, b, "--pcc", "--pcc-resolution", args.resolution,
                                  "--quiet", "--json", report],
     }
+    if args.pc_error_unoptimised:
+        tools["pc_error as its build.sh builds it (no -O), 1 thread"] = [
+            args.pc_error_unoptimised, f"--fileA={a}", f"--fileB={b}", "--color=1", "--hausdorff=1",
+            f"--resolution={args.resolution}"]
     # The answers first.
     theirs = pc_error_figures(run(tools["pc_error, 1 thread (its default)"])[3])
     run(tools["roving measure --pcc"])
@@ -136,7 +143,9 @@ def timed_section(args, count, folder):
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--roving", required=True, help="the roving executable")
-    parser.add_argument("--pc-error", required=True, help="MPEG's pc_error executable (mpeg-pcc-dmetric)")
+    parser.add_argument("--pc-error", required=True,
+                        help="MPEG's pc_error executable (mpeg-pcc-dmetric), built with CMAKE_BUILD_TYPE=Release")
+    parser.add_argument("--pc-error-unoptimised", help="pc_error as its build.sh builds it (no build type), to time beside")
     parser.add_argument("--points", type=int, nargs="+", default=[1000000],
                         help="points of each generated pair (one table per size)")
     parser.add_argument("--pair", nargs=2, help="A.ply B.ply instead of the generated pair")
@@ -159,7 +168,9 @@ def main():
     text = "\n".join([
         "# MPEG's point-cloud figures: roving against pc_error\n",
         f"Written by `bench/pc_error_speed.py` on {platform.node()} ({os.cpu_count()} cores), "
-        f"{time.strftime('%Y-%m-%d')}: {pair}; peak {args.resolution}.\n"] + sections)
+        f"{time.strftime('%Y-%m-%d')}: {pair}; peak {args.resolution}. pc_error (mpeg-pcc-dmetric "
+        "release-v0.14.2) built with `-DCMAKE_BUILD_TYPE=Release` (its -O3 flags); its own build.sh gives no build "
+        "type, and so no optimisation, which the last row times where given.\n"] + sections)
     print(text)
     if args.out:
         with open(os.path.join(args.out, "pc-error-speed.md"), "w") as f:
