@@ -11,6 +11,7 @@
 #include "roving/core/confidence.h"
 #include "roving/core/error.h"
 #include "roving/core/mesh_orientation.h"
+#include "roving/core/radix_sort.h"
 #include "roving/core/sample_set.h"
 #include "roving/core/statistics.h"
 #include "roving/registry/method_registry.h"
@@ -246,6 +247,32 @@ TEST(SamplingIntervals, CoverTheClosedFormSurfaceMeansNinetyFivePercentOfTheTime
 TEST(SamplingIntervals, RefuseTooFewSamples) {
   EXPECT_THROW(roving::sampling_intervals({1.0}, {1}, 1.0), roving::Error);
   EXPECT_THROW(roving::sampling_intervals({1.0, 2.0}, {1}, 1.0), roving::Error);
+}
+
+// The radix sort is std::stable_sort's order: keys from each of the 16 bytes (some bytes constant,
+// as a voxelised cloud's low mantissa bytes are), many ties, sizes across its chunks of 2^16.
+TEST(RadixSort, OrdersAsAStableSortDoes) {
+  std::mt19937_64 random(7);
+  for (const std::size_t n : {0, 1, 2, 1000, 65536, 200001}) {
+    struct Item {
+      roving::RadixKey key;
+      std::size_t index;
+    };
+    std::vector<Item> items(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::uint64_t bits = random();
+      // Few distinct values, spread over the high and low words, byte 2 of each word always 0x5a.
+      const std::uint64_t low = (bits % 37) * 0x0101010101000001ull | 0x5a0000ull;
+      const std::uint64_t high = (bits >> 32) % 11 * 0x0100000000000100ull | 0x5a0000ull;
+      items[i] = {roving::RadixKey(high) << 64 | low, i};
+    }
+    std::vector<Item> expected = items;
+    std::stable_sort(expected.begin(), expected.end(), [](const Item& a, const Item& b) { return a.key < b.key; });
+    roving::radix_sort(items, [](const Item& item) { return item.key; });
+    for (std::size_t i = 0; i < n; ++i) {
+      ASSERT_EQ(items[i].index, expected[i].index) << "n " << n << ", place " << i;
+    }
+  }
 }
 
 }  // namespace

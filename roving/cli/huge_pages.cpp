@@ -5,6 +5,13 @@
 // pages on each large block (what glibc's tunable glibc.malloc.hugetlb=1 does) takes 512 times
 // fewer. Replaces the global operator new of this executable alone; memory is still malloc's, so
 // the default operator delete (free) releases it. Sanitizer builds keep their own allocator.
+//
+// Large blocks also come from malloc's heap rather than a mapping each (M_MMAP_MAX 0): a block
+// freed between stages (a file's bytes, a sort's spare room, a chunk of REF's samples) then
+// serves the next stage's allocation on pages already faulted in, where a mapping would be
+// unmapped and the next one zeroed by the kernel afresh. Measured: a million-point --pcc pair
+// 0.72 -> 0.63 s; 10^8 OBJ triangles streamed 67 -> 58 s, peak 2.18 -> 2.19 GB.
+#include <malloc.h>
 #include <sys/mman.h>
 
 #include <algorithm>
@@ -41,6 +48,9 @@ void* allocate(std::size_t size, const Allocate& try_allocate) {
     handler();
   }
 }
+
+// Set before main, as the executable's first allocations are made.
+const bool heap_for_large_blocks = mallopt(M_MMAP_MAX, 0) == 1;
 
 }  // namespace
 

@@ -94,6 +94,8 @@ class TriangleMesh {
   // `source` unless there is one per vertex, each channel finite and within [0, 255].
   const std::vector<Colour>& vertex_colours() const { return vertex_colours_; }
   void set_vertex_colours(std::vector<Colour> colours, const std::string& source = "mesh");
+  // Hands the vertex colours over; the mesh has none after.
+  std::vector<Colour> release_vertex_colours() { return std::move(vertex_colours_); }
   // Materials and texture coordinates (null: none). set_texture_mapping throws roving::Error naming
   // `source` unless there are three finite coordinates per triangle and a valid material per
   // triangle, every factor within [0, 255]. A face's colour is then its vertex colour (white when

@@ -129,7 +129,7 @@ PointCloud read_ply_points(const std::string& path) {
     throw Error(fmt::format("{}: declares faces; expected a point cloud (read it as a mesh)", path));
   }
   PointCloud cloud;
-  cloud.colours = ply.mesh.mesh.vertex_colours();
+  cloud.colours = ply.mesh.mesh.release_vertex_colours();  // moved, as the positions
   cloud.positions = ply.mesh.mesh.release_geometry();  // moved, not copied
   cloud.normals = std::move(ply.normals);
   return cloud;

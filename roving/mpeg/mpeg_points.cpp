@@ -3,7 +3,6 @@
 #include <fmt/format.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
-#include <tbb/parallel_sort.h>
 
 #include <algorithm>
 #include <atomic>
@@ -13,6 +12,7 @@
 #include <numeric>
 
 #include "roving/core/error.h"
+#include "roving/core/radix_sort.h"
 
 namespace roving {
 namespace {
@@ -50,13 +50,12 @@ MpegPoints mpeg_points(const PointCloud& cloud, const std::string& name, bool wi
                             cloud.colours.size(), n));
   }
   // Lexicographic order of the single-precision coordinates, equal points in file order: pc_error's.
-  // Sorted as integers: each coordinate's bits turned to keep float's order (-0 taken as +0, which
-  // float's == merges and which changes no distance), then the point's index.
+  // Sorted as integers (stably, so equal points keep the file's order): each coordinate's bits
+  // turned to keep float's order (-0 taken as +0, which float's == merges and which changes no
+  // distance), beside the point's index.
   struct Entry {
     std::uint64_t xy, z_index;
-    bool operator<(const Entry& other) const {
-      return xy != other.xy ? xy < other.xy : z_index < other.z_index;
-    }
+    RadixKey position() const { return RadixKey(xy) << 32 | z_index >> 32; }
     bool same_position(const Entry& other) const { return xy == other.xy && z_index >> 32 == other.z_index >> 32; }
     std::uint32_t index() const { return std::uint32_t(z_index); }
   };
@@ -103,7 +102,7 @@ MpegPoints mpeg_points(const PointCloud& cloud, const std::string& name, bool wi
     }
   });
   if (first_bad < n) to_float(cloud.positions[first_bad], name, "point", first_bad);  // throws
-  tbb::parallel_sort(order.begin(), order.end());
+  radix_sort(order, [](const Entry& e) { return e.position(); });
 
   // Runs of equal points, found and merged block by block on all cores: each block merges the runs
   // that begin in it, into the places counted before it.
