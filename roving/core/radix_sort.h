@@ -1,8 +1,9 @@
 // A stable sort by an integer key of up to 128 bits, a byte at a time from the least significant
 // (LSD radix sort), on all cores. Bytes that are the same in every key are skipped: a voxelised
-// cloud's coordinates, as single-precision bits, leave their low mantissa bytes zero (a million
-// points of an 11-bit cloud sort in 9 passes of 12: the sort's share of a --pcc run's CPU time fell
-// from 12% under tbb::parallel_sort to 8%).
+// cloud's coordinates, as single-precision bits, leave their low mantissa bytes zero (an 11-bit
+// cloud sorts in 9 passes of 12). Against tbb::parallel_sort, a --pcc run on ten million points
+// each side took 1 s less CPU time and 0.4 s less wall (of 4.7), for 16 bytes a point more while
+// it sorts; at a million, no difference stood out of the noise.
 #pragma once
 
 #include <tbb/blocked_range.h>
