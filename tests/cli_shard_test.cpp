@@ -105,6 +105,23 @@ TEST(CliShard, MergedShardsGiveTheOneProcessReport) {
   }
 }
 
+// Exact roving (GL) draws each sample's camera at its place in a batch of 4,096 cameras: its shards
+// are cut at multiples of that, and the merged report, GL counts included, is the one process's.
+TEST(CliShard, ExactRovingShardsAtItsCameraBatches) {
+  const Folder folder;
+  const std::string command = bunny() + " " + roving::testing::data_file("rocker-arm.obj") +
+                              " --symmetric --samples area:10000 --seed 5 --method roving --max-error 0.2%";
+  const CliRun one = run_cli("measure " + command + " --json - --quiet");
+  ASSERT_EQ(one.exit_code, 0) << one.err;
+  const nlohmann::json expected = nlohmann::json::parse(one.out);
+  const nlohmann::json merged = merged_json(measure_shards(folder, "roving", command, 2));
+  expect_same_report(expected, merged);
+  for (const nlohmann::json& direction : merged["directions"]) EXPECT_EQ(direction["gl"]["sample_cameras"], 10000);
+  // In 3 parts, 10,000 samples would be cut at 3,333: the first part would hold no whole batch.
+  expect_error(fmt::format("measure {} --shard 0/3 --shard-out {}", command, folder.file("x.part")),
+               {"--shard 0/3", "at most 2 shards", "4096"});
+}
+
 // The text report too, but for its time lines.
 TEST(CliShard, MergedTextIsTheOneProcessText) {
   const Folder folder;
@@ -159,7 +176,7 @@ TEST(CliShard, BadShardsGetOneLineAndNoPart) {
   expect_error("measure " + pair + " --shard-out " + part, {"--shard-out", "--shard"});
   expect_error("measure " + pair + " --shard 0/2 --shard-out " + part + " --ibsm", {"--ibsm", "--shard"});
   expect_error("measure " + pair + " --shard 0/2 --shard-out " + part + " --html x.html", {"--html", "--shard"});
-  expect_error("measure " + pair + " --shard 0/2 --shard-out " + part + " --method roving", {"--shard", "roving"});
+  expect_error("measure " + pair + " --shard 0/2 --shard-out " + part + " --method viewpoint", {"--shard", "viewpoint"});
   // A cube has 12 face samples: in 13 shards, the first has none.
   expect_error("measure " + pair + " --shard 0/13 --shard-out " + part, {"--shard 0/13", "12 samples", "at most 12"});
   EXPECT_EQ(folder.entries(), 2u);  // the models alone: no part, no temporary file

@@ -278,8 +278,9 @@ std::unique_ptr<CommandLine> make_command_line() {
   measure->add_option(
       "--shard", args.shard,
       "I/N: measure only the I-th (0-based) of N contiguous slices of REF's samples (the same samples whatever "
-      "N), e.g. $SLURM_ARRAY_TASK_ID/$SLURM_ARRAY_TASK_COUNT, into --shard-out; roving merge gives the report "
-      "one process gives");
+      "N; exact roving's slices cut at multiples of its 4096-camera batches), e.g. "
+      "$SLURM_ARRAY_TASK_ID/$SLURM_ARRAY_TASK_COUNT, into --shard-out; roving merge gives the report one process "
+      "gives");
   measure->add_option("--shard-out", args.shard_out,
                       "with --shard: the part to write (17 bytes per sample per direction, 25 with --symmetric, 24 more for colour; and the models' description)");
   measure->add_option(

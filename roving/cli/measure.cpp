@@ -282,8 +282,9 @@ void plan_shard(const MeasureArguments& args, MeasurePlan& plan) {
                               option));
     }
   }
-  if (is_gl_method(args.method)) {
-    throw Error(fmt::format("--shard: the GL method {} renders views of the whole pair; shard embree, cgal or a "
+  if (plan.method->independent_run() == 0) {
+    throw Error(fmt::format("--shard: the GL method {} draws its views for all samples at once, so a part would "
+                            "not be measured as within the whole; shard roving (exact roving), embree, cgal or a "
                             "vertex baseline",
                             args.method));
   }
@@ -657,8 +658,22 @@ void measure_models(const Model& a, const Model& b, MeasurePlan& plan, MeasureRe
       spec.count = kAutoFirstSamples;
       d.auto_sampling.emplace();
     }
+    // A shard's slice of `total` samples, beginning at a whole run of the method's (exact
+    // roving's camera batches); never empty.
+    const auto slice = [&](std::size_t total) {
+      const std::size_t run = plan.method->independent_run();
+      const auto [first, last] = plan.shard->range(total, run);
+      if (first == last) {
+        throw Error(fmt::format("--shard {}/{}: this slice of {}'s {} samples is empty; use at most {} shards{}",
+                                plan.shard->index, plan.shard->count, reference->path(), total,
+                                std::max<std::size_t>(1, total / run),
+                                run > 1 ? fmt::format(" ({} cuts at multiples of {} samples)", plan.method->name(), run)
+                                        : ""));
+      }
+      return std::pair{first, last};
+    };
     if (plan.shard && spec.kind == SampleSpec::Kind::Area) {  // a mesh draws only its slice
-      std::tie(spec.first, spec.last) = plan.shard->range(spec.count);
+      std::tie(spec.first, spec.last) = slice(spec.count);
     }
     const bool streamed = reference == &a && streamed_a;
     if (streamed) {  // REF a block of faces at a time, its certified bound too
@@ -675,13 +690,9 @@ void measure_models(const Model& a, const Model& b, MeasurePlan& plan, MeasureRe
         }
         if (plan.shard) {  // this shard's slice of the pair's samples: the same samples whatever N
           const std::size_t total = spec.kind == SampleSpec::Kind::Area ? spec.count : d.samples.size();
-          const auto [first, last] = plan.shard->range(total);
+          const auto [first, last] = slice(total);
           d.slice_first = first;
           d.slice_total = total;
-          if (first == last) {
-            throw Error(fmt::format("--shard {}/{}: this slice of {}'s {} samples is empty; use at most {} shards",
-                                    plan.shard->index, plan.shard->count, reference->path(), total, total));
-          }
           // A mesh's area samples come drawn as the slice already; all others are sliced here.
           if (d.samples.size() != last - first) d.samples = d.samples.slice(first, last);
         }

@@ -130,9 +130,11 @@ std::vector<Part> ordered_parts(const std::vector<std::string>& paths) {
   if (paths.empty()) throw Error("merge: expected the parts of one measurement's shards, found none");
   std::vector<Part> parts;
   for (const std::string& path : paths) parts.push_back(read_part_header(path));
-  std::size_t count = 0;
+  std::size_t count = 0, run = 1;
   try {
     count = parts[0].description.at("shard").at("count").get<std::size_t>();
+    run = parts[0].description.at("shard").at("run").get<std::size_t>();  // alike in parts of one method
+    if (run == 0) throw Error(fmt::format("{}: its shard's run is 0; expected 1 or more", parts[0].path));
     for (const Part& part : parts) check_alike(parts[0], part);
   } catch (const nlohmann::json::exception& e) {
     throw Error(fmt::format("merge: a part's description is incomplete: {}", e.what()));
@@ -160,7 +162,7 @@ std::vector<Part> ordered_parts(const std::vector<std::string>& paths) {
     const Part& part = *by_index[i];
     for (std::size_t k = 0; k < part.directions.size(); ++k) {
       const std::size_t total = part.description["directions"][k]["samples"]["total"].get<std::size_t>();
-      const auto [first, last] = Shard{i, count}.range(total);
+      const auto [first, last] = Shard{i, count}.range(total, run);
       const PartDirection& d = part.directions[k];
       if (d.first != first || d.count != last - first) {
         throw Error(fmt::format("{}: shard {}/{} should hold samples [{}, {}) of {}; it holds {} from {}", part.path,
@@ -209,14 +211,17 @@ void write_shard_part(std::FILE* out, const MeasureArguments& args, const Measur
          {"area_within", d.area_within ? area_within_json(*d.area_within) : nlohmann::json(nullptr)},
          {"normal_agreement", !agreement.back().empty()},
          {"colour", d.colour_pairs.has_value()},
-         {"colour_source", d.result.colour_source}});
+         {"colour_source", d.result.colour_source},
+         {"gl", d.result.gl ? gl_json(*d.result.gl) : nlohmann::json(nullptr)}});
   }
   const nlohmann::json description = {
       {"tool", r.provenance.at("tool")},
       {"arguments", args.figure_arguments},
       {"inputs", r.provenance.at("inputs")},
       {"command_line", args.command_line},
-      {"shard", {{"index", r.shard->shard.index}, {"count", r.shard->shard.count}}},
+      // run: the method's independent run, at whose multiples the slices are cut (shard.h).
+      {"shard",
+       {{"index", r.shard->shard.index}, {"count", r.shard->shard.count}, {"run", run.plan.method->independent_run()}}},
       {"header", format_header(*run.a, *run.b, r)},
       {"method", r.method},
       {"semantics", to_string(r.semantics)},
@@ -310,6 +315,14 @@ MergedReport merge_parts(const std::vector<std::string>& paths, const std::strin
         const nlohmann::json& direction = part.description.at("directions").at(i);
         d.result.build_seconds += direction.at("seconds").at("build").get<double>();
         d.result.query_seconds += direction.at("seconds").at("query").get<double>();
+        if (!direction.at("gl").is_null()) {  // the GL report adds the part's up, as a streamed block's
+          if (!d.result.gl) d.result.gl.emplace();
+          try {
+            d.result.gl->add_block(gl_report_of(direction["gl"]));
+          } catch (const Error& e) {
+            throw Error(fmt::format("{}: {}", part.path, e.what()));
+          }
+        }
         if (!direction.at("area_within").is_null()) {
           add_area_within(d.area_within, direction["area_within"], part.path);
           ++parts_with_areas[i];

@@ -6,7 +6,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numeric>
+
+#include "roving/core/error.h"
 
 namespace roving {
 namespace {
@@ -234,29 +237,6 @@ std::string gl_lines(const GlReport& g) {
   return out;
 }
 
-nlohmann::json gl_json(const GlReport& g) {
-  return {{"renderer", g.renderer},
-          {"observations", g.observations()},
-          {"views_rendered", g.views_rendered},
-          {"sample_cameras", g.sample_cameras},
-          {"views", g.axis_views     ? "6 axes"
-                    : g.views_h == 0 ? "none"
-                                     : fmt::format("{}x{}", g.views_h, g.views_v)},
-          {"resolution", g.resolution},
-          {"resolved_by_view", g.resolved(Resolution::View)},
-          {"resolved_by_camera", g.resolved(Resolution::Camera)},
-          {"unresolved", g.resolved(Resolution::Unresolved)},
-          {"view_pixel_size", g.view_pixel_size},
-          {"view_depth_step", g.view_depth_step},
-          {"camera_half_width", g.camera_half_width},
-          {"camera_depth_step", g.camera_depth_step},
-          {"camera_geometry", g.gpu_cameras ? "gpu" : "cpu"},
-          {"camera_build_seconds", g.camera_build_seconds},
-          {"camera_render_seconds", g.camera_render_seconds},
-          {"view_cpu_seconds", g.view_cpu_seconds},
-          {"view_draw_seconds", g.view_draw_seconds}};
-}
-
 std::string samples_line(const SampleSet& samples, std::size_t count, std::uint64_t seed) {
   std::string out = fmt::format("{}{}", samples.kind,
                                 samples.kind.rfind("area:", 0) == 0 ? fmt::format(" (seed {})", seed) : "");
@@ -404,6 +384,57 @@ std::string interval_text(double lower, double upper, double diagonal) {
 }
 
 }  // namespace
+
+nlohmann::json gl_json(const GlReport& g) {
+  return {{"renderer", g.renderer},
+          {"observations", g.observations()},
+          {"views_rendered", g.views_rendered},
+          {"sample_cameras", g.sample_cameras},
+          {"views", g.axis_views     ? "6 axes"
+                    : g.views_h == 0 ? "none"
+                                     : fmt::format("{}x{}", g.views_h, g.views_v)},
+          {"resolution", g.resolution},
+          {"resolved_by_view", g.resolved(Resolution::View)},
+          {"resolved_by_camera", g.resolved(Resolution::Camera)},
+          {"unresolved", g.resolved(Resolution::Unresolved)},
+          {"view_pixel_size", g.view_pixel_size},
+          {"view_depth_step", g.view_depth_step},
+          {"camera_half_width", g.camera_half_width},
+          {"camera_depth_step", g.camera_depth_step},
+          {"camera_geometry", g.gpu_cameras ? "gpu" : "cpu"},
+          {"camera_build_seconds", g.camera_build_seconds},
+          {"camera_render_seconds", g.camera_render_seconds},
+          {"view_cpu_seconds", g.view_cpu_seconds},
+          {"view_draw_seconds", g.view_draw_seconds}};
+}
+
+GlReport gl_report_of(const nlohmann::json& json) {
+  GlReport g;
+  g.renderer = json.at("renderer").get<std::string>();
+  g.views_rendered = json.at("views_rendered").get<std::size_t>();
+  g.sample_cameras = json.at("sample_cameras").get<std::size_t>();
+  const std::string views = json.at("views").get<std::string>();
+  g.axis_views = views == "6 axes";
+  if (!g.axis_views && views != "none" && std::sscanf(views.c_str(), "%dx%d", &g.views_h, &g.views_v) != 2) {
+    throw Error(fmt::format("GL views: expected HxV, '6 axes' or 'none', found '{}'", views));
+  }
+  g.resolution = json.at("resolution").get<int>();
+  // The counts stand for the per-sample record, as a streamed block's do.
+  g.earlier_resolved[static_cast<std::size_t>(Resolution::View)] = json.at("resolved_by_view").get<std::size_t>();
+  g.earlier_resolved[static_cast<std::size_t>(Resolution::Camera)] =
+      json.at("resolved_by_camera").get<std::size_t>();
+  g.earlier_resolved[static_cast<std::size_t>(Resolution::Unresolved)] = json.at("unresolved").get<std::size_t>();
+  g.view_pixel_size = json.at("view_pixel_size").get<double>();
+  g.view_depth_step = json.at("view_depth_step").get<double>();
+  g.camera_half_width = json.at("camera_half_width").get<double>();
+  g.camera_depth_step = json.at("camera_depth_step").get<double>();
+  g.gpu_cameras = json.at("camera_geometry").get<std::string>() == "gpu";
+  g.camera_build_seconds = json.at("camera_build_seconds").get<double>();
+  g.camera_render_seconds = json.at("camera_render_seconds").get<double>();
+  g.view_cpu_seconds = json.at("view_cpu_seconds").get<double>();
+  g.view_draw_seconds = json.at("view_draw_seconds").get<double>();
+  return g;
+}
 
 nlohmann::json colour_json(const ColourStatistics& c) {
   const auto channels = [](const std::array<ChannelErrors, 3>& e, std::array<const char*, 3> names) {

@@ -153,6 +153,11 @@ nlohmann::json statistics_json(const Statistics& statistics);
 // and colour_rms_y).
 nlohmann::json colour_json(const ColourStatistics& colour);
 
+// A GL method's observations, precision and times by their report names (a shard's part carries
+// them too, and the merge adds them up: gl_report_of).
+nlohmann::json gl_json(const GlReport& g);
+GlReport gl_report_of(const nlohmann::json& json);
+
 // Everything as JSON (layout in docs/report-json.md).
 nlohmann::json to_json(const MeasureReport& report);
 

@@ -9,10 +9,11 @@
 
 namespace roving {
 
-std::pair<std::size_t, std::size_t> Shard::range(std::size_t total) const {
+std::pair<std::size_t, std::size_t> Shard::range(std::size_t total, std::size_t run) const {
   // In 128 bits: total * index overflows 64 for a billion samples over a million shards.
   const auto at = [&](std::size_t i) {
-    return static_cast<std::size_t>(static_cast<unsigned __int128>(total) * i / count);
+    if (i == count) return total;
+    return static_cast<std::size_t>(static_cast<unsigned __int128>(total) * i / count) / run * run;
   };
   return {at(index), at(index + 1)};
 }

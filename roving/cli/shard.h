@@ -11,8 +11,10 @@ namespace roving {
 struct Shard {
   std::size_t index = 0, count = 1;
 
-  // [first, last) of `total` items that this shard takes.
-  std::pair<std::size_t, std::size_t> range(std::size_t total) const;
+  // [first, last) of `total` items that this shard takes; every boundary but the last a multiple
+  // of `run` (a method's independent run: exact roving's camera batch), so that each part is
+  // measured as it is within the whole. Empty for every shard past total / run.
+  std::pair<std::size_t, std::size_t> range(std::size_t total, std::size_t run = 1) const;
 };
 
 // Parses "I/N" (0 <= I < N, e.g. $SLURM_ARRAY_TASK_ID/$SLURM_ARRAY_TASK_COUNT); throws roving::Error
