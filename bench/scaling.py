@@ -33,11 +33,14 @@ METHODS = [
     ("v2p-aabb", ["--method", "v2p-aabb"], "closest", 1e-6),
     ("v2v-kdtree", ["--method", "v2v-kdtree"], "closest", None),  # vertex distances: not comparable
     ("4 shards of embree first-hit + merge", ["--method", "embree"], "first-hit", 0.0),
+    ("4 shards of roving + merge", ["--method", "roving"], "first-hit", 2e-3),
 ]
 
 # Measured as `measure --shard I/N` processes one after the other, then `roving merge`: its USiAD
-# must be Embree's bit for bit (tolerance 0).
-SHARDED = {"4 shards of embree first-hit + merge": 4}
+# must be Embree's bit for bit (tolerance 0); exact roving's (cut at its 4,096-camera batches) must
+# be the one-process roving row's bit for bit (SAME_AS).
+SHARDED = {"4 shards of embree first-hit + merge": 4, "4 shards of roving + merge": 4}
+SAME_AS = {"4 shards of roving + merge": "roving"}
 
 
 def run(roving, ref, test, arguments, timeout):
@@ -152,6 +155,14 @@ def main():
             failures.append(f"{row['method']} at n = {row['n']}: USiAD {row['usiad']:.6g} vs Embree's "
                             f"{reference['usiad']:.6g} ({row['error']:.2e} > {row['tolerance']:.0e})")
 
+    for row in rows:
+        if row["method"] in SAME_AS and "skipped" not in row:
+            one = next((r for r in rows if r["n"] == row["n"] and r["method"] == SAME_AS[row["method"]]
+                        and "skipped" not in r), None)
+            if one is None or row["usiad"] != one["usiad"]:
+                failures.append(f"{row['method']} at n = {row['n']}: USiAD {row['usiad']!r} is not the one-process "
+                                f"{SAME_AS[row['method']]}'s {one and one['usiad']!r}")
+
     write_markdown(rows, failures, args)
     write_plot(rows, os.path.join(args.out, "scaling.png"))
     if failures:
@@ -171,9 +182,10 @@ def write_markdown(rows, failures, args):
         "is its own `roving measure` process: load is both files, build the acceleration structures or",
         "uploads, query the measurement; peak RSS is the process's (`ru_maxrss`). Checked before reported:",
         "USiAD against Embree's with the same semantics (CGAL 1e-6, roving 0.2%, cooperative 1%, v2p 1e-6).",
-        "The sharded row runs 4 `roving measure --shard I/4` processes one after the other and then",
-        "`roving merge` (docs/batch.md): its times are summed over the shards, its peak RSS is the largest",
-        "process's (every shard loads both models whole), and its USiAD must equal Embree's bit for bit.",
+        "The sharded rows run 4 `roving measure --shard I/4` processes one after the other and then",
+        "`roving merge` (docs/batch.md): their times are summed over the shards, their peak RSS is the largest",
+        "process's (every shard loads both models whole); Embree's sharded USiAD must equal Embree's bit for bit,",
+        "exact roving's (cut at multiples of its 4,096-camera batches) the one-process roving row's.",
         "",
         f"Machine: {platform.machine()}, {os.cpu_count()} cores, {platform.platform()}.",
         "",
