@@ -117,9 +117,20 @@ TEST(CliShard, ExactRovingShardsAtItsCameraBatches) {
   const nlohmann::json merged = merged_json(measure_shards(folder, "roving", command, 2));
   expect_same_report(expected, merged);
   for (const nlohmann::json& direction : merged["directions"]) EXPECT_EQ(direction["gl"]["sample_cameras"], 10000);
-  // In 3 parts, 10,000 samples would be cut at 3,333: the first part would hold no whole batch.
-  expect_error(fmt::format("measure {} --shard 0/3 --shard-out {}", command, folder.file("x.part")),
-               {"--shard 0/3", "at most 2 shards", "4096"});
+  // In 3 parts, 10,000 samples are cut at the nearest multiples, 4,096 and 8,192: each holds a batch.
+  // In 4, the cuts at 2,500 and 5,000 both go to 4,096, and the second part is empty.
+  const nlohmann::json three = merged_json(measure_shards(folder, "three", command, 3));
+  expect_same_report(expected, three);
+  expect_error(fmt::format("measure {} --shard 1/4 --shard-out {}", command, folder.file("x.part")),
+               {"--shard 1/4", "at most 2 shards", "4096"});
+  // 6,000 samples in 2 parts are cut at 4,096 (3,000 rounded up), not at 0.
+  const std::string fewer = bunny() + " " + roving::testing::data_file("rocker-arm.obj") +
+                            " --samples area:6000 --seed 5 --method roving --max-error 0.2%";
+  const nlohmann::json whole = nlohmann::json::parse(run_cli("measure " + fewer + " --json - --quiet").out);
+  expect_same_report(whole, merged_json(measure_shards(folder, "fewer", fewer, 2)));
+  // In 3, the first cut (2,000) goes to 0.
+  expect_error(fmt::format("measure {} --shard 0/3 --shard-out {}", fewer, folder.file("x.part")),
+               {"--shard 0/3", "at most 1 shard (", "4096"});
 }
 
 // The text report too, but for its time lines.

@@ -664,9 +664,10 @@ void measure_models(const Model& a, const Model& b, MeasurePlan& plan, MeasureRe
       const std::size_t run = plan.method->independent_run();
       const auto [first, last] = plan.shard->range(total, run);
       if (first == last) {
-        throw Error(fmt::format("--shard {}/{}: this slice of {}'s {} samples is empty; use at most {} shards{}",
-                                plan.shard->index, plan.shard->count, reference->path(), total,
-                                std::max<std::size_t>(1, total / run),
+        const std::size_t most = std::max<std::size_t>(1, total / run);
+        throw Error(fmt::format("--shard {}/{}: this slice of {}'s {} samples is empty; use at most {} shard{}{}",
+                                plan.shard->index, plan.shard->count, reference->path(), total, most,
+                                most == 1 ? "" : "s",
                                 run > 1 ? fmt::format(" ({} cuts at multiples of {} samples)", plan.method->name(), run)
                                         : ""));
       }

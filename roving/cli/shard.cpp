@@ -3,6 +3,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <charconv>
 
 #include "roving/core/error.h"
@@ -10,10 +11,13 @@
 namespace roving {
 
 std::pair<std::size_t, std::size_t> Shard::range(std::size_t total, std::size_t run) const {
-  // In 128 bits: total * index overflows 64 for a billion samples over a million shards.
+  // In 128 bits: total * index overflows 64 for a billion samples over a million shards. Each cut
+  // goes to the nearest multiple of run, so that cuts total / count >= run apart stay apart (no
+  // slice empty while count <= total / run) and a few shards are not all pushed into the last.
   const auto at = [&](std::size_t i) {
     if (i == count) return total;
-    return static_cast<std::size_t>(static_cast<unsigned __int128>(total) * i / count) / run * run;
+    const auto even = static_cast<std::size_t>(static_cast<unsigned __int128>(total) * i / count);
+    return std::min(total, (even + run / 2) / run * run);
   };
   return {at(index), at(index + 1)};
 }

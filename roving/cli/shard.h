@@ -13,7 +13,7 @@ struct Shard {
 
   // [first, last) of `total` items that this shard takes; every boundary but the last a multiple
   // of `run` (a method's independent run: exact roving's camera batch), so that each part is
-  // measured as it is within the whole. Empty for every shard past total / run.
+  // measured as it is within the whole. Never empty while count <= total / run.
   std::pair<std::size_t, std::size_t> range(std::size_t total, std::size_t run = 1) const;
 };
 
