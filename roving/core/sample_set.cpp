@@ -6,11 +6,11 @@
 #include <algorithm>
 #include <charconv>
 #include <iterator>
-#include <random>
 #include <type_traits>
 
 #include "roving/core/error.h"
 #include "roving/core/memory_budget.h"
+#include "roving/core/mersenne_twister.h"
 
 namespace roving {
 
@@ -160,18 +160,19 @@ void sample_vertices(const TriangleMesh& mesh, std::vector<Vec3> positions, std:
 
 void sample_area(const TriangleMesh& mesh, const SampleSpec& spec, SampleSet& samples) {
   // Inverse-CDF over cumulative face areas, then uniform barycentrics (Turk 1990's square-root
-  // map). std::mt19937_64 and our own uniform mapping keep it reproducible across libstdc++s.
+  // map). std::mt19937_64's draws (which the standard fixes) and our own uniform mapping keep it
+  // reproducible across libstdc++s; Mt19937_64 draws them, and jumps to a shard's first.
   std::vector<double> cumulative(mesh.triangle_count());
   double total = 0;
   for (std::size_t f = 0; f < mesh.triangle_count(); ++f) {
     total += mesh.face_normal(f).isZero() ? 0.0 : mesh.face_area(f);
     cumulative[f] = total;
   }
-  std::mt19937_64 random(spec.seed);
+  Mt19937_64 random(spec.seed);
   const auto uniform = [&random] { return (random() >> 11) * 0x1.0p-53; };
   const double weight = total / static_cast<double>(spec.count);
   const std::size_t last = std::min(spec.last, spec.count), first = std::min(spec.first, last);
-  random.discard(3 * first);  // each sample takes three draws: those before the slice's
+  random.discard(3 * first);  // each sample takes three draws: those before the slice's, jumped
   reserve(samples, last - first);
   for (std::size_t i = first; i < last; ++i) {
     const double target = uniform() * total;
