@@ -27,12 +27,14 @@ import time
 
 GOAL_RSS = 2.5e9  # bytes, at 10^8 triangles
 GOAL_LINEAR = 1.15  # the 10^8 wall over the 10^7 wall times the triangles' ratio
+SHARDS = 2
+SHARDED = f"{SHARDS} shards + merge"  # one process after another, as a Slurm array's tasks would be
 
 # (name, REF file, semantics, arguments, modes)
 RUNS = [
-    ("10^7", "scaling/ref-n12.ply", "first-hit", [], ["streamed", "whole"]),
+    ("10^7", "scaling/ref-n12.ply", "first-hit", [], ["streamed", "whole", SHARDED]),
     ("10^7", "scaling/ref-n12.ply", "closest", ["--semantics", "closest"], ["streamed", "whole"]),
-    ("10^8", "scaling-large/ref-n38.ply", "first-hit", [], ["streamed", "whole"]),
+    ("10^8", "scaling-large/ref-n38.ply", "first-hit", [], ["streamed", "whole", SHARDED]),
     ("10^8", "scaling-large/ref-n38.ply", "closest", ["--semantics", "closest"], ["streamed"]),
     ("10^7", "scaling/ref-n12.ply", "closest, certified", ["--semantics", "closest", "--hausdorff-bound", "0.01%"],
      ["streamed", "whole"]),
@@ -54,7 +56,7 @@ RUNS = [
 SCALING_LARGE = "scaling-large/ref-n38.obj"  # the last file roving-datasets --scaling-large writes
 TEST = "scaling/test-n12.ply"
 FORMATS = {".ply": "binary PLY", ".stl": "binary STL", ".obj": "OBJ"}
-INCIDENTAL = {"seconds", "command_line", "provenance", "streamed", "tool"}
+INCIDENTAL = {"seconds", "command_line", "provenance", "streamed", "tool", "merged_from"}
 
 
 def measure(roving, ref, test, arguments):
@@ -62,17 +64,37 @@ def measure(roving, ref, test, arguments):
     with tempfile.NamedTemporaryFile(suffix=".json", delete=False) as out:
         report_path = out.name
     bound = [] if "--hausdorff-bound" in arguments else ["--hausdorff-bound", "none"]
-    command = [roving, "measure", ref, test, "--json", report_path, "--quiet"] + bound + arguments
+    rss, wall = run([roving, "measure", ref, test, "--json", report_path, "--quiet"] + bound + arguments)
+    with open(report_path) as file:
+        report = json.load(file)
+    os.unlink(report_path)
+    return report, rss, wall
+
+
+def run(command):
+    """One process: (peak RSS bytes, wall seconds). Raises on failure."""
     start = time.monotonic()
     process = subprocess.Popen(command, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
     _, status, usage = os.wait4(process.pid, 0)
     wall = time.monotonic() - start
     if os.waitstatus_to_exitcode(status) != 0:
         raise RuntimeError(f"{' '.join(command)} failed: {process.stderr.read().decode().strip()}")
-    with open(report_path) as file:
-        report = json.load(file)
-    os.unlink(report_path)
-    return report, usage.ru_maxrss * 1024, wall
+    return usage.ru_maxrss * 1024, wall
+
+
+def measure_sharded(roving, ref, test, arguments):
+    """SHARDS `roving measure --shard i/N` processes and `roving merge`: (merged report, the largest
+    peak RSS, the walls summed). A shard reads REF whole (docs/batch.md)."""
+    with tempfile.TemporaryDirectory() as folder:
+        parts = [os.path.join(folder, f"{i}.part") for i in range(SHARDS)]
+        report_path = os.path.join(folder, "merged.json")
+        bound = [] if "--hausdorff-bound" in arguments else ["--hausdorff-bound", "none"]
+        runs = [run([roving, "measure", ref, test, "--shard", f"{i}/{SHARDS}", "--shard-out", parts[i], "--quiet"]
+                    + bound + arguments) for i in range(SHARDS)]
+        runs.append(run([roving, "merge", *parts, "--json", report_path, "--quiet"]))
+        with open(report_path) as file:
+            report = json.load(file)
+    return report, max(rss for rss, _ in runs), sum(wall for _, wall in runs)
 
 
 def figures(report):
@@ -130,8 +152,11 @@ def main():
         what = f"{size} {form} {semantics}"
         reports = {}
         for mode in modes:
-            report, rss, wall = measure(args.roving, os.path.join(args.data, ref), os.path.join(args.data, TEST),
-                                        arguments + (["--chunk", "0"] if mode == "whole" else []))
+            paths = os.path.join(args.data, ref), os.path.join(args.data, TEST)
+            if mode == SHARDED:
+                report, rss, wall = measure_sharded(args.roving, *paths, arguments)
+            else:
+                report, rss, wall = measure(args.roving, *paths, arguments + (["--chunk", "0"] if mode == "whole" else []))
             if (mode == "streamed") != ("streamed" in report["samples"]):
                 failures.append(f"{what} {mode}: the report says the reference was "
                                 f"{'read whole' if mode == 'streamed' else 'streamed'}")
@@ -142,8 +167,10 @@ def main():
                          "usiad": report["statistics"]["usiad"],
                          "certified": report.get("hausdorff_certified", {}).get("seconds")})
             print(f"{what} {mode}: {wall:.1f} s, {rss / 2**20:.0f} MiB", file=sys.stderr)
-        if len(reports) == 2:
+        if "whole" in reports:
             failures += compare(what, reports["streamed"], reports["whole"])
+        if SHARDED in reports:
+            failures += compare(f"{what} {SHARDED}", reports[SHARDED], reports["streamed"])
         elif "hausdorff_certified" in reports["streamed"]:
             failures += check_interval(what, reports["streamed"])
     write_markdown(rows, failures, args)
@@ -171,8 +198,10 @@ def write_markdown(rows, failures, args):
         "width (0.01% of the diagonal), bounded a block at a time when streamed. Each run",
         "is its own `roving measure` process; peak RSS is its `ru_maxrss`. *streamed*: the default, REF read,",
         "sampled and measured 2^20 faces at a time (`--chunk`, docs/measuring.md); *whole*: `--chunk 0`, REF",
-        "loaded and sampled at once. Checked before reported: each streamed report's figures equal the whole",
-        "one's (every JSON field but the times).",
+        "loaded and sampled at once; *2 shards + merge*: `--shard 0/2` and `1/2` (each reads REF whole) and",
+        "`roving merge`, one after another as a Slurm array's tasks would run (wall: the three summed; peak RSS:",
+        "the largest). Checked before reported: each streamed report's figures equal the whole one's and the",
+        "merged one's (every JSON field but the times).",
         "",
         f"Machine: {platform.machine()}, {os.cpu_count()} cores, {platform.platform()}.",
         "",
@@ -217,7 +246,7 @@ def write_markdown(rows, failures, args):
         "point structure, pruning with the best lower bound so far: it holds the true value within the width",
         "asked, as the whole run's does, and its ends may differ from the whole run's within that width.",
         "",
-        "Checks: " + ("every streamed report equals the whole one's figures; the certified intervals meet "
+        "Checks: " + ("every streamed report equals the whole one's figures and the merged shards'; the certified intervals meet "
                       "the whole run's and are as narrow as asked." if not failures else
                       "**FAILED**: " + "; ".join(failures)),
         "",
