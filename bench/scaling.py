@@ -186,6 +186,8 @@ def write_markdown(rows, failures, args):
         "`roving merge` (docs/batch.md): their times are summed over the shards, their peak RSS is the largest",
         "process's (every shard loads both models whole); Embree's sharded USiAD must equal Embree's bit for bit,",
         "exact roving's (cut at multiples of its 4,096-camera batches) the one-process roving row's.",
+        "Beyond 10 M: results/streaming.md (`bench/streaming.py`) measures REF at 10^8 triangles, streamed a",
+        "block of faces at a time, read whole, and in 2 shards + merge, against the same TEST.",
         "",
         f"Machine: {platform.machine()}, {os.cpu_count()} cores, {platform.platform()}.",
         "",
