@@ -10,6 +10,20 @@ using Word = std::uint64_t;
 constexpr std::size_t kN = Mt19937_64::kWords, kM = 156;
 constexpr Word kUpper = ~Word{0} << 31, kLower = ~kUpper, kTwist = 0xB5026F5AA96619E9ull;
 
+// The standard's initialisation of the 312 words from a seed.
+std::array<Word, kN> seeded(Word seed) {
+  std::array<Word, kN> words;
+  words[0] = seed;
+  for (std::size_t i = 1; i < kN; ++i) words[i] = 6364136223846793005ull * (words[i - 1] ^ words[i - 1] >> 62) + i;
+  return words;
+}
+
+// What a step adds to the word 156 on: the oldest word's upper 33 bits and its successor's lower 31.
+Word twist(Word older, Word newer) {
+  const Word y = (older & kUpper) | (newer & kLower);
+  return (y >> 1) ^ ((y & 1) ? kTwist : 0);
+}
+
 // The engine's last 312 words as a sliding window, oldest at `oldest`: a step computes the next
 // word from the oldest, its successor and the one 156 on, in the oldest's place.
 struct Window {
@@ -17,8 +31,7 @@ struct Window {
   std::size_t oldest = 0;
 
   void step() {
-    const Word y = (words[oldest] & kUpper) | (words[(oldest + 1) % kN] & kLower);
-    words[oldest] = words[(oldest + kM) % kN] ^ (y >> 1) ^ ((y & 1) ? kTwist : 0);
+    words[oldest] = words[(oldest + kM) % kN] ^ twist(words[oldest], words[(oldest + 1) % kN]);
     oldest = (oldest + 1) % kN;
   }
   void add(const Window& other) {  // the step is linear over GF(2): states add by xor
@@ -53,8 +66,7 @@ const MinimalPolynomial& minimal_polynomial() {
   static const MinimalPolynomial found = [] {
     constexpr std::size_t kDegree = 19937, kTerms = 2 * kDegree;
     Window w;
-    w.words[0] = 5489u;  // any state the step has reached: the default seed's, one step on
-    for (std::size_t i = 1; i < kN; ++i) w.words[i] = 6364136223846793005ull * (w.words[i - 1] ^ w.words[i - 1] >> 62) + i;
+    w.words = seeded(5489u);  // any state the step has reached: the default seed's, one step on
     w.step();
     // The sequence backwards (bit kTerms - 1 - n is term n), so that the terms n - L .. n
     // that a discrepancy sums are a run of bits going up from kTerms - 1 - n.
@@ -127,10 +139,7 @@ Polynomial power_of_t(unsigned long long power, const MinimalPolynomial& m) {
 
 }  // namespace
 
-Mt19937_64::Mt19937_64(result_type seed) {
-  state_[0] = seed;
-  for (std::size_t i = 1; i < kWords; ++i) state_[i] = 6364136223846793005ull * (state_[i - 1] ^ state_[i - 1] >> 62) + i;
-}
+Mt19937_64::Mt19937_64(result_type seed) : state_(seeded(seed)) {}
 
 Mt19937_64::result_type Mt19937_64::temper(result_type x) {
   x ^= (x >> 29) & 0x5555555555555555ull;
@@ -142,10 +151,6 @@ Mt19937_64::result_type Mt19937_64::temper(result_type x) {
 void Mt19937_64::regenerate() {
   // The window's 312 steps in place, as the standard's engine takes them: the word 156 on is an
   // old one for the first 156 and a new one after.
-  const auto twist = [](Word older, Word newer) {
-    const Word y = (older & kUpper) | (newer & kLower);
-    return (y >> 1) ^ ((y & 1) ? kTwist : 0);
-  };
   std::size_t k = 0;
   for (; k < kN - kM; ++k) state_[k] = state_[k + kM] ^ twist(state_[k], state_[k + 1]);
   for (; k < kN - 1; ++k) state_[k] = state_[k + kM - kN] ^ twist(state_[k], state_[k + 1]);
