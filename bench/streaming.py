@@ -84,7 +84,7 @@ def run(command):
 
 def measure_sharded(roving, ref, test, arguments):
     """SHARDS `roving measure --shard i/N` processes and `roving merge`: (merged report, the largest
-    peak RSS, the walls summed). A shard reads REF whole (docs/batch.md)."""
+    peak RSS, the walls summed). Each shard streams REF as far as its slice (docs/batch.md)."""
     with tempfile.TemporaryDirectory() as folder:
         parts = [os.path.join(folder, f"{i}.part") for i in range(SHARDS)]
         report_path = os.path.join(folder, "merged.json")
@@ -198,7 +198,7 @@ def write_markdown(rows, failures, args):
         "width (0.01% of the diagonal), bounded a block at a time when streamed. Each run",
         "is its own `roving measure` process; peak RSS is its `ru_maxrss`. *streamed*: the default, REF read,",
         "sampled and measured 2^20 faces at a time (`--chunk`, docs/measuring.md); *whole*: `--chunk 0`, REF",
-        "loaded and sampled at once; *2 shards + merge*: `--shard 0/2` and `1/2` (each reads REF whole) and",
+        "loaded and sampled at once; *2 shards + merge*: `--shard 0/2` and `1/2` (each streams REF up to its slice's end) and",
         "`roving merge`, one after another as a Slurm array's tasks would run (wall: the three summed; peak RSS:",
         "the largest). Checked before reported: each streamed report's figures equal the whole one's and the",
         "merged one's (every JSON field but the times).",

@@ -260,21 +260,64 @@ struct Igea {
   std::string bytes = file_bytes(path);
   std::size_t body = bytes.find("end_header\n") + 11;
   std::size_t faces = body + 134345 * 12;
+
+  // TEST: Igea's vertices moved by up to 0.3% of its size, smoothly, so that d varies.
+  std::string moved(const Folder& folder) const {
+    std::string moved = bytes;
+    for (std::size_t v = 0; v < 134345; ++v) {
+      float xyz[3];
+      std::memcpy(xyz, &moved[body + 12 * v], sizeof xyz);
+      xyz[0] += 3e-4f * std::sin(70.0f * xyz[1]);
+      xyz[2] += 3e-4f * std::cos(70.0f * xyz[0]);
+      std::memcpy(&moved[body + 12 * v], xyz, sizeof xyz);
+    }
+    return folder.file("moved.ply", moved);
+  }
+
+  // Igea with what a whole mesh counts: two faces that repeat a vertex (dropped), faces of zero
+  // area (30 and 200,000, and any other on the edge 11-13: skipped) and two vertices no face uses,
+  // far outside (left out of the box).
+  std::string odd(const Folder& folder) const {
+    std::string odd = bytes;
+    const auto set_face = [&](std::size_t face, std::int32_t a, std::int32_t b, std::int32_t c) {
+      const std::int32_t corners[3] = {a, b, c};
+      std::memcpy(&odd[faces + 13 * face + 1], corners, sizeof corners);
+    };
+    set_face(100, 7, 7, 8);
+    set_face(5000, 9, 10, 9);
+    set_face(30, 13, 12, 11);  // zero-area once vertex 13 is on vertex 11, below
+    set_face(200000, 11, 12, 13);
+    std::memcpy(&odd[body + 12 * 13], &odd[body + 12 * 11], 12);
+    const std::string header = "element vertex 134345";
+    odd.replace(odd.find(header), header.size(), "element vertex 134347");
+    const float far[6] = {100, 100, 100, -100, -100, -100};  // after the last vertex (the header kept its size)
+    odd.insert(faces, reinterpret_cast<const char*>(far), sizeof far);
+    return folder.file("odd.ply", odd);
+  }
 };
+
+// `other` against `one` as expect_same_report, but for the certified Hausdorff interval, which a
+// block or a shard bounds on its own: both hold the one-sided Hausdorff distance, so they meet, and
+// each is as narrow as asked (`gap`).
+void expect_same_bounded_report(const nlohmann::json& one, nlohmann::json other, double gap) {
+  if (!one.contains("hausdorff_certified")) return expect_same_report(one, other);
+  const auto ends = [](const nlohmann::json& h) { return std::pair{h["lower"].get<double>(), h["upper"].get<double>()}; };
+  const auto [low, high] = ends(other["hausdorff_certified"]);
+  const auto [whole_low, whole_high] = ends(one["hausdorff_certified"]);
+  EXPECT_LE(low, whole_high);
+  EXPECT_LE(whole_low, high);
+  EXPECT_LE(high - low, gap);
+  EXPECT_GE(high, other["statistics"]["max_abs"].get<double>()) << "every sample is a point of REF";
+  other.erase("hausdorff_certified");
+  nlohmann::json without = one;
+  without.erase("hausdorff_certified");
+  expect_same_report(without, other);
+}
 
 TEST(CliStreamed, ReferenceReadInChunksGivesTheWholeReport) {
   const Folder folder;
   const Igea igea;
-  // TEST: Igea's vertices moved by up to 0.3% of its size, smoothly, so that d varies.
-  std::string moved = igea.bytes;
-  for (std::size_t v = 0; v < 134345; ++v) {
-    float xyz[3];
-    std::memcpy(xyz, &moved[igea.body + 12 * v], sizeof xyz);
-    xyz[0] += 3e-4f * std::sin(70.0f * xyz[1]);
-    xyz[2] += 3e-4f * std::cos(70.0f * xyz[0]);
-    std::memcpy(&moved[igea.body + 12 * v], xyz, sizeof xyz);
-  }
-  const std::string test = folder.file("moved.ply", moved);
+  const std::string test = igea.moved(folder);
   const std::string report = folder.file("report.json");
   // "--max-error 0.04%": four samples in five miss, and the heat-map range is read past them.
   // Exact roving's cameras are drawn 4,096 tiles a batch: neither block size is a multiple of it.
@@ -297,25 +340,7 @@ TEST(CliStreamed, ReferenceReadInChunksGivesTheWholeReport) {
       EXPECT_EQ(streamed["samples"]["streamed"]["chunks"], (268686 + chunk - 1) / chunk);
       streamed["samples"].erase("streamed");
       SCOPED_TRACE(fmt::format("{} --chunk {}", options, chunk));
-      if (one.contains("hausdorff_certified")) {
-        // Bounded a block at a time, as shards bound theirs: both intervals hold the one-sided
-        // Hausdorff distance, so they meet, and each is as narrow as asked.
-        const auto ends = [](const nlohmann::json& h) {
-          return std::pair{h["lower"].get<double>(), h["upper"].get<double>()};
-        };
-        const auto [low, high] = ends(streamed["hausdorff_certified"]);
-        const auto [whole_low, whole_high] = ends(one["hausdorff_certified"]);
-        EXPECT_LE(low, whole_high);
-        EXPECT_LE(whole_low, high);
-        EXPECT_LE(high - low, 1e-5);
-        EXPECT_GE(high, streamed["statistics"]["max_abs"].get<double>()) << "every sample is a point of REF";
-        streamed.erase("hausdorff_certified");
-        nlohmann::json without = one;
-        without.erase("hausdorff_certified");
-        expect_same_report(without, streamed);
-        continue;
-      }
-      expect_same_report(one, streamed);
+      expect_same_bounded_report(one, streamed, 1e-5);
     }
   }
   // More faces per block than Igea has, or what needs REF whole: read whole.
@@ -349,28 +374,45 @@ WholeAndStreamed whole_and_streamed(const std::string& pair, std::size_t chunk, 
 TEST(CliStreamed, SummaryCountsWhatTheWholeMeshCounts) {
   const Folder folder;
   const Igea igea;
-  std::string bytes = igea.bytes;
-  const auto set_face = [&](std::size_t face, std::int32_t a, std::int32_t b, std::int32_t c) {
-    const std::int32_t corners[3] = {a, b, c};
-    std::memcpy(&bytes[igea.faces + 13 * face + 1], corners, sizeof corners);
-  };
-  set_face(100, 7, 7, 8);         // repeats a vertex: dropped
-  set_face(5000, 9, 10, 9);       // and another
-  set_face(200000, 11, 12, 13);   // made zero-area below: vertex 13 on vertex 11
-  std::memcpy(&bytes[igea.body + 12 * 13], &bytes[igea.body + 12 * 11], 12);
-  // Two vertices no face uses, far outside: the box must not reach them.
-  const std::string header = "element vertex 134345";
-  bytes.replace(bytes.find(header), header.size(), "element vertex 134347");
-  const float far[6] = {100, 100, 100, -100, -100, -100};  // after the last vertex (the header kept its size)
-  bytes.insert(igea.faces, reinterpret_cast<const char*>(far), sizeof far);
-  const std::string ref = folder.file("odd.ply", bytes);
+  const std::string ref = igea.odd(folder);
   const auto [one, streamed] = whole_and_streamed(fmt::format("measure {} {} --quiet --json -", ref, igea.path), 4095,
                                                   268686);
   EXPECT_EQ(one["reference"]["dropped_repeated_vertex_faces"], 2);
   EXPECT_EQ(one["reference"]["unreferenced_vertices"], 2);
-  EXPECT_GE(one["samples"]["skipped_degenerate_faces"], 1);  // and any other face on the edge 11-13
+  EXPECT_GE(one["samples"]["skipped_degenerate_faces"], 2);  // and any other face on the edge 11-13
   EXPECT_LT(one["reference"]["diagonal"].get<double>(), 1);
   expect_same_report(one, streamed);
+}
+
+// A shard streams REF too: it reads the file only as far as its slice of the samples, measures
+// that slice alone, and bounds its share of the triangles; merged, the parts are the report of
+// one process holding REF whole. REF has faces of zero area before and within the slices.
+TEST(CliStreamed, ShardsReadOnlyAsFarAsTheirSlices) {
+  const Folder folder;
+  const Igea igea;
+  const std::string pair = igea.odd(folder) + " " + igea.moved(folder);
+  const std::size_t chunk = 3 * 4096 + 1, chunks = (268686 + chunk - 1) / chunk;
+  for (const char* options : {"", "--method roving --max-error 0.2%", "--semantics closest --hausdorff-bound 1e-5"}) {
+    SCOPED_TRACE(options);
+    const CliRun whole = run_cli(fmt::format("measure {} {} --chunk 0 --quiet --json -", pair, options));
+    ASSERT_EQ(whole.exit_code, 0) << whole.err;
+    std::string parts;
+    std::vector<std::size_t> read;
+    for (int i = 0; i < 3; ++i) {
+      const std::string part = folder.file(fmt::format("p{}.part", i));
+      const CliRun run = run_cli(fmt::format("measure {} {} --chunk {} --shard {}/3 --shard-out {} --quiet --json -",
+                                             pair, options, chunk, i, part));
+      ASSERT_EQ(run.exit_code, 0) << run.err;
+      const nlohmann::json shard = nlohmann::json::parse(run.out);
+      ASSERT_TRUE(shard["samples"].contains("streamed"));
+      read.push_back(shard["samples"]["streamed"]["chunks"].get<std::size_t>());
+      parts += " " + part;
+    }
+    EXPECT_LT(read[0], read[1]);
+    EXPECT_LT(read[1], read[2]);
+    EXPECT_EQ(read[2], chunks);
+    expect_same_bounded_report(nlohmann::json::parse(whole.out), merged_json(parts), 1e-5);
+  }
 }
 
 // A streamed REF is checked as read_ply checks a whole one: one line naming the file and the

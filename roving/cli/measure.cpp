@@ -586,19 +586,28 @@ void measure_point_clouds(const Model& a, const Model& b, const MeasurePlan& pla
 namespace {
 
 // One direction with REF read a block of faces at a time (streamed_measurement.h), `a` its summary.
+// A shard measures its slice of the samples (`slice`) and bounds its share of the triangles, as it
+// would with REF whole, keeping what its part holds.
 void measure_streamed_direction(const Model& a, const TriangleMesh& test_mesh, TriangleStream& stream,
-                                MeasurePlan& plan, double hausdorff_bound, Progress& progress, std::string& stage,
-                                DirectionReport& d) {
+                                MeasurePlan& plan, double hausdorff_bound, const std::optional<SampleRange>& slice,
+                                Progress& progress, std::string& stage, DirectionReport& d) {
   stage = fmt::format("measuring {} {} faces at a time against {} triangles with {}", a.path(), plan.chunk_faces,
                       test_mesh.triangle_count(), plan.method->name());
   progress.stage("measuring");
   validate_options(*plan.method, plan.options);
   d.result.build_seconds = plan.method->build(test_mesh);
   const TriangleMesh& m = a.mesh.mesh;
-  StreamedResult streamed = measure_streamed(stream, *plan.method, plan.options, plan.histogram_bins, plan.chunk_faces,
-                                             m.triangle_count() - m.degenerate_triangle_count(), progress.callback());
+  StreamedResult streamed = measure_streamed(
+      stream, *plan.method, plan.options, plan.histogram_bins, plan.chunk_faces,
+      slice ? slice->last - slice->first : m.triangle_count() - m.degenerate_triangle_count(), progress.callback(),
+      slice);
   plan.method->release();
   d.samples = std::move(streamed.samples);
+  if (slice) {  // what the part holds: the slice's figures, and the count of the whole's skipped faces
+    d.result.signed_distance = std::move(streamed.slice.signed_distance);
+    d.result.hit = std::move(streamed.slice.hit);
+    d.samples.skipped_degenerate_faces = m.degenerate_triangle_count();
+  }
   d.result.query_seconds = streamed.query_seconds;
   d.result.gl = std::move(streamed.gl);
   d.statistics = streamed.statistics;
@@ -613,8 +622,12 @@ void measure_streamed_direction(const Model& a, const TriangleMesh& test_mesh, T
     CertifiedHausdorff bound(test_mesh, hausdorff_bound);
     MeshBlocks blocks(stream, plan.chunk_faces);
     const ProgressFn tell = progress.callback();
-    for (TriangleMesh block; blocks.next(block);) {
-      if (block.triangle_count() > 0) bound.add(block);
+    const auto [first, last] =  // of REF's triangles
+        plan.shard ? plan.shard->range(m.triangle_count()) : std::pair{std::size_t{0}, m.triangle_count()};
+    TriangleMesh block;
+    for (std::size_t before = 0; before < last && blocks.next(block); before += block.triangle_count()) {
+      const std::size_t from = std::max(first, before), to = std::min(last, before + block.triangle_count());
+      if (from < to) bound.add(block, from - before, to - before);
       if (tell) tell("faces", blocks.faces_read(), stream.face_count());
     }
     d.hausdorff = bound.interval();
@@ -678,7 +691,16 @@ void measure_models(const Model& a, const Model& b, MeasurePlan& plan, MeasureRe
     }
     const bool streamed = reference == &a && streamed_a;
     if (streamed) {  // REF a block of faces at a time, its certified bound too
-      measure_streamed_direction(a, test_mesh, *streamed_a, plan, report.hausdorff_bound, progress, stage, d);
+      std::optional<SampleRange> samples;
+      if (plan.shard) {
+        const TriangleMesh& m = a.mesh.mesh;
+        d.slice_total = m.triangle_count() - m.degenerate_triangle_count();
+        const auto [first, last] = slice(d.slice_total);
+        d.slice_first = first;
+        samples = SampleRange{first, last};
+      }
+      measure_streamed_direction(a, test_mesh, *streamed_a, plan, report.hausdorff_bound, samples, progress, stage,
+                                 d);
     } else {
       // area:auto measures again with more samples until USiAD's interval is as narrow as asked.
       for (int round = 1;; ++round) {
@@ -811,10 +833,11 @@ bool reference_only_sampled(const MeasureArguments& args, const MeasurePlan& pla
 // REF's file, to be read a block of faces at a time, where it is a binary PLY of plain triangles, a
 // binary STL or a plain OBJ with more faces than --chunk and nothing asked for needs it whole: one direction of
 // face samples by a method whose answers do not depend on every sample at once (not the GL methods
-// that draw views: independent_run()), and no output that reads REF or every sample after the measurement.
+// that draw views: independent_run()), and no output that reads REF or every sample after the
+// measurement. A shard's part is such an output for its slice alone: a shard streams too.
 std::unique_ptr<TriangleStream> reference_stream(const MeasureArguments& args, const MeasurePlan& plan) {
   const bool wanted = plan.chunk_faces > 0 && reference_only_sampled(args, plan, true) && !plan.pcc_only && !plan.dtu &&
-                      !plan.tnt && !plan.shard && !plan.correspondences && plan.thresholds.empty() &&
+                      !plan.tnt && !plan.correspondences && plan.thresholds.empty() &&
                       args.samples_csv_path.empty() && plan.sample_spec.kind == SampleSpec::Kind::Faces &&
                       plan.method->independent_run() > 0 &&
                       (!plan.reference_type || *plan.reference_type == ModelType::Mesh);

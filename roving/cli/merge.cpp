@@ -200,7 +200,7 @@ void write_shard_part(std::FILE* out, const MeasureArguments& args, const Measur
           {{"kind", d.samples.kind},
            {"total", d.slice_total},
            {"first", d.slice_first},
-           {"count", d.samples.size()},
+           {"count", d.result.hit.size()},
            {"skipped_degenerate_faces", d.samples.skipped_degenerate_faces},
            {"skipped_unreferenced_vertices", d.samples.skipped_unreferenced_vertices},
            {"skipped_zero_normal_vertices", d.samples.skipped_zero_normal_vertices}}},
@@ -239,8 +239,8 @@ void write_shard_part(std::FILE* out, const MeasureArguments& args, const Measur
   // Weights are per sample wherever samples are made; a set without them stands for equal areas.
   std::vector<std::vector<double>> weights;
   for (const DirectionReport& d : r.directions) {
-    weights.push_back(d.samples.weights);
-    weights.back().resize(d.samples.size(), d.samples.weights.empty() ? 1.0 : d.samples.weights.back());
+    weights.push_back(d.samples.weights);  // a streamed REF's shard keeps no positions: counted by its hits
+    weights.back().resize(d.result.hit.size(), d.samples.weights.empty() ? 1.0 : d.samples.weights.back());
   }
   std::vector<PartColumns> columns;
   for (std::size_t i = 0; i < r.directions.size(); ++i) {

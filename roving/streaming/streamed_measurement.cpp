@@ -55,6 +55,12 @@ SampleSet face_samples(const TriangleStream& stream, const std::vector<Triangle>
   return samples;
 }
 
+// The block's degenerate faces (which give no face sample), by TriangleMesh's own arithmetic.
+std::size_t degenerate_count(const TriangleStream& stream, const std::vector<Triangle>& triangles) {
+  const std::vector<TriangleMesh::FaceShape> shapes = shapes_of(stream, triangles);
+  return std::size_t(std::count_if(shapes.begin(), shapes.end(), [](const auto& s) { return s.degenerate; }));
+}
+
 // default_heatmap_range's figure (the 99th percentile of the hits' |d|, in float) from the |d| the
 // statistics keep for the percentiles, rather than from 4 more bytes a sample of its own.
 double heatmap_range_of(StatisticsAccumulator& statistics, std::size_t hits, double fallback) {
@@ -92,7 +98,7 @@ StreamedReference summarise(TriangleStream& stream, std::size_t chunk_faces, con
 
 StreamedResult measure_streamed(TriangleStream& stream, DistanceMethod& method, const DistanceOptions& options,
                                 std::size_t histogram_bins, std::size_t chunk_faces, std::size_t expected_samples,
-                                const ProgressFn& progress) {
+                                const ProgressFn& progress, const std::optional<SampleRange>& slice) {
   const std::size_t run = method.independent_run();
   if (run == 0) throw Error(method.name() + ": answers every sample from them all; REF cannot be streamed");
   StreamedResult result;
@@ -113,6 +119,13 @@ StreamedResult measure_streamed(TriangleStream& stream, DistanceMethod& method, 
       if (!result.gl) result.gl.emplace();
       result.gl->add_block(*measured.gl);
     }
+    if (slice) {
+      std::vector<double>& weights = result.samples.weights;
+      weights.insert(weights.end(), samples.weights.begin(), samples.weights.end());
+      result.slice.signed_distance.insert(result.slice.signed_distance.end(), measured.signed_distance.begin(),
+                                          measured.signed_distance.end());
+      result.slice.hit.insert(result.slice.hit.end(), measured.hit.begin(), measured.hit.end());
+    }
     for (std::size_t k = 0; k < samples.size(); ++k) {
       const double d = measured.signed_distance[k];
       statistics.add(d, measured.hit[k], samples.weights[k]);
@@ -121,12 +134,29 @@ StreamedResult measure_streamed(TriangleStream& stream, DistanceMethod& method, 
     }
     done += samples.size();
   };
+  const std::size_t first = slice ? slice->first : 0, last = slice ? slice->last : SIZE_MAX;
+  if (slice) {
+    result.samples.weights.reserve(last - first);
+    result.slice.signed_distance.reserve(last - first);
+    result.slice.hit.reserve(last - first);
+  }
   std::vector<Triangle> triangles;
   stream.rewind();
-  while (stream.next(chunk_faces, triangles)) {
+  for (std::size_t made = 0; made < last && stream.next(chunk_faces, triangles);) {  // REF's samples made so far
     ++result.chunks;
+    if (made + triangles.size() <= first) {  // wholly before the slice: its samples counted, not made
+      const std::size_t degenerate = degenerate_count(stream, triangles);
+      result.samples.skipped_degenerate_faces += degenerate;
+      made += triangles.size() - degenerate;
+      continue;
+    }
+    const std::size_t before = made;
     SampleSet samples = face_samples(stream, triangles);
     result.samples.skipped_degenerate_faces += samples.skipped_degenerate_faces;
+    made += samples.size();
+    if (before < first || made > last) {
+      samples = samples.slice(std::max(before, first) - before, std::min(made, last) - before);
+    }
     pending.append(std::move(samples));
     const std::size_t ready = pending.size() / run * run;
     if (ready == 0) continue;

@@ -33,7 +33,8 @@ StreamedReference summarise(TriangleStream& stream, std::size_t chunk_faces, con
 
 struct StreamedResult {
   Statistics statistics;
-  SampleSet samples;  // the kind and the skipped faces; no per-sample arrays
+  SampleSet samples;  // the kind, the skipped faces and, for a slice, its weights; no other per-sample arrays
+  DistanceResult slice;  // for a slice, its samples' signed distances and hits; empty otherwise
   SignCounts signs;
   double heatmap_range = 0;  // default_heatmap_range's: the 99th percentile of the hits' |d|
   std::size_t chunks = 0;
@@ -41,13 +42,21 @@ struct StreamedResult {
   std::optional<GlReport> gl;  // a GL method's, its blocks' added up (GlReport::add_block)
 };
 
+// Samples [first, last) of REF's, in the whole's order: a shard's slice.
+struct SampleRange {
+  std::size_t first = 0, last = 0;
+};
+
 // Measures REF's face samples (make_samples' "faces", in its order) against the TEST `method`
 // was built for, `chunk_faces` of the file's faces at a time; `progress` hears of the samples
 // done of `expected_samples`. Samples go to the method in whole runs (independent_run()), so that
-// chunking changes no answer. Throws roving::Error where REF gives no sample, or where the method
+// chunking changes no answer. Where `slice` is given (its first a multiple of the run), only its
+// samples are measured, the file read no further than its last, and their distances, hits and
+// weights are kept (17 bytes a sample), as a shard's part needs them; the skipped faces are then
+// those of the faces read. Throws roving::Error where REF gives no sample, or where the method
 // answers each sample from them all.
 StreamedResult measure_streamed(TriangleStream& stream, DistanceMethod& method, const DistanceOptions& options,
                                 std::size_t histogram_bins, std::size_t chunk_faces, std::size_t expected_samples,
-                                const ProgressFn& progress = {});
+                                const ProgressFn& progress = {}, const std::optional<SampleRange>& slice = {});
 
 }  // namespace roving
