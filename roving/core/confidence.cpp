@@ -21,21 +21,30 @@ MeanInterval interval(const RunningMoments& m) {
 
 SamplingIntervals sampling_intervals(const std::vector<double>& signed_distance, const std::vector<std::uint8_t>& hit,
                                      double max_error) {
-  if (signed_distance.size() < 2 || hit.size() != signed_distance.size()) {
-    throw Error(fmt::format("confidence intervals: expected at least 2 samples with a hit flag each, found {} and {}",
-                            signed_distance.size(), hit.size()));
+  if (hit.size() != signed_distance.size()) {
+    throw Error(fmt::format("confidence intervals: expected a hit flag per sample, found {} for {} samples",
+                            hit.size(), signed_distance.size()));
   }
-  RunningMoments d, magnitude, square;
-  for (std::size_t k = 0; k < signed_distance.size(); ++k) {
-    const double x = hit[k] ? signed_distance[k] : max_error;
-    d.add(x);
-    magnitude.add(std::abs(x));
-    square.add(x * x);
+  IntervalsAccumulator accumulator(max_error);
+  for (std::size_t k = 0; k < signed_distance.size(); ++k) accumulator.add(signed_distance[k], hit[k]);
+  return accumulator.finish();
+}
+
+void IntervalsAccumulator::add(double signed_distance, bool hit) {
+  const double x = hit ? signed_distance : max_error_;
+  d_.add(x);
+  magnitude_.add(std::abs(x));
+  square_.add(x * x);
+}
+
+SamplingIntervals IntervalsAccumulator::finish() const {
+  if (count() < 2) {
+    throw Error(fmt::format("confidence intervals: expected at least 2 samples, found {}", count()));
   }
   SamplingIntervals out;
-  out.siad = interval(d);
-  out.usiad = interval(magnitude);
-  const MeanInterval q = interval(square);
+  out.siad = interval(d_);
+  out.usiad = interval(magnitude_);
+  const MeanInterval q = interval(square_);
   out.rms = {std::sqrt(q.estimate), q.standard_error, std::sqrt(std::max(0.0, q.lower)), std::sqrt(q.upper)};
   return out;
 }

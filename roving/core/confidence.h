@@ -6,6 +6,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "roving/core/running_moments.h"
+
 namespace roving {
 
 struct MeanInterval {
@@ -27,6 +29,21 @@ struct SamplingIntervals {
 // fewer than 2 samples or a size mismatch.
 SamplingIntervals sampling_intervals(const std::vector<double>& signed_distance, const std::vector<std::uint8_t>& hit,
                                      double max_error);
+
+// The same figures gathered a sample at a time, for callers that fold samples in rather than hold
+// them (a merge reading shards' parts in order): bit for bit sampling_intervals' in the same order.
+class IntervalsAccumulator {
+ public:
+  explicit IntervalsAccumulator(double max_error) : max_error_(max_error) {}
+  void add(double signed_distance, bool hit);
+  std::size_t count() const { return static_cast<std::size_t>(d_.count); }
+  // Throws roving::Error on fewer than 2 samples.
+  SamplingIntervals finish() const;
+
+ private:
+  double max_error_;
+  RunningMoments d_, magnitude_, square_;
+};
 
 // The z of a two-sided 95% normal interval.
 constexpr double kZ95 = 1.959963984540054;

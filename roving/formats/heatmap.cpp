@@ -71,6 +71,12 @@ double default_heatmap_range(const DistanceResult& result, double fallback) {
   return percentile_99(std::move(magnitudes), fallback);
 }
 
+double default_heatmap_range(StatisticsAccumulator& statistics, std::size_t hits, double fallback) {
+  if (hits == 0) return fallback;
+  const auto at = static_cast<float>(statistics.hit_magnitude(percentile_99_rank(hits)));
+  return at > 0 ? at : fallback;
+}
+
 double percentile_99(std::vector<float> values, double fallback) {
   values.erase(std::remove_if(values.begin(), values.end(), [](float v) { return std::isnan(v); }),
                values.end());

@@ -10,6 +10,7 @@
 
 #include "roving/core/distance_method.h"
 #include "roving/core/sample_set.h"
+#include "roving/core/statistics.h"
 
 namespace roving {
 
@@ -48,6 +49,9 @@ std::vector<float> heatmap_values(const TriangleMesh* surface, const HeatmapLayo
 // The colour map's default half-range: the 99th percentile of |d| over the hits, so the
 // colours show the data rather than h; `fallback` when nothing hit or all of it is 0.
 double default_heatmap_range(const DistanceResult& result, double fallback);
+// The same figure from the |d| an accumulator keeps for the percentiles (`hits` of its samples hit),
+// for callers that fold samples in rather than hold them; call after its finish().
+double default_heatmap_range(StatisticsAccumulator& statistics, std::size_t hits, double fallback);
 // The 99th percentile of the values that are not NaN; `fallback` where there is none or it is 0.
 double percentile_99(std::vector<float> values, double fallback);
 // The rank (from 0) percentile_99 takes among `count` values (count > 0).

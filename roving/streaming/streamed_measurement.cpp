@@ -61,14 +61,6 @@ std::size_t degenerate_count(const TriangleStream& stream, const std::vector<Tri
   return std::size_t(std::count_if(shapes.begin(), shapes.end(), [](const auto& s) { return s.degenerate; }));
 }
 
-// default_heatmap_range's figure (the 99th percentile of the hits' |d|, in float) from the |d| the
-// statistics keep for the percentiles, rather than from 4 more bytes a sample of its own.
-double heatmap_range_of(StatisticsAccumulator& statistics, std::size_t hits, double fallback) {
-  if (hits == 0) return fallback;
-  const auto at = static_cast<float>(statistics.hit_magnitude(percentile_99_rank(hits)));
-  return at > 0 ? at : fallback;
-}
-
 }  // namespace
 
 StreamedReference summarise(TriangleStream& stream, std::size_t chunk_faces, const ProgressFn& progress) {
@@ -171,7 +163,7 @@ StreamedResult measure_streamed(TriangleStream& stream, DistanceMethod& method, 
                             result.samples.skipped_degenerate_faces));
   }
   result.statistics = statistics.finish();
-  result.heatmap_range = heatmap_range_of(statistics, result.statistics.hit_count, options.max_error);
+  result.heatmap_range = default_heatmap_range(statistics, result.statistics.hit_count, options.max_error);
   return result;
 }
 
