@@ -266,7 +266,9 @@ struct FoldedDirection {
       intervals.add(part.signed_distance[k], part.hit[k]);
     }
     const SignCounts counts = sign_counts(part);
-    signs.positive += counts.positive, signs.negative += counts.negative, signs.zero += counts.zero;
+    signs.positive += counts.positive;
+    signs.negative += counts.negative;
+    signs.zero += counts.zero;
   }
   StatisticsAccumulator statistics;
   IntervalsAccumulator intervals;
