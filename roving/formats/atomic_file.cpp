@@ -54,15 +54,29 @@ AtomicFile::AtomicFile(std::string path) : path_(std::move(path)) {
   const std::string name = path_.substr(folder.size());
   const auto dot = name.find_last_of('.');
   const std::string extension = dot == std::string::npos || dot == 0 ? "" : name.substr(dot);
-  // ".NAME.XXXXXX.ext": hidden, unique, and still ending in the extension.
-  std::string pattern = folder + "." + name + ".XXXXXX" + extension;
-  const int fd = ::mkstemps(pattern.data(), static_cast<int>(extension.size()));
-  if (fd < 0) throw Error(fmt::format("{}: cannot open for writing ({})", path_, std::strerror(errno)));
-  temporary_ = pattern;
-  // The lock says "a live process writes this": remove_if_abandoned() leaves it alone. A second
-  // descriptor keeps it until the rename, after the stream is closed.
-  lock_fd_ = ::dup(fd);
-  if (lock_fd_ >= 0) ::flock(lock_fd_, LOCK_EX);
+  int fd = -1;
+  for (int attempt = 0;; ++attempt) {
+    // ".NAME.XXXXXX.ext": hidden, unique, and still ending in the extension.
+    std::string pattern = folder + "." + name + ".XXXXXX" + extension;
+    fd = ::mkstemps(pattern.data(), static_cast<int>(extension.size()));
+    if (fd < 0) throw Error(fmt::format("{}: cannot open for writing ({})", path_, std::strerror(errno)));
+    temporary_ = pattern;
+    // The lock says "a live process writes this": remove_if_abandoned() leaves it alone. A second
+    // descriptor keeps it until the rename, after the stream is closed.
+    lock_fd_ = ::dup(fd);
+    if (lock_fd_ >= 0) ::flock(lock_fd_, LOCK_EX);
+    // A concurrent sweep (a batch shard starting) may have locked and removed the file in the
+    // moment before our lock: then it is not ours by that name any more, and we start again.
+    struct stat ours {}, named {};
+    if (::fstat(fd, &ours) != 0 || ::stat(temporary_.c_str(), &named) != 0 || ours.st_ino != named.st_ino ||
+        ours.st_dev != named.st_dev) {
+      ::close(fd);
+      if (lock_fd_ >= 0) ::close(lock_fd_);
+      if (attempt < 100) continue;
+      throw Error(fmt::format("{}: cannot open for writing (its temporary file kept being removed)", path_));
+    }
+    break;
+  }
   track(temporary_.c_str());
   stream_ = ::fdopen(fd, "wb");
   if (!stream_) {
