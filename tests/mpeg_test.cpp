@@ -120,6 +120,13 @@ TEST(PcErrorGolden, VoxelisedTenBitsWithDuplicates) {
   expect_equal_to_pc_error("sphere10_rgb", 3 * 8 + 3 * 12);
 }
 
+// A's normals not unit, and some of length 0, as some tools write them: pc_error uses them as the
+// file has them (D2 scales by each normal's squared length; a zero normal gives 0), so --pcc does,
+// where a plain measure makes them unit (and refuses one of length 0).
+TEST(PcErrorGolden, NormalsAsTheFileHasThem) {
+  expect_equal_to_pc_error("sphere10_scaled_normals", 3 * 8 + 3 * 12);
+}
+
 // B as A: B has no normals, so neither has D2 (pc_error takes D2's normals from A alone).
 TEST(PcErrorGolden, WithoutNormalsThereIsNoD2) {
   expect_equal_to_pc_error("sphere10_swapped", 3 * 4 + 3 * 12);

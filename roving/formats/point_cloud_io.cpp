@@ -17,12 +17,13 @@
 namespace roving {
 namespace {
 
-void validate(PointCloud& cloud, const std::string& path) {
+void validate(PointCloud& cloud, const std::string& path, bool unit_normals) {
   if (cloud.positions.empty()) throw Error(fmt::format("{}: no points; expected a point cloud", path));
   for (std::size_t i = 0; i < cloud.positions.size(); ++i) {
     if (!cloud.positions[i].allFinite())
       throw Error(fmt::format("{}: point {} has a non-finite coordinate", path, i));
   }
+  if (!unit_normals) return;
   for (std::size_t i = 0; i < cloud.normals.size(); ++i) {
     const double length = cloud.normals[i].norm();
     if (!std::isfinite(length) || length < 1e-12) {
@@ -141,10 +142,10 @@ bool is_ply_point_cloud(const std::string& path) {
   return ply_declares_no_faces(path);
 }
 
-PointCloud read_point_cloud(const std::string& path) {
+PointCloud read_point_cloud(const std::string& path, bool unit_normals) {
   const std::string ext = path.size() >= 4 ? path.substr(path.size() - 4) : "";
   PointCloud cloud = ext == ".ply" || ext == ".PLY" ? read_ply_points(path) : read_xyz(path);
-  validate(cloud, path);
+  validate(cloud, path, unit_normals);
   return cloud;
 }
 

@@ -9,9 +9,11 @@
 
 namespace roving {
 
-// Throws roving::Error naming the file (and line, for XYZ) on a malformed record, NaN/inf,
-// normals of zero length, a colour outside [0, 255], an unknown or repeated column name, or no points.
-PointCloud read_point_cloud(const std::string& path);
+// Throws roving::Error naming the file (and line, for XYZ) on a malformed record, a coordinate
+// NaN/inf, a colour outside [0, 255], an unknown or repeated column name, or no points. With
+// `unit_normals`, normals are made unit and one of zero length or not finite is an error; without,
+// they are kept as the file has them (MPEG's figures use them so) and left to the caller to check.
+PointCloud read_point_cloud(const std::string& path, bool unit_normals = true);
 void write_point_cloud_ply(const PointCloud& cloud, const std::string& path);
 
 // True when `path` is a PLY whose header declares no faces (a point cloud, not a mesh).

@@ -118,7 +118,7 @@ PointCloud load_point_cloud(const std::string& path, std::optional<ModelType> ty
     throw Error(fmt::format("{}: expected a point cloud (.xyz, or .ply without faces), found a {} model", path,
                             to_string(found)));
   }
-  return read_point_cloud(path);
+  return read_point_cloud(path, false);
 }
 
 Model model_from_mesh(TriangleMesh mesh, const std::string& name) {

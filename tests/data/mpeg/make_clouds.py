@@ -88,3 +88,10 @@ write_ply("sphere10_a_bare.ply", a, None, colours)
 order = rng.permutation(len(a))
 tilted = unit(normals + 0.3 * rng.normal(size=normals.shape)).astype(np.float32)
 write_ply("sphere10_a_normals.ply", a[order], tilted[order])
+
+# sphere10's A with normals as some tools write them: not unit (lengths 0.25 to 3) and a few of
+# length 0. pc_error uses them as they are (D2 scales by the squared length); drawn last.
+a, normals, colours = sphere
+lengths = rng.uniform(0.25, 3.0, size=(len(a), 1))
+lengths[rng.choice(len(a), size=40, replace=False)] = 0
+write_ply("sphere10_a_scaled_normals.ply", a, (normals * lengths).astype(np.float32), colours)

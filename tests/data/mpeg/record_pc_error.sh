@@ -32,3 +32,5 @@ record sphere10_swapped sphere10_b.ply sphere10_a.ply --color=1 --hausdorff=1 --
 # A's normals from a file of their own (--inputNorm): the file's points in another order, its normals
 # other than A's.
 record sphere10_normals_file sphere10_a_bare.ply sphere10_b.ply --inputNorm=sphere10_a_normals.ply --color=1 --hausdorff=1 --resolution=1023 --nbThreads=1
+# A's normals not unit, some of length 0: pc_error uses them as they are.
+record sphere10_scaled_normals sphere10_a_scaled_normals.ply sphere10_b.ply --color=1 --hausdorff=1 --resolution=1023 --nbThreads=1
