@@ -182,7 +182,7 @@ py::object attribute(const py::handle& object, const char* name) {
 // A model from what Python holds: an N x 3 array of points, a (vertices, faces) pair, an object with vertices
 // and faces or triangles (trimesh, Open3D's TriangleMesh, ...) with vertex_colors / vertex_colours where
 // given, or one with points (Open3D's PointCloud) with normals and colors where given.
-std::unique_ptr<Model> model_of(const py::handle& given, const std::string& name) {
+std::unique_ptr<Model> model_of(const py::handle& given, const std::string& name, bool unit_normals = true) {
   if (py::isinstance<py::array>(given)) {  // N x 3 points
     PointCloud cloud;
     cloud.positions = vectors_of(given, name + " points");
@@ -206,7 +206,7 @@ std::unique_ptr<Model> model_of(const py::handle& given, const std::string& name
       cloud.normals = vectors_of(py::module_::import("numpy").attr("asarray")(normals), name + " normals");
     if (const py::object colours = attribute(given, "colors"); !colours.is_none())
       cloud.colours = colours_of(py::module_::import("numpy").attr("asarray")(colours), name + " colors");
-    return std::make_unique<Model>(model_from_points(std::move(cloud), name + " points"));
+    return std::make_unique<Model>(model_from_points(std::move(cloud), name + " points", unit_normals));
   }
   const char* faces_name = py::hasattr(given, "faces") ? "faces" : "triangles";
   if (!py::hasattr(given, "vertices") || !py::hasattr(given, faces_name)) {
@@ -364,8 +364,9 @@ py::dict measure(const py::object& reference, const py::object& test, const py::
   if (!args.shard.empty() && !(reference_is_path && test_is_path)) {  // before converting the arrays
     throw Error("--shard: the models must be files (a shard's part names them by path and hash for the merge)");
   }
-  std::unique_ptr<Model> a = reference_is_path ? nullptr : model_of(reference, "reference");
-  std::unique_ptr<Model> b = test_is_path ? nullptr : model_of(test, "test");
+  // pcc=True: normals as given, as the command keeps a file's (pc_error's D2 uses them so).
+  std::unique_ptr<Model> a = reference_is_path ? nullptr : model_of(reference, "reference", !args.pcc);
+  std::unique_ptr<Model> b = test_is_path ? nullptr : model_of(test, "test", !args.pcc);
   references_may_leave_folder(line->trust_references);
   MeasureRun run;
   std::string stage = "starting", json, printed;

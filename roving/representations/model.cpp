@@ -129,7 +129,7 @@ Model model_from_mesh(TriangleMesh mesh, const std::string& name) {
   return model;
 }
 
-Model model_from_points(PointCloud points, const std::string& name) {
+Model model_from_points(PointCloud points, const std::string& name, bool unit_normals) {
   Model model;
   model.type = ModelType::Points;
   model.mesh.path = name;
@@ -153,6 +153,7 @@ Model model_from_points(PointCloud points, const std::string& name) {
                             points.colours.size(), points.positions.size()));
   }
   for (Vec3& n : points.normals) {
+    if (!unit_normals) break;
     if (!(n.norm() > 0)) throw Error(fmt::format("{}: a normal is zero; expected non-zero normals", name));
     n.normalize();
   }

@@ -57,10 +57,11 @@ PointCloud load_point_cloud(const std::string& path, std::optional<ModelType> ty
 
 // Models of what is already in memory, `name` standing for a path in messages and reports: a mesh
 // (checked as its constructor checks it), or a point cloud (finite points; normals, where given,
-// one per point, non-zero, normalised here; where not, estimated as load_model does; colours one
+// one per point, non-zero, normalised here unless not `unit_normals` (MPEG's figures use them as
+// given, as load_point_cloud keeps a file's); where not, estimated as load_model does; colours one
 // per point or none). Throw roving::Error naming `name` as load_model does.
 Model model_from_mesh(TriangleMesh mesh, const std::string& name);
-Model model_from_points(PointCloud points, const std::string& name);
+Model model_from_points(PointCloud points, const std::string& name, bool unit_normals = true);
 
 // Samples on a reference model: a mesh's faces / vertices / area:N; a voxel model's exposed-face
 // centres with axis normals (faces) or area:N on its exposed faces; a point cloud's own points

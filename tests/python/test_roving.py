@@ -5,6 +5,7 @@ import csv
 import json
 import math
 import os
+import types
 import signal
 import subprocess
 import sys
@@ -563,6 +564,26 @@ def test_pcc_figures_of_numpy_points_equal_the_files():
     for key in ("d1_mse", "d1_psnr", "d1_hausdorff"):
         assert from_arrays["symmetric"][key] == from_files["symmetric"][key], key
     assert from_arrays["d2"] != True and "d2_psnr" not in from_arrays["symmetric"]
+
+
+def test_pcc_uses_normals_as_given_as_the_files_are():
+    """pcc=True takes an Open3D-like cloud's normals as given (not unit, some zero), as the command
+    takes a file's and pc_error does: the figures equal the file's."""
+    a, b = (os.path.join(MPEG, name) for name in ("sphere10_a_scaled_normals.ply", "sphere10_b.ply"))
+    with open(a, "rb") as f:
+        while f.readline().strip() != b"end_header":
+            pass
+        fields = [(n, "<f4") for n in ("x", "y", "z", "nx", "ny", "nz")] + [(n, "u1") for n in ("red", "green", "blue")]
+        rows = np.frombuffer(f.read(), dtype=fields)
+    cloud = types.SimpleNamespace(points=np.stack([rows["x"], rows["y"], rows["z"]], axis=1).astype(np.float64),
+                                  normals=np.stack([rows["nx"], rows["ny"], rows["nz"]], axis=1).astype(np.float64),
+                                  colors=np.stack([rows["red"], rows["green"], rows["blue"]], axis=1) / 255.0)
+    assert (np.linalg.norm(cloud.normals, axis=1) == 0).any()
+    from_file = roving.measure(a, b, pcc=True, pcc_resolution=1023)["mpeg_pcc"]
+    from_object = roving.measure(cloud, b, pcc=True, pcc_resolution=1023)["mpeg_pcc"]
+    for direction in ("a_to_b", "b_to_a"):
+        for key in ("d1_mse", "d2_mse", "d2_hausdorff", "y_mse", "r_mse"):
+            assert from_object[direction][key] == from_file[direction][key], (direction, key)
 
 
 def test_threshold_needs_both_directions():
