@@ -129,16 +129,16 @@ std::size_t hash(std::uint64_t key, int shift) {
 
 bool LatticeNeighbours::on_lattice(const std::array<float, 3>& q) {
   for (const float c : q) {
-    if (!(std::fabs(c) <= float(kLimit)) || std::trunc(c) != c) return false;
+    if (!(std::fabs(c) <= float(kLimit)) || float(std::int32_t(c)) != c) return false;  // the cast: exact, in range
   }
   return true;
 }
 
 std::int32_t LatticeNeighbours::find(std::uint64_t key) const {
-  const std::size_t mask = keys_.size() - 1;
+  const std::size_t mask = table_.size() - 1;
   for (std::size_t at = hash(key, shift_);; at = (at + 1) & mask) {
-    if (keys_[at] == key + 1) return slots_[at];
-    if (keys_[at] == 0) return -1;
+    if (table_[at].key == key + 1) return table_[at].brick;
+    if (table_[at].key == 0) return -1;
   }
 }
 
@@ -155,14 +155,12 @@ std::unique_ptr<LatticeNeighbours> LatticeNeighbours::build(const std::vector<st
   LatticeNeighbours& l = *lattice;
   // The bricks, numbered as first met; the table doubles when half full.
   l.shift_ = 64 - 10;
-  l.keys_.assign(std::size_t{1} << 10, 0);
-  l.slots_.assign(l.keys_.size(), -1);
-  const auto insert = [&l](std::uint64_t key, std::int32_t slot) {
-    const std::size_t mask = l.keys_.size() - 1;
-    std::size_t at = hash(key, l.shift_);
-    while (l.keys_[at] != 0) at = (at + 1) & mask;
-    l.keys_[at] = key + 1;
-    l.slots_[at] = slot;
+  l.table_.assign(std::size_t{1} << 10, Slot{});
+  const auto insert = [&l](const Slot& slot) {
+    const std::size_t mask = l.table_.size() - 1;
+    std::size_t at = hash(slot.key - 1, l.shift_);
+    while (l.table_[at].key != 0) at = (at + 1) & mask;
+    l.table_[at] = slot;
   };
   std::vector<std::int32_t> brick_of(points.size());
   std::uint64_t last_key = ~std::uint64_t{0};
@@ -176,17 +174,15 @@ std::unique_ptr<LatticeNeighbours> LatticeNeighbours::build(const std::vector<st
       if (brick < 0) {
         brick = std::int32_t(l.bricks_.size());
         l.bricks_.emplace_back();
-        if (2 * l.bricks_.size() > l.keys_.size()) {  // rehash into twice the room
-          std::vector<std::uint64_t> keys = std::move(l.keys_);
-          std::vector<std::int32_t> slots = std::move(l.slots_);
-          l.keys_.assign(2 * keys.size(), 0);
-          l.slots_.assign(l.keys_.size(), -1);
+        if (2 * l.bricks_.size() > l.table_.size()) {  // rehash into twice the room
+          std::vector<Slot> table = std::move(l.table_);
+          l.table_.assign(2 * table.size(), Slot{});
           --l.shift_;
-          for (std::size_t k = 0; k < keys.size(); ++k) {
-            if (keys[k] != 0) insert(keys[k] - 1, slots[k]);
+          for (const Slot& slot : table) {
+            if (slot.key != 0) insert(slot);
           }
         }
-        insert(key, brick);
+        insert(Slot{key + 1, brick});
       }
       last_key = key;
       last_brick = brick;

@@ -71,8 +71,12 @@ class LatticeNeighbours {
   std::vector<Brick> bricks_;
   std::vector<BrickStart> starts_;
   std::vector<std::uint32_t> order_;  // the points' indices, brick after brick, voxel order within
-  std::vector<std::uint64_t> keys_;   // open addressing: brick key + 1, 0 empty
-  std::vector<std::int32_t> slots_;   // the brick of each key
+  // Open addressing, a key beside its brick so that a lookup reads one cache line.
+  struct Slot {
+    std::uint64_t key = 0;  // brick key + 1, 0 empty
+    std::int32_t brick = -1;
+  };
+  std::vector<Slot> table_;
   int shift_ = 64;
 };
 

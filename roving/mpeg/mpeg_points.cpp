@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
 
 #include <algorithm>
 #include <atomic>
@@ -36,6 +37,178 @@ void keep_least(std::atomic<std::size_t>& least, std::size_t value) {
   }
 }
 
+// A coordinate's single-precision bits turned to keep float's order as unsigned integers (-0 taken
+// as +0, which float's == merges and which changes no distance), and back.
+std::uint32_t ordered_bits(double v) {
+  const float f = float(v) + 0.0f;
+  std::uint32_t bits;
+  std::memcpy(&bits, &f, sizeof bits);
+  return bits & 0x80000000u ? ~bits : bits | 0x80000000u;
+}
+
+float from_ordered_bits(std::uint32_t k) {
+  const std::uint32_t bits = k & 0x80000000u ? k & 0x7fffffffu : ~k;
+  float f;
+  std::memcpy(&f, &bits, sizeof f);
+  return f;
+}
+
+// Where the points' ordered coordinate bits differ: the bits each coordinate keeps in a sort key.
+// Bits outside a coordinate's span are the same in every point (the first one's).
+struct KeyLayout {
+  std::array<std::uint32_t, 3> first{};  // the first point's ordered bits
+  std::array<int, 3> low{}, width{};     // each coordinate's span of varying bits
+  int index_bits = 0;                    // below the coordinates, the point's index
+  int bits() const { return width[0] + width[1] + width[2] + index_bits; }
+};
+
+// Sort entries by position, then (stably) by index. Packed: where the varying bits and the index
+// fit in 64 bits (a voxelised cloud's do: 3 x 13 bits and 20 for a million points at 11 bits), a
+// sort moves 8 bytes an entry over those bits alone; Wide holds any floats in 16.
+struct PackedEntry {
+  std::uint64_t word;  // x span, y span, z span, index
+};
+struct WideEntry {
+  std::uint64_t xy, z_index;
+};
+
+struct PackedCodec {
+  KeyLayout layout;
+  PackedEntry make(const std::array<std::uint32_t, 3>& bits, std::size_t i) const {
+    std::uint64_t word = 0;
+    for (int c = 0; c < 3; ++c) {
+      const std::uint64_t mask = (std::uint64_t{1} << layout.width[c]) - 1;
+      word = word << layout.width[c] | (bits[c] >> layout.low[c] & mask);
+    }
+    return {word << layout.index_bits | i};
+  }
+  RadixKey position(const PackedEntry& e) const { return e.word >> layout.index_bits; }
+  std::uint32_t index(const PackedEntry& e) const {
+    return std::uint32_t(e.word & ((std::uint64_t{1} << layout.index_bits) - 1));
+  }
+  std::array<float, 3> point(const PackedEntry& e) const {
+    std::uint64_t word = e.word >> layout.index_bits;
+    std::array<float, 3> p;
+    for (int c = 2; c >= 0; --c) {
+      const std::uint32_t mask = std::uint32_t((std::uint64_t{1} << layout.width[c]) - 1) << layout.low[c];
+      p[c] = from_ordered_bits((layout.first[c] & ~mask) | (std::uint32_t(word) << layout.low[c] & mask));
+      word >>= layout.width[c];
+    }
+    return p;
+  }
+};
+
+struct WideCodec {
+  WideEntry make(const std::array<std::uint32_t, 3>& bits, std::size_t i) const {
+    return {std::uint64_t(bits[0]) << 32 | bits[1], std::uint64_t(bits[2]) << 32 | i};
+  }
+  RadixKey position(const WideEntry& e) const { return RadixKey(e.xy) << 32 | e.z_index >> 32; }
+  std::uint32_t index(const WideEntry& e) const { return std::uint32_t(e.z_index); }
+  std::array<float, 3> point(const WideEntry& e) const {
+    return {from_ordered_bits(std::uint32_t(e.xy >> 32)), from_ordered_bits(std::uint32_t(e.xy)),
+            from_ordered_bits(std::uint32_t(e.z_index >> 32))};
+  }
+};
+
+// The points' normals and colours made small, in the file's order, so that the merging, which
+// reads them in sorted order (at random in the file's), has less to fetch: single precision (NaN
+// where the value is not representable) and 8 bits.
+struct SmallAttributes {
+  std::vector<std::array<float, 3>> normals;
+  std::vector<std::array<std::uint8_t, 4>> colours;
+};
+
+// The cloud's points sorted by `codec` (the order pc_error's sort gives: lexicographic, equal
+// points in file order) and runs of equal points merged into one.
+template <class Codec>
+MpegPoints sorted_and_merged(const PointCloud& cloud, const Codec& codec, const SmallAttributes& small,
+                             bool average_normals, const std::string& name) {
+  using Entry = decltype(codec.make({}, 0));
+  const std::size_t n = cloud.positions.size();
+  std::vector<Entry> order(n);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 65536), [&](const tbb::blocked_range<std::size_t>& range) {
+    for (std::size_t i = range.begin(); i != range.end(); ++i) {
+      const Vec3& p = cloud.positions[i];
+      order[i] = codec.make({ordered_bits(p.x()), ordered_bits(p.y()), ordered_bits(p.z())}, i);
+    }
+  });
+  radix_sort(order, [&codec](const Entry& e) { return codec.position(e); });
+  const auto same_position = [&](std::size_t k, std::size_t j) {
+    return codec.position(order[k]) == codec.position(order[j]);
+  };
+
+  // Runs of equal points, found and merged block by block on all cores: each block merges the runs
+  // that begin in it, into the places counted before it.
+  constexpr std::size_t kBlock = 65536;
+  constexpr std::size_t kAhead = 16;
+  const std::size_t blocks = (n + kBlock - 1) / kBlock;
+  std::vector<std::size_t> first_run(blocks + 1, 0);
+  tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t b) {
+    std::size_t count = 0;
+    for (std::size_t k = b * kBlock; k < std::min(n, (b + 1) * kBlock); ++k) count += k == 0 || !same_position(k, k - 1);
+    first_run[b + 1] = count;
+  });
+  std::partial_sum(first_run.begin(), first_run.end(), first_run.begin());
+  const std::size_t runs = first_run.back();
+
+  // A normal that is used must be finite; the first such in sorted order is the one named.
+  const bool normals = !small.normals.empty(), colours = !small.colours.empty();
+  std::atomic<std::size_t> first_bad_normal{n};
+  const auto normal_at = [&](std::size_t k) {
+    const std::array<float, 3>& normal = small.normals[codec.index(order[k])];
+    if (std::isnan(normal[0])) keep_least(first_bad_normal, k);
+    return normal;
+  };
+  MpegPoints points;
+  points.points_read = n;
+  points.positions.resize(runs);
+  if (normals) points.normals.resize(runs);
+  if (colours) points.colours.resize(runs);
+  tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t b) {
+    std::size_t out = first_run[b];
+    std::size_t run = b * kBlock;
+    while (run < n && run > 0 && same_position(run, run - 1)) ++run;  // the block before's
+    for (const std::size_t stop = std::min(n, (b + 1) * kBlock); run < stop; ++out) {
+      // The colours and normals are read in sorted order, at random in the file's: asked for
+      // ahead, their cache misses overlap instead of following one another.
+      if (run + kAhead < n) {
+        const std::uint32_t ahead = codec.index(order[run + kAhead]);
+        if (colours) __builtin_prefetch(&small.colours[ahead]);
+        if (normals) __builtin_prefetch(&small.normals[ahead]);
+      }
+      std::size_t end = run + 1;
+      while (end < n && same_position(end, run)) ++end;
+      points.positions[out] = codec.point(order[run]);
+      if (normals && average_normals) {
+        std::array<float, 3> sum = {0, 0, 0};  // in single precision, in the sorted order, as mmetric
+        for (std::size_t k = run; k < end; ++k) {
+          const std::array<float, 3> normal = normal_at(k);
+          for (int c = 0; c < 3; ++c) sum[c] += normal[c];
+        }
+        for (int c = 0; c < 3; ++c) sum[c] /= float(end - run);
+        points.normals[out] = sum;
+      } else if (normals) {
+        points.normals[out] = normal_at(run);
+      }
+      if (colours) {
+        // pc_error sums the 8-bit values and divides as integers: the mean, truncated.
+        long sum[3] = {0, 0, 0};
+        for (std::size_t k = run; k < end; ++k) {
+          for (int c = 0; c < 3; ++c) sum[c] += small.colours[codec.index(order[k])][c];
+        }
+        const long count = long(end - run);
+        points.colours[out] = {std::uint8_t(sum[0] / count), std::uint8_t(sum[1] / count), std::uint8_t(sum[2] / count)};
+      }
+      run = end;
+    }
+  });
+  if (first_bad_normal < n) {  // throws
+    const std::uint32_t i = codec.index(order[first_bad_normal]);
+    to_float(cloud.normals[i], name, "normal", i);
+  }
+  return points;
+}
+
 }  // namespace
 
 MpegPoints mpeg_points(const PointCloud& cloud, const std::string& name, bool with_normals, bool average_normals) {
@@ -49,133 +222,63 @@ MpegPoints mpeg_points(const PointCloud& cloud, const std::string& name, bool wi
     throw Error(fmt::format("{}: {} colours for {} points; expected one per point or none", name,
                             cloud.colours.size(), n));
   }
-  // Lexicographic order of the single-precision coordinates, equal points in file order: pc_error's.
-  // Sorted as integers (stably, so equal points keep the file's order): each coordinate's bits
-  // turned to keep float's order (-0 taken as +0, which float's == merges and which changes no
-  // distance), beside the point's index.
-  struct Entry {
-    std::uint64_t xy, z_index;
-    RadixKey position() const { return RadixKey(xy) << 32 | z_index >> 32; }
-    bool same_position(const Entry& other) const { return xy == other.xy && z_index >> 32 == other.z_index >> 32; }
-    std::uint32_t index() const { return std::uint32_t(z_index); }
-  };
-  const auto ordered = [](double v) {
-    const float f = float(v) + 0.0f;
-    std::uint32_t bits;
-    std::memcpy(&bits, &f, sizeof bits);
-    return std::uint64_t(bits & 0x80000000u ? ~bits : bits | 0x80000000u);
-  };
-  const auto coordinate = [](std::uint64_t key) {
-    const std::uint32_t k = std::uint32_t(key), bits = k & 0x80000000u ? k & 0x7fffffffu : ~k;
-    float f;
-    std::memcpy(&f, &bits, sizeof f);
-    return f;
-  };
-  // On all cores; the first point that is not representable (in file order) is the one named.
-  // The normals and colours are made small here, in the file's order, so that the merging below,
-  // which reads them in sorted order (at random in the file's), has less to fetch: single
-  // precision (NaN where the value is not representable) and 8 bits.
-  const bool normals = with_normals && !cloud.normals.empty();
-  std::vector<Entry> order(n);
-  std::vector<std::array<float, 3>> small_normals(normals ? n : 0);
-  std::vector<std::array<std::uint8_t, 4>> small_colours(cloud.colours.empty() ? 0 : n);
+  // On all cores: the attributes made small, and the bits in which the points differ from the
+  // first. The first point that is not representable (in file order) is the one named.
+  SmallAttributes small;
+  if (with_normals && !cloud.normals.empty()) small.normals.resize(n);
+  if (!cloud.colours.empty()) small.colours.resize(n);
   std::atomic<std::size_t> first_bad{n};
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 65536), [&](const tbb::blocked_range<std::size_t>& range) {
-    for (std::size_t i = range.begin(); i != range.end(); ++i) {
-      const Vec3& p = cloud.positions[i];
-      if (!representable(p)) {
-        keep_least(first_bad, i);
-        return;
-      }
-      order[i] = {ordered(p.x()) << 32 | ordered(p.y()), ordered(p.z()) << 32 | i};
-      if (normals) {
-        const Vec3& normal = cloud.normals[i];
-        small_normals[i] = representable(normal)
-                               ? std::array<float, 3>{float(normal.x()), float(normal.y()), float(normal.z())}
-                               : std::array<float, 3>{NAN, NAN, NAN};
-      }
-      if (!small_colours.empty()) {
-        for (int c = 0; c < 3; ++c) {
-          small_colours[i][c] = std::uint8_t(std::lround(std::clamp(cloud.colours[i][c], 0.0f, 255.0f)));
+  if (!representable(cloud.positions[0])) to_float(cloud.positions[0], name, "point", 0);  // throws
+  const std::array<std::uint32_t, 3> first = {ordered_bits(cloud.positions[0].x()),
+                                              ordered_bits(cloud.positions[0].y()),
+                                              ordered_bits(cloud.positions[0].z())};
+  using Varying = std::array<std::uint32_t, 3>;
+  const Varying varying = tbb::parallel_reduce(
+      tbb::blocked_range<std::size_t>(0, n, 65536), Varying{},
+      [&](const tbb::blocked_range<std::size_t>& range, Varying bits) {
+        for (std::size_t i = range.begin(); i != range.end(); ++i) {
+          const Vec3& p = cloud.positions[i];
+          if (!representable(p)) {
+            keep_least(first_bad, i);
+            return bits;
+          }
+          bits[0] |= ordered_bits(p.x()) ^ first[0];
+          bits[1] |= ordered_bits(p.y()) ^ first[1];
+          bits[2] |= ordered_bits(p.z()) ^ first[2];
+          if (!small.normals.empty()) {
+            const Vec3& normal = cloud.normals[i];
+            small.normals[i] = representable(normal)
+                                   ? std::array<float, 3>{float(normal.x()), float(normal.y()), float(normal.z())}
+                                   : std::array<float, 3>{NAN, NAN, NAN};
+          }
+          if (!small.colours.empty()) {
+            for (int c = 0; c < 3; ++c) {
+              // Rounded half away from zero, as lround (the difference from the whole part is exact).
+              const float value = cloud.colours[i][c];
+              const float code = value >= 0.0f ? std::min(value, 255.0f) : 0.0f;  // NaN: 0
+              const int whole = int(code);
+              small.colours[i][c] = std::uint8_t(whole + (code - float(whole) >= 0.5f));
+            }
+          }
         }
-      }
-    }
-  });
+        return bits;
+      },
+      [](Varying a, const Varying& b) {
+        for (int c = 0; c < 3; ++c) a[c] |= b[c];
+        return a;
+      });
   if (first_bad < n) to_float(cloud.positions[first_bad], name, "point", first_bad);  // throws
-  radix_sort(order, [](const Entry& e) { return e.position(); });
 
-  // Runs of equal points, found and merged block by block on all cores: each block merges the runs
-  // that begin in it, into the places counted before it.
-  constexpr std::size_t kBlock = 65536;
-  constexpr std::size_t kAhead = 16;
-  const std::size_t blocks = (n + kBlock - 1) / kBlock;
-  std::vector<std::size_t> first_run(blocks + 1, 0);
-  tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t b) {
-    std::size_t count = 0;
-    for (std::size_t k = b * kBlock; k < std::min(n, (b + 1) * kBlock); ++k) {
-      count += k == 0 || !order[k].same_position(order[k - 1]);
-    }
-    first_run[b + 1] = count;
-  });
-  std::partial_sum(first_run.begin(), first_run.end(), first_run.begin());
-  const std::size_t runs = first_run.back();
-
-  // A normal that is used must be finite; the first such in sorted order is the one named.
-  std::atomic<std::size_t> first_bad_normal{n};
-  const auto normal_at = [&](std::size_t k) {
-    const std::array<float, 3>& normal = small_normals[order[k].index()];
-    if (std::isnan(normal[0])) keep_least(first_bad_normal, k);
-    return normal;
-  };
-  MpegPoints points;
-  points.points_read = n;
-  points.positions.resize(runs);
-  if (normals) points.normals.resize(runs);
-  if (!cloud.colours.empty()) points.colours.resize(runs);
-  tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t b) {
-    std::size_t out = first_run[b];
-    std::size_t run = b * kBlock;
-    while (run < n && run > 0 && order[run].same_position(order[run - 1])) ++run;  // the block before's
-    for (const std::size_t stop = std::min(n, (b + 1) * kBlock); run < stop; ++out) {
-      // The colours and normals are read in sorted order, at random in the file's: asked for
-      // ahead, their cache misses overlap instead of following one another.
-      if (run + kAhead < n) {
-        const std::uint32_t ahead = order[run + kAhead].index();
-        if (!small_colours.empty()) __builtin_prefetch(&small_colours[ahead]);
-        if (normals) __builtin_prefetch(&small_normals[ahead]);
-      }
-      std::size_t end = run + 1;
-      while (end < n && order[end].same_position(order[run])) ++end;
-      points.positions[out] = {coordinate(order[run].xy >> 32), coordinate(order[run].xy),
-                               coordinate(order[run].z_index >> 32)};
-      if (normals && average_normals) {
-        std::array<float, 3> sum = {0, 0, 0};  // in single precision, in the sorted order, as mmetric
-        for (std::size_t k = run; k < end; ++k) {
-          const std::array<float, 3> normal = normal_at(k);
-          for (int c = 0; c < 3; ++c) sum[c] += normal[c];
-        }
-        for (int c = 0; c < 3; ++c) sum[c] /= float(end - run);
-        points.normals[out] = sum;
-      } else if (normals) {
-        points.normals[out] = normal_at(run);
-      }
-      if (!cloud.colours.empty()) {
-        // pc_error sums the 8-bit values and divides as integers: the mean, truncated.
-        long sum[3] = {0, 0, 0};
-        for (std::size_t k = run; k < end; ++k) {
-          for (int c = 0; c < 3; ++c) sum[c] += small_colours[order[k].index()][c];
-        }
-        const long count = long(end - run);
-        points.colours[out] = {std::uint8_t(sum[0] / count), std::uint8_t(sum[1] / count), std::uint8_t(sum[2] / count)};
-      }
-      run = end;
-    }
-  });
-  if (first_bad_normal < n) {  // throws
-    const std::uint32_t i = order[first_bad_normal].index();
-    to_float(cloud.normals[i], name, "normal", i);
+  PackedCodec packed;
+  KeyLayout& layout = packed.layout;
+  layout.first = first;
+  for (int c = 0; c < 3; ++c) {
+    layout.low[c] = varying[c] == 0 ? 0 : __builtin_ctz(varying[c]);
+    layout.width[c] = varying[c] == 0 ? 0 : 32 - __builtin_clz(varying[c]) - layout.low[c];
   }
-  return points;
+  while (layout.index_bits < 64 && (std::uint64_t{1} << layout.index_bits) < n) ++layout.index_bits;
+  if (layout.bits() <= 64) return sorted_and_merged(cloud, packed, small, average_normals, name);
+  return sorted_and_merged(cloud, WideCodec{}, small, average_normals, name);
 }
 
 void use_normals_of(MpegPoints& a, MpegPoints& normals, const std::string& name) {

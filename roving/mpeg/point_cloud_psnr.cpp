@@ -5,6 +5,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_invoke.h>
+#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <cmath>
@@ -219,18 +220,25 @@ Matches find_matches(const MpegPoints& from, const NearestPoints& to, double thr
 // point of A matched take the normals of their own matches in A that are exactly as near.
 std::vector<Point> normals_carried(const MpegPoints& a, const MpegPoints& b, const Matches& a_in_b,
                                    const Matches& b_in_a) {
-  // Added in A's order: the single-precision sums then round as pc_error's do.
+  // Added in A's order: the single-precision sums then round as pc_error's do. On all cores, each
+  // adding to its own range of B's points (and reading past the others').
   std::vector<Point> normals(b.size(), Point{0, 0, 0});
   std::vector<int> count(b.size(), 0);
-  for (std::size_t block = 0; block < a_in_b.index.size(); ++block) {
-    const std::uint32_t* run = a_in_b.index[block].data();
-    for (std::size_t i = block * kBlock; i < std::min(a.size(), (block + 1) * kBlock); run += a_in_b.tied[i++]) {
-      for (std::size_t k = 0; k < a_in_b.equal[i]; ++k) {
-        for (int c = 0; c < 3; ++c) normals[run[k]][c] += a.normals[i][c];
-        ++count[run[k]];
+  const std::size_t parts = std::size_t(tbb::this_task_arena::max_concurrency());
+  tbb::parallel_for(std::size_t{0}, parts, [&](std::size_t part) {
+    const std::uint32_t low = std::uint32_t(b.size() * part / parts), high = std::uint32_t(b.size() * (part + 1) / parts);
+    for (std::size_t block = 0; block < a_in_b.index.size(); ++block) {
+      const std::uint32_t* run = a_in_b.index[block].data();
+      for (std::size_t i = block * kBlock; i < std::min(a.size(), (block + 1) * kBlock); run += a_in_b.tied[i++]) {
+        for (std::size_t k = 0; k < a_in_b.equal[i]; ++k) {
+          const std::uint32_t j = run[k];
+          if (j < low || j >= high) continue;
+          for (int c = 0; c < 3; ++c) normals[j][c] += a.normals[i][c];
+          ++count[j];
+        }
       }
     }
-  }
+  });
   for_each_block(b.size(), [&](std::size_t block, std::size_t begin, std::size_t end) {
     const std::uint32_t* run = b_in_a.index[block].data();
     for (std::size_t j = begin; j < end; run += b_in_a.tied[j++]) {
@@ -288,11 +296,13 @@ MpegDirection direction(const MpegPoints& from, const MpegPoints& to, const Near
         sum.d2_hausdorff = std::max(sum.d2_hausdorff, d2);
       }
       if (colour) {
-        unsigned total[3] = {0, 0, 0};
-        for (std::size_t k = 0; k < n.found; ++k)
-          for (int c = 0; c < 3; ++c) total[c] += to.colours[n.index[k]][c];
-        std::array<std::uint8_t, 3> mean;
-        for (int c = 0; c < 3; ++c) mean[c] = std::uint8_t(std::round(double(total[c]) / double(n.found)));
+        std::array<std::uint8_t, 3> mean = to.colours[n.index[0]];  // one nearest point: its colour
+        if (n.found > 1) {
+          unsigned total[3] = {0, 0, 0};
+          for (std::size_t k = 0; k < n.found; ++k)
+            for (int c = 0; c < 3; ++c) total[c] += to.colours[n.index[k]][c];
+          for (int c = 0; c < 3; ++c) mean[c] = std::uint8_t(std::round(double(total[c]) / double(n.found)));
+        }
         const std::array<float, 3> in = ycbcr(from.colours[i]), met = ycbcr(mean);
         for (int c = 0; c < 3; ++c) {
           const float dy = in[c] - met[c];
