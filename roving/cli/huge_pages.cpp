@@ -11,7 +11,8 @@
 // it. Sanitizer builds keep their own allocator.
 //
 // Measured against advising only blocks of 8 MiB or more (which left a thread's smaller blocks on
-// 4 KiB pages), medians of interleaved runs, peak memory within 1%: a million-point --pcc pair
+// 4 KiB pages), medians of interleaved runs, peak memory 0 to 5% more (results/scaling.md at 10 M
+// triangles: roving 452 -> 463 MiB, cooperative 24x12 1,059 -> 1,115): a million-point --pcc pair
 // 0.64 -> 0.41 s wall (0.86 -> 0.65 s user time: fewer TLB misses too); bench/scaling.py's n = 8
 // pair (4.4 M against 0.67 M triangles) with Embree 1.93 -> 1.55 s, CGAL 3.49 -> 3.12 s; the GL
 // method at n = 4 1.64 -> 1.45 s; n = 12 (10 M) streamed in blocks of a million faces 3.3 -> 2.65 s.
