@@ -25,8 +25,11 @@
 #include "roving/core/error.h"
 #include "roving/formats/atomic_file.h"
 #include "roving/formats/distance_cloud_writer.h"
+#include "roving/formats/file_bytes.h"
 #include "roving/formats/file_hash.h"
 #include "roving/formats/heatmap.h"
+#include "roving/formats/ply_reader.h"
+#include "roving/formats/point_cloud_io.h"
 #include "roving/formats/sample_output.h"
 #include "roving/mpeg/mmetric_sampling.h"
 #include "roving/mpeg/mpeg_points.h"
@@ -513,6 +516,18 @@ void describe_pair(const Model& a, const Model& b, MeasurePlan& plan, MeasureRep
 
 namespace {
 
+// `path`'s point cloud as pc_error holds it: a binary PLY's records read where the file lies,
+// straight into single precision, any other file through read_point_cloud (normals as it has them).
+MpegPoints read_mpeg_points(const std::string& path, bool with_normals, bool average_normals) {
+  if (read_as_ply(path)) {
+    const FileBytes file(path, "a .ply point cloud");
+    if (const std::optional<PackedPointCloud> packed = ply_packed_points(path, file.bytes())) {
+      return mpeg_points(*packed, path, with_normals, average_normals);
+    }
+  }
+  return mpeg_points(read_point_cloud(path, false), path, with_normals, average_normals);
+}
+
 // MPEG's point-cloud figures: of two point clouds as pc_error computes them (its D2 takes A's
 // normals from its file; estimated ones are not pc_error's), or, where a model is a mesh, as
 // mmetric's compare --mode pcc does, each mesh sampled as mmetric samples it.
@@ -527,6 +542,7 @@ MpegReport mpeg_report(const Model& a, const Model& b, std::optional<double> res
     if (model.type == ModelType::Mesh) {
       return mpeg_points(mmetric_samples(model.mesh.mesh, model.path()), model.path(), true, true);
     }
+    if (model.points_in_file) return read_mpeg_points(model.path(), normals, rules.mmetric);
     return mpeg_points(model.points, model.path(), normals && !model.normals_estimated, rules.mmetric);
   };
   MpegPoints a_points, b_points, normals;
@@ -545,6 +561,10 @@ MpegReport mpeg_report(const Model& a, const Model& b, std::optional<double> res
   report.points_read[1] = b_points.points_read;
   report.points[0] = a_points.size();
   report.points[1] = b_points.size();
+  report.coloured[0] = !a_points.colours.empty();
+  report.coloured[1] = !b_points.colours.empty();
+  report.normals[0] = !a_points.normals.empty();
+  report.normals[1] = !b_points.normals.empty();
   report.seconds = watch.seconds();
   return report;
 }
@@ -557,7 +577,11 @@ Model load_for(const MeasurePlan& plan, const std::string& path, std::optional<M
   Model model;
   model.type = ModelType::Points;
   model.mesh.path = path;
-  model.points = load_point_cloud(path, type);
+  if (plan.pcc_only) {
+    model.points_in_file = true;  // read by MPEG's figures, straight into their single precision
+  } else {
+    model.points = load_point_cloud(path, type);
+  }
   return model;
 }
 
@@ -570,17 +594,15 @@ void measure_point_clouds(const Model& a, const Model& b, const MeasurePlan& pla
     }
   }
   report.pcc_only = true;
-  const auto coloured = [](const Model& m) {
-    return m.type == ModelType::Points ? !m.points.colours.empty() : !m.mesh.mesh.vertex_colours().empty();
-  };
-  if (coloured(a) != coloured(b)) {
-    warn({fmt::format("colour: {} has colour but {} has none; no colour figures", (coloured(a) ? a : b).path(),
-                      (coloured(a) ? b : a).path())});
-  }
   stage = fmt::format("computing MPEG's point-cloud figures of {} and {}", a.path(), b.path());
   progress.stage("MPEG point-cloud figures");
   report.mpeg = mpeg_report(a, b, plan.pcc_resolution, plan.pcc_normals);
   progress.clear();
+  const bool* coloured = report.mpeg->coloured;
+  if (coloured[0] != coloured[1]) {
+    warn({fmt::format("colour: {} has colour but {} has none; no colour figures", (coloured[0] ? a : b).path(),
+                      (coloured[0] ? b : a).path())});
+  }
 }
 
 namespace {
@@ -927,11 +949,17 @@ MeasureRun measure_run(const MeasureArguments& args, std::string& stage, Progres
   }
   Model& a = *run.a;
   const Model& b = *run.b;
-  report.provenance = {{"tool", tool_json()},
-                       {"command_line", args.command_line},
-                       {"inputs",
-                        {input_json(args.symmetric || args.pcc ? "A" : "reference", a.path(), reference_hash.get()),
-                         input_json(args.symmetric || args.pcc ? "B" : "test", b.path(), test_hash.get())}}};
+  // The run's end: provenance (the hashes, computed meanwhile on other threads) and the gates.
+  const auto finish = [&] {
+    report.provenance = {
+        {"tool", tool_json()},
+        {"command_line", args.command_line},
+        {"inputs",
+         {input_json(args.symmetric || args.pcc ? "A" : "reference", a.path(), reference_hash.get()),
+          input_json(args.symmetric || args.pcc ? "B" : "test", b.path(), test_hash.get())}}};
+    require_gate_values(plan.gates, gate_values(report));
+    report.total_seconds = total.seconds();
+  };
 
   const auto warn = [&](const std::vector<std::string>& lines) {
     if (lines.empty()) return;
@@ -945,10 +973,9 @@ MeasureRun measure_run(const MeasureArguments& args, std::string& stage, Progres
   // measurement too, for the exact figures beside mmetric's.
   if (plan.pcc_only && !(a.type == ModelType::Mesh && b.type == ModelType::Mesh)) {
     report.pcc_only = true;
-    if (on_described) on_described(run);
     measure_point_clouds(a, b, plan, report, progress, stage, warn);
-    require_gate_values(plan.gates, gate_values(report));
-    report.total_seconds = total.seconds();
+    if (on_described) on_described(run);  // after: a cloud is read as it is measured (points_in_file)
+    finish();
     return run;
   }
   const auto run_protocol = [&] {
@@ -980,8 +1007,7 @@ MeasureRun measure_run(const MeasureArguments& args, std::string& stage, Progres
     report.protocol_only = true;
     if (on_described) on_described(run);
     run_protocol();
-    require_gate_values(plan.gates, gate_values(report));
-    report.total_seconds = total.seconds();
+    finish();
     return run;
   }
   describe_pair(a, b, plan, report);
@@ -989,8 +1015,7 @@ MeasureRun measure_run(const MeasureArguments& args, std::string& stage, Progres
   measure_models(a, b, plan, report, progress, stage, warn, nullptr,
                  reference_only_sampled(args, plan) ? &a : nullptr, stream.get());
   if (plan.dtu || plan.tnt) run_protocol();
-  require_gate_values(plan.gates, gate_values(report));
-  report.total_seconds = total.seconds();
+  finish();
   return run;
 }
 

@@ -508,7 +508,18 @@ std::string format_header(const Model& a, const Model& b, const MeasureReport& r
                              : "the Tanks and Temples benchmark's own evaluation (its toolbox's EvaluateHisto)");
   }
   if (r.pcc_only) {
-    return model_line("A", a) + model_line("B", b) +
+    // A cloud read straight into MPEG's points (points_in_file) is described from what was read.
+    const auto line = [&](const char* role, const Model& model, int side) {
+      if (!model.points_in_file || !r.mpeg) return model_line(role, model);
+      const MpegReport& m = *r.mpeg;
+      const std::string normals = m.normals[side] ? (side == 0 && !m.normals_from.empty() ? "from " + m.normals_from
+                                                                                           : "from the file")
+                                  : side == 1 && !m.figures.mmetric ? "not read (D2 uses A's)"
+                                                                    : "none";
+      return fmt::format("{:<10} {}: point cloud, {} points, normals {}{}\n", role, model.path(), m.points_read[side],
+                         normals, m.coloured[side] ? "; colour: point colours" : "");
+    };
+    return line("A", a, 0) + line("B", b, 1) +
            fmt::format("{:<10} MPEG's point-cloud figures, as pc_error (mpeg-pcc-dmetric 0.14) computes them (as "
                        "mmetric's compare --mode pcc where a model is a mesh)\n",
                        "figures");

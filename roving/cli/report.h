@@ -94,6 +94,8 @@ struct MpegReport {
   MpegFigures figures;
   std::size_t points_read[2] = {0, 0};  // A, B as read
   std::size_t points[2] = {0, 0};       // after pc_error's merging of points at one position
+  bool coloured[2] = {false, false};    // A, B have colour
+  bool normals[2] = {false, false};     // A, B have normals as measured (B's: mmetric's rules alone)
   double seconds = 0;
   std::string normals_from;  // D2's normals: from this file (--pcc-normals); empty: A's own
   bool a_sampled = false;    // A is a mesh, sampled as mmetric samples it (its normals its faces')

@@ -675,4 +675,54 @@ std::optional<PlyTriangleLayout> ply_triangle_layout(const std::string& path) {
   return layout;
 }
 
+
+std::optional<PackedPointCloud> ply_packed_points(const std::string& path, std::string_view bytes) {
+  Header header = parse_header(path, bytes);
+  assign_roles(path, header);
+  if (header.encoding != Encoding::BinaryLittle) return std::nullopt;
+  const Element* vertex = nullptr;
+  for (const Element& element : header.elements) {
+    if (element.name == "vertex" && !vertex) {
+      vertex = &element;
+    } else if (element.count > 0) {
+      return std::nullopt;
+    }
+  }
+  if (!vertex || vertex->count == 0) return std::nullopt;
+  PackedPointCloud packed;
+  int axes = 0, normal_axes = 0, colour_channels = 0;
+  for (const Property& p : vertex->properties) {
+    if (p.is_list) return std::nullopt;
+    const bool real = p.type == Scalar::Float32 || p.type == Scalar::Float64;
+    const PackedPointCloud::Field field = {packed.stride, p.type == Scalar::Float64};
+    switch (p.role) {
+      case Role::X: case Role::Y: case Role::Z:
+        if (!real) return std::nullopt;
+        packed.position[static_cast<int>(p.role) - static_cast<int>(Role::X)] = field, ++axes;
+        break;
+      case Role::NX: case Role::NY: case Role::NZ:
+        if (!real) return std::nullopt;
+        packed.normal[static_cast<int>(p.role) - static_cast<int>(Role::NX)] = field, ++normal_axes;
+        break;
+      case Role::Red: case Role::Green: case Role::Blue:
+        if (p.type != Scalar::UInt8) return std::nullopt;
+        packed.colour[static_cast<int>(p.role) - static_cast<int>(Role::Red)] = packed.stride;
+        ++colour_channels;
+        break;
+      default: break;
+    }
+    packed.stride += size_of(p.type);
+  }
+  if (axes != 3 || (normal_axes != 0 && normal_axes != 3) || (colour_channels != 0 && colour_channels != 3)) {
+    return std::nullopt;
+  }
+  packed.normals = normal_axes == 3;
+  packed.colours = colour_channels == 3;
+  const std::size_t body = bytes.size() - header.body_offset;
+  if (vertex->count > body / packed.stride || vertex->count * packed.stride != body) return std::nullopt;
+  packed.count = vertex->count;
+  packed.records = bytes.data() + header.body_offset;
+  return packed;
+}
+
 }  // namespace roving

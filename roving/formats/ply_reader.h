@@ -4,8 +4,10 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
+#include "roving/core/point_cloud.h"
 #include "roving/formats/mesh_io.h"
 
 namespace roving {
@@ -45,5 +47,12 @@ struct PlyTriangleLayout {
 // a triangle; nullopt for any other file (read it whole with read_ply). Only the header is read;
 // its errors are read_ply's.
 std::optional<PlyTriangleLayout> ply_triangle_layout(const std::string& path);
+
+// The vertices of the PLY `bytes` (the file `path`) in place, when it is little-endian binary with
+// one or more vertices of fixed-size properties (x, y, z float or double; nx, ny, nz all float or
+// double or none; red, green, blue all uchar or none; any other scalar skipped), any other element
+// empty, and its size exactly that of its header and vertices; nullopt for any other file
+// (read_ply reads it, or names what is wrong). Only the header is parsed; its errors are read_ply's.
+std::optional<PackedPointCloud> ply_packed_points(const std::string& path, std::string_view bytes);
 
 }  // namespace roving

@@ -142,9 +142,13 @@ bool is_ply_point_cloud(const std::string& path) {
   return ply_declares_no_faces(path);
 }
 
-PointCloud read_point_cloud(const std::string& path, bool unit_normals) {
+bool read_as_ply(const std::string& path) {
   const std::string ext = path.size() >= 4 ? path.substr(path.size() - 4) : "";
-  PointCloud cloud = ext == ".ply" || ext == ".PLY" ? read_ply_points(path) : read_xyz(path);
+  return ext == ".ply" || ext == ".PLY";
+}
+
+PointCloud read_point_cloud(const std::string& path, bool unit_normals) {
+  PointCloud cloud = read_as_ply(path) ? read_ply_points(path) : read_xyz(path);
   validate(cloud, path, unit_normals);
   return cloud;
 }

@@ -14,6 +14,9 @@ namespace roving {
 // `unit_normals`, normals are made unit and one of zero length or not finite is an error; without,
 // they are kept as the file has them (MPEG's figures use them so) and left to the caller to check.
 PointCloud read_point_cloud(const std::string& path, bool unit_normals = true);
+// True when read_point_cloud reads `path` as a PLY (by its extension), else as XYZ.
+bool read_as_ply(const std::string& path);
+
 void write_point_cloud_ply(const PointCloud& cloud, const std::string& path);
 
 // True when `path` is a PLY whose header declares no faces (a point cloud, not a mesh).

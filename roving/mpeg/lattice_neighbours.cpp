@@ -153,7 +153,8 @@ std::unique_ptr<LatticeNeighbours> LatticeNeighbours::build(const std::vector<st
   if (!std::all_of(points.begin(), points.end(), on_lattice)) return nullptr;
   auto lattice = std::make_unique<LatticeNeighbours>();
   LatticeNeighbours& l = *lattice;
-  // The bricks, numbered as first met; the table doubles when half full.
+  // The bricks, numbered as first met; the table doubles when half full. They are counted first,
+  // then filled, so that they take no more room than they need.
   l.shift_ = 64 - 10;
   l.table_.assign(std::size_t{1} << 10, Slot{});
   const auto insert = [&l](const Slot& slot) {
@@ -164,17 +165,15 @@ std::unique_ptr<LatticeNeighbours> LatticeNeighbours::build(const std::vector<st
   };
   std::vector<std::int32_t> brick_of(points.size());
   std::uint64_t last_key = ~std::uint64_t{0};
-  std::int32_t last_brick = -1;
+  std::int32_t last_brick = -1, bricks = 0;
   for (std::size_t i = 0; i < points.size(); ++i) {
     const std::array<float, 3>& p = points[i];
-    const std::int32_t x = std::int32_t(p[0]), y = std::int32_t(p[1]), z = std::int32_t(p[2]);
-    const std::uint64_t key = brick_key(x >> 3, y >> 3, z >> 3);
+    const std::uint64_t key = brick_key(std::int32_t(p[0]) >> 3, std::int32_t(p[1]) >> 3, std::int32_t(p[2]) >> 3);
     if (key != last_key) {
       std::int32_t brick = l.find(key);
       if (brick < 0) {
-        brick = std::int32_t(l.bricks_.size());
-        l.bricks_.emplace_back();
-        if (2 * l.bricks_.size() > l.table_.size()) {  // rehash into twice the room
+        brick = bricks++;
+        if (2 * std::size_t(bricks) > l.table_.size()) {  // rehash into twice the room
           std::vector<Slot> table = std::move(l.table_);
           l.table_.assign(2 * table.size(), Slot{});
           --l.shift_;
@@ -188,7 +187,12 @@ std::unique_ptr<LatticeNeighbours> LatticeNeighbours::build(const std::vector<st
       last_brick = brick;
     }
     brick_of[i] = last_brick;
-    Brick& b = l.bricks_[std::size_t(last_brick)];
+  }
+  l.bricks_.resize(std::size_t(bricks));
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const std::array<float, 3>& p = points[i];
+    const std::int32_t x = std::int32_t(p[0]), y = std::int32_t(p[1]), z = std::int32_t(p[2]);
+    Brick& b = l.bricks_[std::size_t(brick_of[i])];
     const std::uint64_t bit = std::uint64_t{1} << ((x & 7) | (y & 7) << 3);
     if (b.words[std::size_t(z & 7)] & bit) return nullptr;  // two equal points
     b.words[std::size_t(z & 7)] |= bit;

@@ -110,25 +110,94 @@ struct WideCodec {
   }
 };
 
-// The points' normals and colours made small, in the file's order, so that the merging, which
-// reads them in sorted order (at random in the file's), has less to fetch: single precision (NaN
-// where the value is not representable) and 8 bits.
-struct SmallAttributes {
+// Where mpeg_points reads a cloud. Each gives a point's position as read, its normal in single
+// precision (NaN where not representable) and its colour in 8 bits, at random in file order.
+
+// A cloud in memory. Its normals and colours are first made small (single precision and 8 bits),
+// in file order, by `prepare` in the pass that checks the positions, so that the merging, which
+// reads them in sorted order, has less to fetch.
+struct MemoryCloud {
+  const PointCloud& cloud;
   std::vector<std::array<float, 3>> normals;
   std::vector<std::array<std::uint8_t, 4>> colours;
+
+  MemoryCloud(const PointCloud& c, bool with_normals) : cloud(c) {
+    if (with_normals && !cloud.normals.empty()) normals.resize(cloud.positions.size());
+    if (!cloud.colours.empty()) colours.resize(cloud.positions.size());
+  }
+  std::size_t size() const { return cloud.positions.size(); }
+  Vec3 position(std::size_t i) const { return cloud.positions[i]; }
+  bool has_normals() const { return !normals.empty(); }
+  bool has_colours() const { return !colours.empty(); }
+  Vec3 normal_as_read(std::size_t i) const { return cloud.normals[i]; }
+  const std::array<float, 3>& normal(std::size_t i) const { return normals[i]; }
+  std::uint8_t colour(std::size_t i, int c) const { return colours[i][c]; }
+  void prefetch(std::size_t i) const {
+    if (has_colours()) __builtin_prefetch(&colours[i]);
+    if (has_normals()) __builtin_prefetch(&normals[i]);
+  }
+  void prepare(std::size_t i) {
+    if (has_normals()) normals[i] = small_normal(cloud.normals[i]);
+    if (has_colours()) {
+      for (int c = 0; c < 3; ++c) {
+        // Rounded half away from zero, as lround (the difference from the whole part is exact).
+        const float value = cloud.colours[i][c];
+        const float code = value >= 0.0f ? std::min(value, 255.0f) : 0.0f;  // NaN: 0
+        const int whole = int(code);
+        colours[i][c] = std::uint8_t(whole + (code - float(whole) >= 0.5f));
+      }
+    }
+  }
+  static std::array<float, 3> small_normal(const Vec3& normal) {
+    return representable(normal) ? std::array<float, 3>{float(normal.x()), float(normal.y()), float(normal.z())}
+                                 : std::array<float, 3>{NAN, NAN, NAN};
+  }
+};
+
+// A binary file's records where they lie, read in place: already small, as pc_error reads them
+// (coordinates and normals stored in double are rounded to single precision).
+struct PackedRecords {
+  const PackedPointCloud& packed;
+  bool with_normals;
+
+  std::size_t size() const { return packed.count; }
+  Vec3 position(std::size_t i) const { return read(i, packed.position); }
+  bool has_normals() const { return with_normals && packed.normals; }
+  bool has_colours() const { return packed.colours; }
+  Vec3 normal_as_read(std::size_t i) const { return read(i, packed.normal); }
+  std::array<float, 3> normal(std::size_t i) const { return MemoryCloud::small_normal(normal_as_read(i)); }
+  std::uint8_t colour(std::size_t i, int c) const {
+    return std::uint8_t(packed.records[packed.stride * i + packed.colour[c]]);
+  }
+  void prefetch(std::size_t i) const { __builtin_prefetch(packed.records + packed.stride * i); }
+  void prepare(std::size_t) const {}
+
+  Vec3 read(std::size_t i, const std::array<PackedPointCloud::Field, 3>& fields) const {
+    const char* item = packed.records + packed.stride * i;
+    Vec3 v;
+    for (int c = 0; c < 3; ++c) {
+      if (fields[c].is_double) {
+        std::memcpy(&v[c], item + fields[c].offset, sizeof(double));
+      } else {
+        float f;
+        std::memcpy(&f, item + fields[c].offset, sizeof f);
+        v[c] = f;
+      }
+    }
+    return v;
+  }
 };
 
 // The cloud's points sorted by `codec` (the order pc_error's sort gives: lexicographic, equal
 // points in file order) and runs of equal points merged into one.
-template <class Codec>
-MpegPoints sorted_and_merged(const PointCloud& cloud, const Codec& codec, const SmallAttributes& small,
-                             bool average_normals, const std::string& name) {
+template <class Codec, class Cloud>
+MpegPoints sorted_and_merged(const Cloud& cloud, const Codec& codec, bool average_normals, const std::string& name) {
   using Entry = decltype(codec.make({}, 0));
-  const std::size_t n = cloud.positions.size();
+  const std::size_t n = cloud.size();
   std::vector<Entry> order(n);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 65536), [&](const tbb::blocked_range<std::size_t>& range) {
     for (std::size_t i = range.begin(); i != range.end(); ++i) {
-      const Vec3& p = cloud.positions[i];
+      const Vec3 p = cloud.position(i);
       order[i] = codec.make({ordered_bits(p.x()), ordered_bits(p.y()), ordered_bits(p.z())}, i);
     }
   });
@@ -152,10 +221,10 @@ MpegPoints sorted_and_merged(const PointCloud& cloud, const Codec& codec, const 
   const std::size_t runs = first_run.back();
 
   // A normal that is used must be finite; the first such in sorted order is the one named.
-  const bool normals = !small.normals.empty(), colours = !small.colours.empty();
+  const bool normals = cloud.has_normals(), colours = cloud.has_colours();
   std::atomic<std::size_t> first_bad_normal{n};
   const auto normal_at = [&](std::size_t k) {
-    const std::array<float, 3>& normal = small.normals[codec.index(order[k])];
+    const std::array<float, 3> normal = cloud.normal(codec.index(order[k]));
     if (std::isnan(normal[0])) keep_least(first_bad_normal, k);
     return normal;
   };
@@ -171,11 +240,7 @@ MpegPoints sorted_and_merged(const PointCloud& cloud, const Codec& codec, const 
     for (const std::size_t stop = std::min(n, (b + 1) * kBlock); run < stop; ++out) {
       // The colours and normals are read in sorted order, at random in the file's: asked for
       // ahead, their cache misses overlap instead of following one another.
-      if (run + kAhead < n) {
-        const std::uint32_t ahead = codec.index(order[run + kAhead]);
-        if (colours) __builtin_prefetch(&small.colours[ahead]);
-        if (normals) __builtin_prefetch(&small.normals[ahead]);
-      }
+      if (run + kAhead < n && (normals || colours)) cloud.prefetch(codec.index(order[run + kAhead]));
       std::size_t end = run + 1;
       while (end < n && same_position(end, run)) ++end;
       points.positions[out] = codec.point(order[run]);
@@ -194,7 +259,7 @@ MpegPoints sorted_and_merged(const PointCloud& cloud, const Codec& codec, const 
         // pc_error sums the 8-bit values and divides as integers: the mean, truncated.
         long sum[3] = {0, 0, 0};
         for (std::size_t k = run; k < end; ++k) {
-          for (int c = 0; c < 3; ++c) sum[c] += small.colours[codec.index(order[k])][c];
+          for (int c = 0; c < 3; ++c) sum[c] += cloud.colour(codec.index(order[k]), c);
         }
         const long count = long(end - run);
         points.colours[out] = {std::uint8_t(sum[0] / count), std::uint8_t(sum[1] / count), std::uint8_t(sum[2] / count)};
@@ -204,9 +269,55 @@ MpegPoints sorted_and_merged(const PointCloud& cloud, const Codec& codec, const 
   });
   if (first_bad_normal < n) {  // throws
     const std::uint32_t i = codec.index(order[first_bad_normal]);
-    to_float(cloud.normals[i], name, "normal", i);
+    to_float(cloud.normal_as_read(i), name, "normal", i);
   }
   return points;
+}
+
+// `cloud`'s points as pc_error holds them (mpeg_points): checked, sorted and merged.
+template <class Cloud>
+MpegPoints points_of(Cloud& cloud, const std::string& name, bool average_normals) {
+  const std::size_t n = cloud.size();
+  // On all cores: the points checked and prepared, and the bits in which they differ from the
+  // first. The first point that is not representable (in file order) is the one named.
+  std::atomic<std::size_t> first_bad{n};
+  const Vec3 start = cloud.position(0);
+  if (!representable(start)) to_float(start, name, "point", 0);  // throws
+  const std::array<std::uint32_t, 3> first = {ordered_bits(start.x()), ordered_bits(start.y()),
+                                              ordered_bits(start.z())};
+  using Varying = std::array<std::uint32_t, 3>;
+  const Varying varying = tbb::parallel_reduce(
+      tbb::blocked_range<std::size_t>(0, n, 65536), Varying{},
+      [&](const tbb::blocked_range<std::size_t>& range, Varying bits) {
+        for (std::size_t i = range.begin(); i != range.end(); ++i) {
+          const Vec3 p = cloud.position(i);
+          if (!representable(p)) {
+            keep_least(first_bad, i);
+            return bits;
+          }
+          bits[0] |= ordered_bits(p.x()) ^ first[0];
+          bits[1] |= ordered_bits(p.y()) ^ first[1];
+          bits[2] |= ordered_bits(p.z()) ^ first[2];
+          cloud.prepare(i);
+        }
+        return bits;
+      },
+      [](Varying a, const Varying& b) {
+        for (int c = 0; c < 3; ++c) a[c] |= b[c];
+        return a;
+      });
+  if (first_bad < n) to_float(cloud.position(first_bad), name, "point", first_bad);  // throws
+
+  PackedCodec packed;
+  KeyLayout& layout = packed.layout;
+  layout.first = first;
+  for (int c = 0; c < 3; ++c) {
+    layout.low[c] = varying[c] == 0 ? 0 : __builtin_ctz(varying[c]);
+    layout.width[c] = varying[c] == 0 ? 0 : 32 - __builtin_clz(varying[c]) - layout.low[c];
+  }
+  while (layout.index_bits < 64 && (std::uint64_t{1} << layout.index_bits) < n) ++layout.index_bits;
+  if (layout.bits() <= 64) return sorted_and_merged(cloud, packed, average_normals, name);
+  return sorted_and_merged(cloud, WideCodec{}, average_normals, name);
 }
 
 }  // namespace
@@ -222,63 +333,15 @@ MpegPoints mpeg_points(const PointCloud& cloud, const std::string& name, bool wi
     throw Error(fmt::format("{}: {} colours for {} points; expected one per point or none", name,
                             cloud.colours.size(), n));
   }
-  // On all cores: the attributes made small, and the bits in which the points differ from the
-  // first. The first point that is not representable (in file order) is the one named.
-  SmallAttributes small;
-  if (with_normals && !cloud.normals.empty()) small.normals.resize(n);
-  if (!cloud.colours.empty()) small.colours.resize(n);
-  std::atomic<std::size_t> first_bad{n};
-  if (!representable(cloud.positions[0])) to_float(cloud.positions[0], name, "point", 0);  // throws
-  const std::array<std::uint32_t, 3> first = {ordered_bits(cloud.positions[0].x()),
-                                              ordered_bits(cloud.positions[0].y()),
-                                              ordered_bits(cloud.positions[0].z())};
-  using Varying = std::array<std::uint32_t, 3>;
-  const Varying varying = tbb::parallel_reduce(
-      tbb::blocked_range<std::size_t>(0, n, 65536), Varying{},
-      [&](const tbb::blocked_range<std::size_t>& range, Varying bits) {
-        for (std::size_t i = range.begin(); i != range.end(); ++i) {
-          const Vec3& p = cloud.positions[i];
-          if (!representable(p)) {
-            keep_least(first_bad, i);
-            return bits;
-          }
-          bits[0] |= ordered_bits(p.x()) ^ first[0];
-          bits[1] |= ordered_bits(p.y()) ^ first[1];
-          bits[2] |= ordered_bits(p.z()) ^ first[2];
-          if (!small.normals.empty()) {
-            const Vec3& normal = cloud.normals[i];
-            small.normals[i] = representable(normal)
-                                   ? std::array<float, 3>{float(normal.x()), float(normal.y()), float(normal.z())}
-                                   : std::array<float, 3>{NAN, NAN, NAN};
-          }
-          if (!small.colours.empty()) {
-            for (int c = 0; c < 3; ++c) {
-              // Rounded half away from zero, as lround (the difference from the whole part is exact).
-              const float value = cloud.colours[i][c];
-              const float code = value >= 0.0f ? std::min(value, 255.0f) : 0.0f;  // NaN: 0
-              const int whole = int(code);
-              small.colours[i][c] = std::uint8_t(whole + (code - float(whole) >= 0.5f));
-            }
-          }
-        }
-        return bits;
-      },
-      [](Varying a, const Varying& b) {
-        for (int c = 0; c < 3; ++c) a[c] |= b[c];
-        return a;
-      });
-  if (first_bad < n) to_float(cloud.positions[first_bad], name, "point", first_bad);  // throws
+  MemoryCloud memory(cloud, with_normals);
+  return points_of(memory, name, average_normals);
+}
 
-  PackedCodec packed;
-  KeyLayout& layout = packed.layout;
-  layout.first = first;
-  for (int c = 0; c < 3; ++c) {
-    layout.low[c] = varying[c] == 0 ? 0 : __builtin_ctz(varying[c]);
-    layout.width[c] = varying[c] == 0 ? 0 : 32 - __builtin_clz(varying[c]) - layout.low[c];
-  }
-  while (layout.index_bits < 64 && (std::uint64_t{1} << layout.index_bits) < n) ++layout.index_bits;
-  if (layout.bits() <= 64) return sorted_and_merged(cloud, packed, small, average_normals, name);
-  return sorted_and_merged(cloud, WideCodec{}, small, average_normals, name);
+MpegPoints mpeg_points(const PackedPointCloud& packed, const std::string& name, bool with_normals,
+                       bool average_normals) {
+  if (packed.count == 0) throw Error(fmt::format("{}: no points; expected a point cloud", name));
+  PackedRecords records{packed, with_normals};
+  return points_of(records, name, average_normals);
 }
 
 void use_normals_of(MpegPoints& a, MpegPoints& normals, const std::string& name) {

@@ -29,6 +29,12 @@ struct MpegPoints {
 MpegPoints mpeg_points(const PointCloud& cloud, const std::string& name, bool with_normals,
                        bool average_normals = false);
 
+// The same of a cloud whose records are read where a binary file holds them, without a copy in
+// double precision (A binary PLY's: ply_packed_points). The figures are those of the file read into
+// a PointCloud; a point that is not finite is named as above.
+MpegPoints mpeg_points(const PackedPointCloud& packed, const std::string& name, bool with_normals,
+                       bool average_normals = false);
+
 // pc_error's --inputNorm: A's normals taken from another file's cloud (`normals`, made by
 // mpeg_points with its normals), which pc_error pairs with A's points by their sorted order. Throws
 // roving::Error naming `name` where it has no normals or its points, merged, are not A's (pc_error

@@ -39,6 +39,17 @@ using KdTree =
     nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Adaptor<float, PointsAdaptor, double>, PointsAdaptor, 3,
                                         std::uint32_t>;
 
+// The squared distance of two points as the k-d tree's metric and pc_error compute it: in double,
+// of the single-precision differences, summed x, y, z.
+double squared_distance(const Point& p, const Point& q) {
+  double sum = 0;
+  for (int c = 0; c < 3; ++c) {
+    const double d = p[c] - q[c];
+    sum += d * d;
+  }
+  return sum;
+}
+
 constexpr std::size_t kMaxNeighbours = 30;  // pc_error's bound on the neighbours it looks at
 
 struct Neighbours {
@@ -185,15 +196,13 @@ std::array<float, 3> ycbcr(const std::array<std::uint8_t, 3>& c) {
 // pass: A's points carry their normals onto B's, then A -> B's D2 and colour read the same
 // points, one search per point instead of two.
 struct Matches {
-  std::vector<double> nearest;                    // squared distance to the nearest point
-  std::vector<std::uint8_t> tied;                 // the run tied with it (at most kMaxNeighbours)
+  std::vector<std::uint8_t> tied;                 // the run tied with the nearest (at most kMaxNeighbours)
   std::vector<std::uint8_t> equal;                // how many of the run are exactly as near
   std::vector<std::vector<std::uint32_t>> index;  // per block: each point's run, point after point
 };
 
 Matches find_matches(const MpegPoints& from, const NearestPoints& to, double threshold) {
   Matches m;
-  m.nearest.resize(from.size());
   m.tied.resize(from.size());
   m.equal.resize(from.size());
   m.index.resize((from.size() + kBlock - 1) / kBlock);
@@ -207,7 +216,6 @@ Matches find_matches(const MpegPoints& from, const NearestPoints& to, double thr
       // neighbours, then 5, growing by 5 while all are equal, up to 30) sees as many, the same.
       std::size_t equal = 1;
       while (equal < n.found && n.squared[equal] == n.squared[0]) ++equal;
-      m.nearest[i] = n.squared[0];
       m.tied[i] = std::uint8_t(n.found);
       m.equal[i] = std::uint8_t(equal);
       m.index[block].insert(m.index[block].end(), n.index.begin(), n.index.begin() + n.found);
@@ -271,7 +279,7 @@ MpegDirection direction(const MpegPoints& from, const MpegPoints& to, const Near
       Neighbours n;
       if (matches) {
         n.found = matches->tied[i];
-        n.squared[0] = matches->nearest[i];
+        n.squared[0] = squared_distance(p, to.positions[run[0]]);  // as the search computed it
         std::copy_n(run, n.found, n.index.begin());
         run += n.found;
       } else if (ties) {

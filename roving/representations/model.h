@@ -31,6 +31,9 @@ struct Model {
   double chordal_error_bound = 0;   // of that tessellation, model units
   PointCloud points;
   bool normals_estimated = false;  // point cloud without normals in its file
+  // --pcc (load_for): a point cloud not read yet; MPEG's figures read its file straight into their
+  // single precision (mpeg_points of a PackedPointCloud), and `points` stays empty.
+  bool points_in_file = false;
   // A point cloud's surfels, made the first time it is the test model (test_surface).
   mutable std::optional<SurfelSurface> surfels;
 
