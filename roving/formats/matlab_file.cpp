@@ -1,5 +1,6 @@
 #include "roving/formats/matlab_file.h"
 
+#include <dlfcn.h>
 #include <fmt/format.h>
 #include <matio.h>
 #include <zlib.h>
@@ -10,6 +11,7 @@
 #include <iterator>
 #include <memory>
 #include <mutex>
+#include <type_traits>
 
 #include "roving/core/error.h"
 
@@ -22,6 +24,44 @@ std::mutex matio_lock;
 std::string matio_message;
 
 void keep_message(int, char* message) { matio_message = message ? message : ""; }
+
+// libmatio is opened when a .mat file is first read, not linked: through HDF5 it pulls in curl,
+// GnuTLS, Kerberos and LDAP, whose loading cost every run of the command 13 ms at start (of 44),
+// for the DTU protocol alone to use. ROVING_MATIO_LIBRARY: its soname, from the build.
+struct MatioLibrary {
+  decltype(&Mat_LogInitFunc) log_init = nullptr;
+  decltype(&Mat_Open) open = nullptr;
+  decltype(&Mat_Close) close = nullptr;
+  decltype(&Mat_VarReadInfo) read_info = nullptr;
+  decltype(&Mat_VarRead) read = nullptr;
+  decltype(&Mat_VarFree) free = nullptr;
+  decltype(&Mat_SizeOfClass) size_of_class = nullptr;
+};
+
+const MatioLibrary& matio() {
+  static const MatioLibrary library = [] {
+    void* handle = dlopen(ROVING_MATIO_LIBRARY, RTLD_NOW | RTLD_LOCAL);
+    if (!handle) {
+      const char* why = dlerror();
+      throw Error(fmt::format("reading .mat files: cannot open {} ({}); install Debian's libmatio11",
+                              ROVING_MATIO_LIBRARY, why ? why : "not found"));
+    }
+    MatioLibrary l;
+    const auto load = [handle](auto& function, const char* name) {
+      function = reinterpret_cast<std::remove_reference_t<decltype(function)>>(dlsym(handle, name));
+      if (!function) throw Error(fmt::format("reading .mat files: {} has no {}", ROVING_MATIO_LIBRARY, name));
+    };
+    load(l.log_init, "Mat_LogInitFunc");
+    load(l.open, "Mat_Open");
+    load(l.close, "Mat_Close");
+    load(l.read_info, "Mat_VarReadInfo");
+    load(l.read, "Mat_VarRead");
+    load(l.free, "Mat_VarFree");
+    load(l.size_of_class, "Mat_SizeOfClass");
+    return l;  // the library stays open for the process's life
+  }();
+  return library;
+}
 
 const char* class_name(matio_classes class_type) {
   switch (class_type) {
@@ -175,13 +215,14 @@ template <typename T>
 MatlabArray<T> read_array(const std::string& path, const std::string& name, T (*convert)(double)) {
   require_level_5(path);
   const std::lock_guard<std::mutex> lock(matio_lock);
-  Mat_LogInitFunc("roving", keep_message);
+  const MatioLibrary& mat = matio();
+  mat.log_init("roving", keep_message);
   matio_message.clear();
   const auto detail = [] { return matio_message.empty() ? std::string() : " (" + matio_message + ")"; };
-  std::unique_ptr<mat_t, int (*)(mat_t*)> file(Mat_Open(path.c_str(), MAT_ACC_RDONLY), Mat_Close);
+  std::unique_ptr<mat_t, int (*)(mat_t*)> file(mat.open(path.c_str(), MAT_ACC_RDONLY), mat.close);
   if (!file) throw Error(fmt::format("{}: not a MATLAB .mat file that can be read{}", path, detail()));
   // The header first: its size is checked before the data is read.
-  std::unique_ptr<matvar_t, void (*)(matvar_t*)> info(Mat_VarReadInfo(file.get(), name.c_str()), Mat_VarFree);
+  std::unique_ptr<matvar_t, void (*)(matvar_t*)> info(mat.read_info(file.get(), name.c_str()), mat.free);
   if (!info) throw Error(fmt::format("{}: no variable '{}'{}", path, name, detail()));
   if (info->isComplex) throw Error(fmt::format("{}: variable '{}' is complex; expected real numbers", path, name));
   const matio_classes class_type = info->class_type;
@@ -203,17 +244,17 @@ MatlabArray<T> read_array(const std::string& path, const std::string& name, T (*
   // Its values come from the file, compressed at most kMaxInflation to 1: more is a lie matio
   // would allocate for before finding the data short.
   const std::size_t file_bytes = std::filesystem::file_size(path);
-  if (count * Mat_SizeOfClass(class_type) > kMaxInflation * file_bytes + 4096) {
+  if (count * mat.size_of_class(class_type) > kMaxInflation * file_bytes + 4096) {
     throw Error(fmt::format("{}: variable '{}' declares {} elements, more than its {}-byte file can hold", path, name,
                             count, file_bytes));
   }
   info.reset();
-  std::unique_ptr<matvar_t, void (*)(matvar_t*)> variable(Mat_VarRead(file.get(), name.c_str()), Mat_VarFree);
+  std::unique_ptr<matvar_t, void (*)(matvar_t*)> variable(mat.read(file.get(), name.c_str()), mat.free);
   if (!variable || !variable->data || variable->class_type != class_type) {
     if (count == 0 && variable) return array;
     throw Error(fmt::format("{}: variable '{}' is truncated or malformed{}", path, name, detail()));
   }
-  const std::size_t element_size = Mat_SizeOfClass(class_type);
+  const std::size_t element_size = mat.size_of_class(class_type);
   if (element_size == 0 || variable->nbytes < count * element_size) {
     throw Error(fmt::format("{}: variable '{}' holds {} bytes; its {} elements need {}", path, name,
                             variable->nbytes, count, count * element_size));
