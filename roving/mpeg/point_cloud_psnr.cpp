@@ -118,6 +118,11 @@ class NearestPoints {
   explicit NearestPoints(const MpegPoints& points) : points_(points), adaptor_{points.positions} {}
 
   void use_lattice(std::unique_ptr<LatticeNeighbours> lattice) { lattice_ = std::move(lattice); }
+  // Frees the search structures once every query has been answered.
+  void release() {
+    lattice_.reset();
+    tree_.reset();
+  }
   std::size_t size() const { return points_.size(); }
 
   // Built on first use: on a lattice, most clouds never need it.
@@ -442,6 +447,9 @@ MpegFigures mpeg_point_cloud_figures(const MpegPoints& a, const MpegPoints& b, c
   if (figures.d2 || figures.colour) b_in_a = find_matches(b, a_nearest, threshold);
   if (figures.d2 && !own) {
     a_in_b = find_matches(a, b_nearest, threshold);
+    // Both directions have their matches: the searches' room goes to the carried normals.
+    a_nearest.release();
+    b_nearest.release();
     carried = normals_carried(a, b, *a_in_b, *b_in_a);
   }
   const std::vector<Point>* b_normals = !figures.d2 ? nullptr : own ? &b.normals : &carried;
