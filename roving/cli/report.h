@@ -96,7 +96,8 @@ struct MpegReport {
   std::size_t points[2] = {0, 0};       // after pc_error's merging of points at one position
   bool coloured[2] = {false, false};    // A, B have colour
   bool normals[2] = {false, false};     // A, B have normals as measured (B's: mmetric's rules alone)
-  double seconds = 0;
+  double seconds = 0;                   // the figures, from the points as pc_error holds them
+  double read_seconds[2] = {0, 0};      // A, B read here, straight into those (Model::points_in_file)
   std::string normals_from;  // D2's normals: from this file (--pcc-normals); empty: A's own
   bool a_sampled = false;    // A is a mesh, sampled as mmetric samples it (its normals its faces')
   // Two meshes under --pcc: D1 of the surfaces themselves, A -> B and B -> A (surface_psnr.h).
