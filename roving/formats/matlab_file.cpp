@@ -1,6 +1,5 @@
 #include "roving/formats/matlab_file.h"
 
-#include <dlfcn.h>
 #include <fmt/format.h>
 #include <matio.h>
 #include <zlib.h>
@@ -11,9 +10,9 @@
 #include <iterator>
 #include <memory>
 #include <mutex>
-#include <type_traits>
 
 #include "roving/core/error.h"
+#include "roving/core/run_time_library.h"
 
 namespace roving {
 namespace {
@@ -40,25 +39,16 @@ struct MatioLibrary {
 
 const MatioLibrary& matio() {
   static const MatioLibrary library = [] {
-    void* handle = dlopen(ROVING_MATIO_LIBRARY, RTLD_NOW | RTLD_LOCAL);
-    if (!handle) {
-      const char* why = dlerror();
-      throw Error(fmt::format("reading .mat files: cannot open {} ({}); install Debian's libmatio11",
-                              ROVING_MATIO_LIBRARY, why ? why : "not found"));
-    }
+    const RunTimeLibrary matio(ROVING_MATIO_LIBRARY, "reading .mat files", "install Debian's libmatio11");
     MatioLibrary l;
-    const auto load = [handle](auto& function, const char* name) {
-      function = reinterpret_cast<std::remove_reference_t<decltype(function)>>(dlsym(handle, name));
-      if (!function) throw Error(fmt::format("reading .mat files: {} has no {}", ROVING_MATIO_LIBRARY, name));
-    };
-    load(l.log_init, "Mat_LogInitFunc");
-    load(l.open, "Mat_Open");
-    load(l.close, "Mat_Close");
-    load(l.read_info, "Mat_VarReadInfo");
-    load(l.read, "Mat_VarRead");
-    load(l.free, "Mat_VarFree");
-    load(l.size_of_class, "Mat_SizeOfClass");
-    return l;  // the library stays open for the process's life
+    matio.load(l.log_init, "Mat_LogInitFunc");
+    matio.load(l.open, "Mat_Open");
+    matio.load(l.close, "Mat_Close");
+    matio.load(l.read_info, "Mat_VarReadInfo");
+    matio.load(l.read, "Mat_VarRead");
+    matio.load(l.free, "Mat_VarFree");
+    matio.load(l.size_of_class, "Mat_SizeOfClass");
+    return l;
   }();
   return library;
 }

@@ -4,17 +4,16 @@
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
 #include <GL/osmesa.h>
-#include <dlfcn.h>
 #include <fmt/format.h>
 
 #include <cstdlib>
 #include <cstring>
 #include <mutex>
 #include <thread>
-#include <type_traits>
 #include <vector>
 
 #include "roving/core/error.h"
+#include "roving/core/run_time_library.h"
 
 namespace roving::gl {
 namespace {
@@ -32,25 +31,14 @@ struct OsMesaLibrary {
 
 const OsMesaLibrary& osmesa() {
   static const OsMesaLibrary library = [] {
-    void* handle = dlopen("libOSMesa.so.8", RTLD_NOW | RTLD_LOCAL);
-    if (!handle) handle = dlopen("libOSMesa.so", RTLD_NOW | RTLD_LOCAL);
-    if (!handle) {
-      const char* why = dlerror();
-      throw Error(
-          fmt::format("osmesa: cannot open libOSMesa.so.8 ({}); install libosmesa6 or use --backend egl",
-                      why ? why : "not found"));
-    }
+    const RunTimeLibrary osmesa("libOSMesa.so.8", "osmesa", "install libosmesa6 or use --backend egl", "libOSMesa.so");
     OsMesaLibrary l;
-    const auto load = [handle](auto& function, const char* name) {
-      function = reinterpret_cast<std::remove_reference_t<decltype(function)>>(dlsym(handle, name));
-      if (!function) throw Error(fmt::format("osmesa: libOSMesa has no {}", name));
-    };
-    load(l.create_context, "OSMesaCreateContextAttribs");
-    load(l.make_current, "OSMesaMakeCurrent");
-    load(l.destroy_context, "OSMesaDestroyContext");
-    load(l.get_proc_address, "OSMesaGetProcAddress");
-    load(l.get_current_context, "OSMesaGetCurrentContext");
-    return l;  // the library stays open for the process's life
+    osmesa.load(l.create_context, "OSMesaCreateContextAttribs");
+    osmesa.load(l.make_current, "OSMesaMakeCurrent");
+    osmesa.load(l.destroy_context, "OSMesaDestroyContext");
+    osmesa.load(l.get_proc_address, "OSMesaGetProcAddress");
+    osmesa.load(l.get_current_context, "OSMesaGetCurrentContext");
+    return l;
   }();
   return library;
 }
