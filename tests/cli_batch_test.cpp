@@ -152,9 +152,13 @@ TEST(CliBatch, ProtocolsPerPairAreMeasuresOwn) {
   const std::string source = std::string(ROVING_SOURCE_DIR) + "/tests/data/";
   const std::string manifest = folder.file(
       "protocols.csv",
-      "reference,test,protocol,dtu_obs_mask,dtu_plane,tnt_crop,tnt_alignment,tnt_tau\n"
-      "dtu/Points/stl/stl001_total.ply,dtu/scan1_mesh.ply,dtu,dtu/ObsMask/ObsMask1_10.mat,dtu/ObsMask/Plane1.mat,,,\n"
-      "tnt/Bench.ply,tnt/Bench_points.ply,tanks-and-temples,,,tnt/Bench.json,tnt/Bench_trans.txt,0.01\n");
+      "reference,test,protocol,dtu_obs_mask,dtu_plane,tnt_crop,tnt_alignment,tnt_tau,tnt_trajectory,"
+      "tnt_reference_trajectory,tnt_mapping\n"
+      "dtu/Points/stl/stl001_total.ply,dtu/scan1_mesh.ply,dtu,dtu/ObsMask/ObsMask1_10.mat,dtu/ObsMask/Plane1.mat,,,,,,"
+      "\n"
+      "tnt/Bench.ply,tnt/Bench_points.ply,tanks-and-temples,,,tnt/Bench.json,tnt/Bench_trans.txt,0.01,,,\n"
+      "tnt/Bench.ply,tnt/Bench_moved_points.ply,tanks-and-temples,,,tnt/Bench.json,tnt/Bench_trans.txt,0.01,"
+      "tnt/Bench_moved.log,tnt/Bench_COLMAP_SfM.log,tnt/Bench_mapping_reference.txt\n");
   std::filesystem::create_symlink(source + "dtu", folder.path / "dtu");
   std::filesystem::create_symlink(source + "tnt", folder.path / "tnt");
   const std::string out = (folder.path / "results").string();
@@ -173,9 +177,18 @@ TEST(CliBatch, ProtocolsPerPairAreMeasuresOwn) {
                                             "tnt/Bench_points.ply --protocol tanks-and-temples --tnt-crop " + source +
                                             "tnt/Bench.json --tnt-alignment " + source + "tnt/Bench_trans.txt --tnt-tau 0.01",
                                         "tanks_and_temples_protocol");
+  // run.py's registration first (its files' columns), as measure runs it.
+  const nlohmann::json registered = figures_of(
+      "measure " + source + "tnt/Bench.ply " + source + "tnt/Bench_moved_points.ply --protocol tanks-and-temples " +
+          "--tnt-crop " + source + "tnt/Bench.json --tnt-alignment " + source + "tnt/Bench_trans.txt --tnt-tau 0.01 " +
+          "--tnt-trajectory " + source + "tnt/Bench_moved.log --tnt-reference-trajectory " + source +
+          "tnt/Bench_COLMAP_SfM.log --tnt-mapping " + source + "tnt/Bench_mapping_reference.txt",
+      "tanks_and_temples_protocol");
   const auto rows = read_csv(out + "/summary.csv");
-  ASSERT_EQ(rows.size(), 3u);
+  ASSERT_EQ(rows.size(), 4u);
   const auto cell = [&](int row, const std::string& name) { return std::stod(rows[row][column_of(rows, name)]); };
+  EXPECT_EQ(cell(3, "tnt_f_score"), registered["fscore"].get<double>());
+  EXPECT_NE(cell(3, "tnt_f_score"), cell(2, "tnt_f_score"));
   for (const char* figure : {"accuracy", "completeness", "overall"}) {
     EXPECT_EQ(cell(1, std::string("dtu_") + figure), dtu[figure].get<double>()) << figure;
   }

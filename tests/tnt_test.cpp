@@ -3,13 +3,15 @@
 // what EvaluateHisto returned (precision, recall, F, the curves' edges and both cumulative
 // curves, each value repr'd) and the point counts after Open3D's crop and down-sampling, on the
 // scene of tests/data/tnt/make_dataset.py, recorded by record_tnt.sh with Debian 12's Open3D
-// 0.16.1 and NumPy 1.24.2; each file is headed by its command. Every step is deterministic and
+// 0.16.1 and NumPy 1.24.2; each file is headed by its command. registration.txt holds what run.py's
+// registration (RANSAC on the cameras, three rounds of ICP) returned, seed by seed. Every step is deterministic and
 // follows the same arithmetic in the same order, so the figures are compared for equality: a
 // count off by one point moves precision by 5e-5, far above any rounding.
 #include <gtest/gtest.h>
 
 #include <fmt/format.h>
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -21,9 +23,12 @@
 #include <tuple>
 
 #include "cli_support.h"
+#include "roving/core/error.h"
 #include "roving/formats/distance_cloud_writer.h"
 #include "roving/formats/file_hash.h"
+#include "roving/reconstruction/correspondence_ransac.h"
 #include "roving/reconstruction/crop_volume.h"
+#include "roving/reconstruction/point_registration.h"
 #include "roving/reconstruction/tanks_and_temples_protocol.h"
 #include "roving/reconstruction/voxel_down_sample.h"
 #include "sample_rows.h"
@@ -87,6 +92,106 @@ TEST(TanksAndTemplesGolden, PointsAreTheToolboxs) { expect_the_toolboxs("Bench_p
 
 // A mesh is read as its vertices (Open3D's read_point_cloud): the same figures as the cloud of them.
 TEST(TanksAndTemplesGolden, MeshVerticesAreTheToolboxs) { expect_the_toolboxs("Bench_mesh.ply", "mesh.txt"); }
+
+// run.py's registration (--tnt-trajectory) against run.py's own, seed by seed: its RANSAC draws are
+// Open3D's on one thread from utility.random.seed, so the cameras' alignment is the toolbox's; each
+// ICP round's count of pairs (fitness) is equal, and its RMSE and alignment agree to 1e-12: the
+// pairs are summed in the order of the thinned points (Morton's here, Open3D's hash map's there)
+// and the alignments multiplied by Eigen here and by NumPy there, which moves the last bits only.
+// The figures after it are then the toolbox's, equal.
+const std::string kRegistration = " --tnt-trajectory " + kData + "Bench_moved.log --tnt-reference-trajectory " +
+                                  kData + "Bench_COLMAP_SfM.log --tnt-mapping " + kData +
+                                  "Bench_mapping_reference.txt";
+
+void expect_matrix_near(const nlohmann::json& matrix, const std::vector<double>& row_by_row, std::size_t from,
+                        double tolerance) {
+  for (std::size_t k = 0; k < 16; ++k) {
+    EXPECT_NEAR(matrix[k / 4][k % 4].get<double>(), row_by_row.at(from + k), tolerance) << k;
+  }
+}
+
+TEST(TanksAndTemplesGolden, RegistrationIsRunPys) {
+  const std::vector<std::vector<double>> rows = golden_rows("registration.txt");
+  ASSERT_EQ(rows.size(), 5u * 6u);
+  const nlohmann::json t =
+      protocol("Bench_moved_points.ply", "--tnt-tau 0.01 --protocol-seed 1 --protocol-runs 5" + kRegistration)
+          ["tanks_and_temples_protocol"];
+  const nlohmann::json& runs = t["registration"]["runs"];
+  ASSERT_EQ(runs.size(), 5u);
+  EXPECT_EQ(t["registration"]["cameras"], 60);
+  for (std::size_t k = 0; k < 5; ++k) {
+    const nlohmann::json& run = runs[k];
+    const std::vector<double>* golden = &rows[6 * k];
+    EXPECT_EQ(run["seed"].get<double>(), golden[0].at(0));
+    expect_matrix_near(run["cameras"]["transformation"], golden[1], 0, 1e-12);
+    EXPECT_EQ(run["cameras"]["fitness"], 0.95);  // the three outlying cameras left out
+    for (std::size_t r = 0; r < 3; ++r) {
+      const nlohmann::json& round = run["rounds"][r];
+      EXPECT_EQ(round["fitness"].get<double>(), golden[2 + r].at(0)) << k << " " << r;
+      EXPECT_NEAR(round["inlier_rmse"].get<double>(), golden[2 + r].at(1), 1e-12 * golden[2 + r].at(1));
+      expect_matrix_near(round["transformation"], golden[2 + r], 2, 1e-12);
+    }
+    expect_matrix_near(run["transformation"], golden[4], 2, 1e-12);
+    EXPECT_EQ(run["precision"].get<double>(), golden[5].at(0)) << k;
+    EXPECT_EQ(run["recall"].get<double>(), golden[5].at(1)) << k;
+    EXPECT_EQ(run["fscore"].get<double>(), golden[5].at(2)) << k;
+  }
+  // The first run is the one reported; the spread is over the five.
+  EXPECT_EQ(t["precision"], runs[0]["precision"]);
+  EXPECT_EQ(t["alignment"], runs[0]["transformation"]);
+  EXPECT_LT(t["registration"]["spread"]["fscore"]["min"].get<double>(),
+            t["registration"]["spread"]["fscore"]["max"].get<double>());
+}
+
+// A similarity of the unit sphere's Fibonacci points.
+Eigen::Matrix4d known_similarity() {
+  Eigen::Matrix4d m = Eigen::Matrix4d::Identity();
+  m.topLeftCorner<3, 3>() = 1.03 * Eigen::AngleAxisd(0.04, Vec3(1, 2, 2).normalized()).toRotationMatrix();
+  m.block<3, 1>(0, 3) = Vec3(0.02, -0.01, 0.03);
+  return m;
+}
+
+std::vector<Vec3> sphere_points(std::size_t n) {
+  std::vector<Vec3> points;
+  for (std::size_t k = 0; k < n; ++k) {
+    const double z = 1 - 2 * (k + 0.5) / n, r = std::sqrt(1 - z * z), a = 2.399963229728653 * k;
+    points.emplace_back(r * std::cos(a), r * std::sin(a), z);
+  }
+  return points;
+}
+
+// ICP from the identity brings an ellipsoid moved by a small similarity back onto itself: the
+// product of its updates is the inverse of that similarity, to far below the points' spacing.
+TEST(PointRegistration, IcpUndoesASmallSimilarity) {
+  std::vector<Vec3> target = sphere_points(4000);
+  for (Vec3& p : target) p = Vec3(1.0 * p[0], 0.7 * p[1], 0.5 * p[2]);  // no symmetry to slide along
+  std::vector<Vec3> source = target;
+  transform_points(known_similarity(), source);
+  const PointRegistration r = icp_point_to_point(source, target, 0.5, {0, 0, 200});
+  EXPECT_TRUE(r.transformation.isApprox(known_similarity().inverse(), 1e-6)) << r.transformation;
+  EXPECT_EQ(r.fitness, 1.0);
+  EXPECT_LT(r.inlier_rmse, 1e-6);
+  EXPECT_THROW(icp_point_to_point(source, target, 0), Error);
+  EXPECT_THROW(icp_point_to_point(source, {}, 1), Error);
+}
+
+// RANSAC on pairs of which a quarter are wrong: a draw of inliers alone gives the similarity
+// exactly (to rounding), which leaves every right pair's source on its target.
+TEST(PointRegistration, RansacLeavesOutWrongPairs) {
+  const std::vector<Vec3> target = sphere_points(80);
+  std::vector<Vec3> source = target;
+  transform_points(known_similarity().inverse(), source);
+  for (std::size_t k = 0; k < source.size(); k += 4) source[k] += Vec3(0.5, 0.5, 0.5);
+  PointPairs pairs;
+  for (std::uint32_t k = 0; k < target.size(); ++k) pairs.emplace_back(k, k);
+  const PointRegistration r = ransac_on_pairs(source, target, pairs, 0.05, 6, {}, 7);
+  EXPECT_TRUE(r.transformation.isApprox(known_similarity(), 1e-9)) << r.transformation;
+  EXPECT_EQ(r.fitness, 0.75);
+  EXPECT_EQ(ransac_on_pairs(source, target, pairs, 0.05, 6, {}, 7).transformation, r.transformation);  // seeded
+  EXPECT_THROW(ransac_on_pairs(source, target, PointPairs(pairs.begin(), pairs.begin() + 5), 0.05, 6, {}, 7), Error);
+  EXPECT_THROW(ransac_on_pairs(source, target, {{0, 0}, {1, 1}, {2, 200}}, 0.05, 3, {}, 7), Error);
+  EXPECT_THROW(ransac_on_pairs(source, target, pairs, -1, 6, {}, 7), Error);
+}
 
 TEST(TanksAndTemplesProtocol, TheSceneNamesItsTau) {
   const nlohmann::json by_scene = protocol("Bench_points.ply", "--tnt-scene Barn")["tanks_and_temples_protocol"];
@@ -327,6 +432,45 @@ TEST(TanksAndTemplesProtocol, BadInputGetsOneLine) {
            {"projective.txt", std::string("1 0 0 0\n0 1 0 0\n0 0 1 0\n0 0 1 1\n"), "affine"},
            {"singular.txt", std::string("1 0 0 0\n0 0 0 0\n0 0 1 0\n0 0 0 1\n"), "invertible"}}) {
     expect_error(run + crop + file(name, text), {name, fragment});
+  }
+  // run.py's registration: its files, and what it needs beside them.
+  const std::string moved = "measure " + kTruth + " " + kData + "Bench_moved_points.ply --protocol tanks-and-temples ";
+  const std::string log = kData + "Bench_moved.log", reference = kData + "Bench_COLMAP_SfM.log";
+  expect_error(moved + kScene + " --tnt-tau 0.01 --tnt-trajectory " + log, {"--tnt-reference-trajectory"});
+  expect_error(moved + "--tnt-crop " + kData + "Bench.json --tnt-tau 0.01 --tnt-trajectory " + log +
+                   " --tnt-reference-trajectory " + reference,
+               {"--tnt-alignment", "_trans.txt"});
+  expect_error(moved + kScene + " --tnt-tau 0.01 --tnt-mapping " + kData + "Bench_mapping_reference.txt",
+               {"--tnt-mapping", "only with --tnt-trajectory"});
+  expect_error(moved + kScene + " --tnt-tau 0.01 --tnt-trajectory " + log + " --tnt-reference-trajectory " + reference,
+               {"Bench_moved.log", "1700 cameras", "--tnt-mapping"});
+  expect_error(moved + kScene + " --tnt-tau 0.01 --protocol-seed none" + kRegistration, {"--protocol-seed", "'none'"});
+  expect_error("measure " + pair + " --tnt-trajectory " + log, {"--tnt-trajectory", "only with --protocol"});
+  const std::string pose = "1 0 0 0\n0 1 0 0\n0 0 1 0\n0 0 0 1\n";
+  std::string three_cameras;
+  for (int k = 0; k < 3; ++k) three_cameras += fmt::format("{0} {0} 3\n", k) + pose;
+  for (const auto& [name, text, fragment] : {
+           std::tuple{"short.log", std::string("0 0 1\n1 0 0 0\n0 1 0 0\n"), "ends after 2 of its pose's 4 rows"},
+           {"word.log", std::string("0 0 1\n1 0 0 0\n0 one 0 0\n0 0 1 0\n0 0 0 1\n"), "line 3"},
+           {"inf.log", std::string("0 0 1\n1 0 0 0\n0 inf 0 0\n0 0 1 0\n0 0 0 1\n"), "4 finite numbers"},
+           {"five.log", std::string("0 0 1\n1 0 0 0 0\n0 1 0 0\n0 0 1 0\n0 0 0 1\n"), "line 2"},
+           {"empty.log", std::string("\n"), "no camera"},
+           {"three.log", three_cameras, "3 cameras matched to the reference's 60"}}) {
+    expect_error(moved + kScene + " --tnt-tau 0.01 --tnt-reference-trajectory " + reference + " --tnt-trajectory " +
+                     file(name, text),
+                 {name, fragment});
+  }
+  const std::string video = moved + kScene + " --tnt-tau 0.01 --tnt-trajectory " + log +
+                            " --tnt-reference-trajectory " + reference + " --tnt-mapping ";
+  for (const auto& [name, text, fragment] : {
+           std::tuple{"counts.txt", std::string("sixty\n1700\n"), "line 1"},
+           {"short.txt", std::string("3\n1700\n0 8\n1 36\n"), "reference frame 3 of 3"},
+           {"beyond.txt", std::string("1\n1700\n0 1701\n"), "frame 1701"},
+           {"zero.txt", std::string("1\n1700\n0 0\n"), "frame 0"},
+           {"none.txt", std::string("0\n1700\n"), "no reference frame"},
+           {"past-video.txt", std::string("1\n2000\n0 1800\n"), "from 1 to 1700"},
+           {"few.txt", std::string("1\n1700\n0 8\n"), "1 cameras matched to the reference's 60"}}) {
+    expect_error(video + file(name, text), {name, fragment});
   }
   std::filesystem::remove_all(dir);
 }

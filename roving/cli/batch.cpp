@@ -35,9 +35,11 @@ namespace fs = std::filesystem;
 const std::vector<std::string> kPairColumns = {
     "method",     "semantics", "samples",  "seed",         "max_error",  "views",         "resolution",
     "backend",    "camera_geometry",       "protocol",     "dtu_obs_mask", "dtu_plane",   "tnt_crop",
-    "tnt_alignment", "tnt_scene", "tnt_tau", "pcc_normals"};
+    "tnt_alignment", "tnt_scene", "tnt_tau", "tnt_trajectory", "tnt_reference_trajectory", "tnt_mapping",
+    "pcc_normals"};
 // The columns that name a file: relative to the manifest, as the models are.
 const std::vector<std::string> kFileColumns = {"dtu_obs_mask", "dtu_plane", "tnt_crop", "tnt_alignment",
+                                               "tnt_trajectory", "tnt_reference_trajectory", "tnt_mapping",
                                                "pcc_normals"};
 
 struct Pair {
@@ -208,6 +210,9 @@ MeasureArguments arguments_for(const Pair& pair, const MeasureArguments& default
     if (column == "tnt_crop") a.tnt_crop = value;
     if (column == "tnt_alignment") a.tnt_alignment = value;
     if (column == "tnt_scene") a.tnt_scene = value;
+    if (column == "tnt_trajectory") a.tnt_trajectory = value;
+    if (column == "tnt_reference_trajectory") a.tnt_reference_trajectory = value;
+    if (column == "tnt_mapping") a.tnt_mapping = value;
     if (column == "pcc_normals") a.pcc_normals = value;
     if (column == "tnt_tau") {
       double tau = 0;
@@ -549,6 +554,10 @@ int run_batch(const BatchArguments& args, std::string& stage, const Progress::Li
     try {
       std::string files;  // by their bytes
       for (const std::string& file : other_files) files += (file.empty() ? std::string("-") : sha256(file)) + " ";
+      // run.py's registration's files, only where given (the keys of pairs without them stay as they were).
+      for (const std::string& file : {a.tnt_trajectory, a.tnt_reference_trajectory, a.tnt_mapping}) {
+        if (!file.empty()) files += sha256(file) + " ";
+      }
       key = pair_key(a, sha256(pair.reference), sha256(pair.test), others ? files : "");
     } catch (const Error&) {
       // Unreadable input: keyed by the paths, so that its failure is recorded all the same.

@@ -166,6 +166,15 @@ void add_measurement_options(CLI::App& app, MeasureArguments& args, bool& trust_
   app.add_option("--tnt-alignment", args.tnt_alignment,
                  "with --protocol tanks-and-temples: the 4 x 4 matrix (four rows of four numbers, as run.py's "
                  "<scene>_trans.txt) that takes TEST onto REF, applied before everything; default: none");
+  app.add_option("--tnt-trajectory", args.tnt_trajectory,
+                 "with --protocol tanks-and-temples: the reconstruction's camera trajectory (.log); run.py's "
+                 "registration then refines --tnt-alignment (the scene's _trans.txt) by RANSAC on the cameras and "
+                 "three rounds of ICP (needs --tnt-reference-trajectory)");
+  app.add_option("--tnt-reference-trajectory", args.tnt_reference_trajectory,
+                 "with --tnt-trajectory: the scene's reference cameras, <scene>_COLMAP_SfM.log");
+  app.add_option("--tnt-mapping", args.tnt_mapping,
+                 "with --tnt-trajectory: the scene's <scene>_mapping_reference.txt (run.py reads it where the "
+                 "trajectory has more than 1,600 cameras)");
   app.add_option("--tnt-scene", args.tnt_scene,
                  "with --protocol tanks-and-temples: the scene whose tau the toolbox's config.py sets (Barn, "
                  "Caterpillar, Church, Courthouse, Ignatius, Meetingroom, Truck)");
@@ -178,11 +187,12 @@ void add_measurement_options(CLI::App& app, MeasureArguments& args, bool& trust_
                  "PREFIX.recall.ply (the thinned clouds coloured by distance, hot_r up to 3 tau)");
   app.add_option("--protocol-seed", args.protocol_seed,
                  "with --protocol dtu: the first seed of the shuffle before thinning (eval.py's is unseeded), or "
-                 "none for the points' own order")
+                 "none for the points' own order; with --tnt-trajectory: the first seed of RANSAC's draws (run.py's "
+                 "are unseeded)")
       ->capture_default_str();
   app.add_option("--protocol-runs", args.protocol_runs,
-                 "with --protocol dtu: runs with seeds --protocol-seed, +1, ...; the first is reported, the spread "
-                 "of all beside it")
+                 "with --protocol dtu or --tnt-trajectory: runs with seeds --protocol-seed, +1, ...; the first is "
+                 "reported, the spread of all beside it")
       ->check(CLI::Range(1, 1000))
       ->capture_default_str();
   app.add_option("--histogram-bins", args.histogram_bins, "bins of the signed-d histogram")

@@ -198,6 +198,38 @@ TanksAndTemplesPlan plan_tanks_and_temples(const MeasureArguments& args) {
   tnt.options.voxel_size = tnt.options.tau / 2.0;  // run.py's dTau / 2.0
   tnt.curves_png = args.tnt_curves;
   tnt.plys = args.tnt_plys;
+  if (args.tnt_trajectory.empty() != args.tnt_reference_trajectory.empty()) {
+    throw Error("--tnt-trajectory: run.py's registration needs both the reconstruction's trajectory and "
+                "--tnt-reference-trajectory (the scene's <scene>_COLMAP_SfM.log)");
+  }
+  if (args.tnt_trajectory.empty()) {
+    if (!args.tnt_mapping.empty()) throw Error("--tnt-mapping: only with --tnt-trajectory");
+    return tnt;
+  }
+  if (args.tnt_alignment.empty()) {
+    throw Error("--tnt-trajectory: run.py's registration starts from the scene's alignment; expected --tnt-alignment "
+                "(<scene>_trans.txt)");
+  }
+  for (const auto& [option, path] : {std::pair{"--tnt-trajectory", args.tnt_trajectory},
+                                     {"--tnt-reference-trajectory", args.tnt_reference_trajectory},
+                                     {"--tnt-mapping", args.tnt_mapping}}) {
+    if (!path.empty() && !std::ifstream(path)) throw Error(fmt::format("{}: cannot read '{}'", option, path));
+  }
+  tnt.trajectory = args.tnt_trajectory;
+  tnt.reference_trajectory = args.tnt_reference_trajectory;
+  tnt.mapping = args.tnt_mapping;
+  // Open3D's utility.random.seed takes an int: every run's seed must be one.
+  const std::uint32_t highest = 2147483647u - static_cast<std::uint32_t>(std::max(args.protocol_runs, 1) - 1);
+  std::uint32_t seed = 0;
+  const char* end = args.protocol_seed.data() + args.protocol_seed.size();
+  const auto [last, error] = std::from_chars(args.protocol_seed.data(), end, seed);
+  if (args.protocol_seed.empty() || error != std::errc() || last != end || seed > highest) {
+    throw Error(fmt::format("--protocol-seed: RANSAC's draws need a seed, a whole number from 0 to {} with "
+                            "--protocol-runs {}; found '{}'",
+                            highest, args.protocol_runs, args.protocol_seed));
+  }
+  tnt.first_seed = seed;
+  tnt.runs = args.protocol_runs;
   return tnt;
 }
 
@@ -209,6 +241,9 @@ void plan_protocol(const MeasureArguments& args, MeasurePlan& plan) {
   }
   for (const auto& [option, given] :
        {std::pair{"--tnt-crop", !args.tnt_crop.empty()}, {"--tnt-alignment", !args.tnt_alignment.empty()},
+        {"--tnt-trajectory", !args.tnt_trajectory.empty()},
+        {"--tnt-reference-trajectory", !args.tnt_reference_trajectory.empty()},
+        {"--tnt-mapping", !args.tnt_mapping.empty()},
         {"--tnt-scene", !args.tnt_scene.empty()}, {"--tnt-tau", args.tnt_tau.has_value()},
         {"--tnt-curves", !args.tnt_curves.empty()}, {"--tnt-plys", !args.tnt_plys.empty()}}) {
     if (given && !tnt_given) throw Error(fmt::format("{}: only with --protocol tanks-and-temples", option));
@@ -950,8 +985,20 @@ MeasureRun measure_run(const MeasureArguments& args, std::string& stage, Progres
     progress.stage("loading " + file_name(args.test_path));
     run.b = test_load.get();
   }
+  std::vector<TanksAndTemplesRegistrationRun> tnt_registrations;
+  double tnt_registration_seconds = 0;
+  if (tnt_files && tnt_files->trajectories) {
+    stage = fmt::format("registering the test {} to the reference {} as run.py does (its trajectory {})",
+                        run.b->path(), run.a->path(), plan.tnt->trajectory);
+    progress.stage("Tanks and Temples registration");
+    const Stopwatch watch;
+    tnt_registrations = register_tanks_and_temples(*run.a, *run.b, *plan.tnt, *tnt_files, progress.callback());
+    tnt_registration_seconds = watch.seconds();
+    progress.clear();
+  }
   if (tnt_files) {
-    stage = fmt::format("aligning the test {} by {}", run.b->path(), plan.tnt->alignment);
+    stage = fmt::format("aligning the test {} by {}", run.b->path(),
+                        tnt_files->trajectories ? "run.py's registration" : plan.tnt->alignment);
     align_test_model(*run.b, tnt_files->alignment);  // as the toolbox moves the reconstruction, before all else
   }
   Model& a = *run.a;
@@ -991,6 +1038,14 @@ MeasureRun measure_run(const MeasureArguments& args, std::string& stage, Progres
       progress.stage("Tanks and Temples protocol");
       report.tnt = tanks_and_temples_report(a, b, *plan.tnt, *tnt_files, progress.callback());
       progress.clear();
+      if (!tnt_registrations.empty()) {
+        TanksAndTemplesRegistrationRun& first = tnt_registrations.front();
+        first.precision = report.tnt->figures.precision;
+        first.recall = report.tnt->figures.recall;
+        first.fscore = report.tnt->figures.fscore;
+        report.tnt->registrations = std::move(tnt_registrations);
+        report.tnt->registration_seconds = tnt_registration_seconds;
+      }
       if (report.reconstruction) {
         const DirectionReport &ab = report.directions[0], &ba = report.directions[1];
         set_exact_within_crop(*report.tnt, *tnt_files, {&ab.samples, &ab.result, &test_surface(b)},

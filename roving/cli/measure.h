@@ -54,6 +54,7 @@ struct MeasureArguments {
   std::string dtu_obs_mask, dtu_plane;   // its data set's files
   double dtu_density = 0.2, dtu_patch = 60, dtu_max_dist = 20;
   std::string tnt_crop, tnt_alignment, tnt_scene, tnt_curves, tnt_plys;  // --protocol tanks-and-temples
+  std::string tnt_trajectory, tnt_reference_trajectory, tnt_mapping;     // and run.py's registration
   std::optional<double> tnt_tau;
   std::string protocol_seed = "1";  // or "none": the points' own order
   int protocol_runs = 5;

@@ -10,6 +10,7 @@
 #include "roving/core/error.h"
 #include "roving/core/stopwatch.h"
 #include "roving/formats/matlab_file.h"
+#include "roving/reconstruction/trajectory_log.h"
 
 namespace roving {
 namespace {
@@ -221,7 +222,48 @@ TanksAndTemplesFiles read_tanks_and_temples_files(const TanksAndTemplesPlan& pla
   TanksAndTemplesFiles files;
   files.crop = read_crop_volume(plan.crop);
   if (!plan.alignment.empty()) files.alignment = read_alignment(plan.alignment);
+  if (!plan.trajectory.empty()) {
+    TanksAndTemplesTrajectories& t = files.trajectories.emplace();
+    t.reconstruction = read_trajectory_log(plan.trajectory);
+    t.reference = read_trajectory_log(plan.reference_trajectory);
+    if (!plan.mapping.empty()) t.mapping = read_frame_mapping(plan.mapping);
+    t.reference_alignment = files.alignment;
+    // The cameras' match is checked now, before the models load.
+    matched_camera_centres(t, {plan.trajectory, plan.mapping.empty() ? "the mapping" : plan.mapping});
+  }
   return files;
+}
+
+std::vector<TanksAndTemplesRegistrationRun> register_tanks_and_temples(const Model& ground_truth,
+                                                                       const Model& reconstruction,
+                                                                       const TanksAndTemplesPlan& plan,
+                                                                       TanksAndTemplesFiles& files,
+                                                                       const ProgressFn& progress) {
+  std::vector<Vec3> truth_storage, reconstruction_storage;
+  const std::vector<Vec3>& truth = protocol_points(ground_truth, "REF (the ground truth)", truth_storage);
+  const std::vector<Vec3>& points = protocol_points(reconstruction, "TEST (the reconstruction)", reconstruction_storage);
+  std::vector<TanksAndTemplesRegistrationRun> runs(static_cast<std::size_t>(plan.runs));
+  for (std::size_t k = 0; k < runs.size(); ++k) {
+    TanksAndTemplesRegistrationRun& run = runs[k];
+    // Each run's steps, counted over all of them.
+    const auto steps = [&](const char* what, std::size_t done, std::size_t total) {
+      if (progress) progress(what, k * total + done, runs.size() * total);
+    };
+    run.registration = tanks_and_temples_registration(
+        points, truth, *files.crop, plan.options.tau, *files.trajectories,
+        plan.first_seed + static_cast<std::uint32_t>(k),
+        {plan.trajectory, plan.mapping, reconstruction.path(), ground_truth.path()}, steps);
+    if (k == 0) continue;  // scored by tanks_and_temples_report, on TEST moved once
+    std::vector<Vec3> moved = points;
+    transform_points(run.registration.transformation, moved);
+    const TanksAndTemplesFigures f = tanks_and_temples_figures(moved, truth, *files.crop, plan.options, {},
+                                                               {reconstruction.path(), ground_truth.path()});
+    run.precision = f.precision;
+    run.recall = f.recall;
+    run.fscore = f.fscore;
+  }
+  files.alignment = runs.front().registration.transformation;
+  return runs;
 }
 
 void align_test_model(Model& test, const Eigen::Matrix4d& alignment) {
@@ -256,6 +298,9 @@ TanksAndTemplesReport tanks_and_temples_report(const Model& ground_truth, const 
   report.plys = plan.plys;
   if (!plan.plys.empty()) report.clouds.emplace();
   report.alignment_matrix = files.alignment;
+  report.trajectory = plan.trajectory;
+  report.reference_trajectory = plan.reference_trajectory;
+  report.mapping = plan.mapping;
   std::vector<Vec3> truth_storage, reconstruction_storage;
   const std::vector<Vec3>& truth = protocol_points(ground_truth, "REF (the ground truth)", truth_storage);
   const std::vector<Vec3>& points = protocol_points(reconstruction, "TEST (the reconstruction)", reconstruction_storage);

@@ -823,14 +823,15 @@ struct Spread {
   double mean = 0, sd = 0, min = 0, max = 0;
 };
 
-Spread spread_of(const std::vector<DtuRun>& runs, double DtuRun::*figure) {
+template <class Run>
+Spread spread_of(const std::vector<Run>& runs, double Run::*figure) {
   Spread s{0, 0, runs.front().*figure, runs.front().*figure};
-  for (const DtuRun& run : runs) {
+  for (const Run& run : runs) {
     s.mean += run.*figure / runs.size();
     s.min = std::min(s.min, run.*figure);
     s.max = std::max(s.max, run.*figure);
   }
-  for (const DtuRun& run : runs) s.sd += (run.*figure - s.mean) * (run.*figure - s.mean);
+  for (const Run& run : runs) s.sd += (run.*figure - s.mean) * (run.*figure - s.mean);
   s.sd = runs.size() > 1 ? std::sqrt(s.sd / (runs.size() - 1)) : 0;
   return s;
 }
@@ -963,11 +964,72 @@ std::string tnt_tau_source(const TanksAndTemplesReport& t) {
   return t.scene.empty() ? std::string("as given by --tnt-tau") : fmt::format("{}'s, as the toolbox's config.py sets it", t.scene);
 }
 
+nlohmann::json matrix_json(const Eigen::Matrix4d& m) {
+  nlohmann::json rows = nlohmann::json::array();
+  for (int r = 0; r < 4; ++r) rows.push_back({m(r, 0), m(r, 1), m(r, 2), m(r, 3)});
+  return rows;
+}
+
+constexpr std::array<std::pair<const char*, double TanksAndTemplesRegistrationRun::*>, 3> kTntFigures = {
+    {{"precision", &TanksAndTemplesRegistrationRun::precision},
+     {"recall", &TanksAndTemplesRegistrationRun::recall},
+     {"fscore", &TanksAndTemplesRegistrationRun::fscore}}};
+
+// run.py's registration, per run (null where the alignment was given).
+nlohmann::json tnt_registration_json(const TanksAndTemplesReport& t) {
+  if (t.registrations.empty()) return nullptr;
+  nlohmann::json runs = nlohmann::json::array();
+  for (const TanksAndTemplesRegistrationRun& run : t.registrations) {
+    const TanksAndTemplesRegistration& r = run.registration;
+    nlohmann::json rounds = nlohmann::json::array();
+    for (const TanksAndTemplesRegistration::Round& round : r.rounds) {
+      rounds.push_back({{"voxel_size", round.voxel_size > 0 ? nlohmann::json(round.voxel_size) : nlohmann::json(nullptr)},
+                        {"max_distance", round.max_distance},
+                        {"source_points", round.source_points},
+                        {"target_points", round.target_points},
+                        {"fitness", round.icp.fitness},
+                        {"inlier_rmse", round.icp.inlier_rmse},
+                        {"iterations", round.icp.iterations},
+                        {"transformation", matrix_json(round.transformation)}});
+    }
+    runs.push_back({{"seed", r.seed},
+                    {"cameras", {{"fitness", r.trajectory.fitness},
+                                 {"inlier_rmse", r.trajectory.inlier_rmse},
+                                 {"transformation", matrix_json(r.trajectory.transformation)}}},
+                    {"rounds", rounds},
+                    {"transformation", matrix_json(r.transformation)},
+                    {"precision", run.precision},
+                    {"recall", run.recall},
+                    {"fscore", run.fscore}});
+  }
+  nlohmann::json spread = nullptr;
+  if (t.registrations.size() > 1) {
+    spread = nlohmann::json::object();
+    for (const auto& [name, figure] : kTntFigures) {
+      const Spread s = spread_of(t.registrations, figure);
+      spread[name] = {{"mean", s.mean}, {"sd", s.sd}, {"min", s.min}, {"max", s.max}};
+    }
+  }
+  return {{"definition",
+           "run.py's registration before EvaluateHisto: the reconstruction's camera centres (those the mapping "
+           "names where there are more than 1,600) aligned to the scene's (COLMAP's, moved by alignment_file) by "
+           "RANSAC (6 pairs a draw, pairs closer than 0.2, confidence 0.999, draws from the seed), then ICP "
+           "point to point with scale in three rounds on both clouds cropped: voxels of tau and pairs within 80 "
+           "tau, voxels of tau / 2 and 20 tau, uniform (every k-th point above 4 M) and 2 tau, each round stopping "
+           "once its fitness changes by less than 1e-6 (ICPConvergenceCriteria(1e-6, 20): the RMSE's criterion "
+           "is 20) or after 30 updates. Each run's transformation is the product of the rounds' and RANSAC's; "
+           "the first run's is 'alignment' and gives the figures above; spread: over the runs' seeds"},
+          {"trajectory", t.trajectory},
+          {"reference_trajectory", t.reference_trajectory},
+          {"mapping", t.mapping.empty() ? nlohmann::json(nullptr) : nlohmann::json(t.mapping)},
+          {"cameras", t.registrations.front().registration.cameras},
+          {"runs", runs},
+          {"spread", spread},
+          {"seconds", t.registration_seconds}};
+}
+
 nlohmann::json tnt_json(const TanksAndTemplesReport& t) {
   const TanksAndTemplesFigures& f = t.figures;
-  nlohmann::json alignment = nlohmann::json::array();
-  for (int r = 0; r < 4; ++r) alignment.push_back({t.alignment_matrix(r, 0), t.alignment_matrix(r, 1),
-                                                   t.alignment_matrix(r, 2), t.alignment_matrix(r, 3)});
   nlohmann::json exact = nullptr;
   if (t.exact) {
     exact = {{"definition",
@@ -989,9 +1051,13 @@ nlohmann::json tnt_json(const TanksAndTemplesReport& t) {
            "the distances below edges[i + 1] (at or below, for the last), edges = np.arange(0, tau * plot_stretch, "
            "tau / 100). See docs/reconstruction.md"},
           {"computed_as",
-           "TanksAndTemples python_toolbox/evaluation (github.com/isl-org/TanksAndTemples, 3c2c212), EvaluateHisto "
-           "step by step on Open3D 0.16's operations; run.py's registration (RANSAC and ICP) not run: the alignment "
-           "is the one given"},
+           t.registrations.empty()
+               ? "TanksAndTemples python_toolbox/evaluation (github.com/isl-org/TanksAndTemples, 3c2c212), "
+                 "EvaluateHisto step by step on Open3D 0.16's operations; run.py's registration (RANSAC and ICP) not "
+                 "run: the alignment is the one given"
+               : "TanksAndTemples python_toolbox/evaluation (github.com/isl-org/TanksAndTemples, 3c2c212), run.py "
+                 "step by step on Open3D 0.16's operations: its registration (RANSAC from the seed, as Open3D on "
+                 "one thread after utility.random.seed) and EvaluateHisto"},
           {"scene", t.scene.empty() ? nlohmann::json(nullptr) : nlohmann::json(t.scene)},
           {"tau", f.options.tau},
           {"tau_source", tnt_tau_source(t)},
@@ -999,7 +1065,8 @@ nlohmann::json tnt_json(const TanksAndTemplesReport& t) {
           {"plot_stretch", f.options.plot_stretch},
           {"crop", t.crop},
           {"alignment_file", t.alignment.empty() ? nlohmann::json(nullptr) : nlohmann::json(t.alignment)},
-          {"alignment", alignment},
+          {"alignment", matrix_json(t.alignment_matrix)},
+          {"registration", tnt_registration_json(t)},
           {"reconstruction_points", f.reconstruction_points},
           {"reconstruction_cropped", f.reconstruction_cropped},
           {"reconstruction_thinned", f.reconstruction_thinned},
@@ -1026,7 +1093,23 @@ std::string tnt_lines(const TanksAndTemplesReport& t) {
   std::string out = fmt::format(
       "\n  Tanks and Temples protocol (the toolbox's EvaluateHisto): tau {:.6g} ({}), voxel size {:.6g}, crop {}, "
       "alignment {}\n",
-      f.options.tau, tnt_tau_source(t), f.options.voxel_size, t.crop, t.alignment.empty() ? "none" : t.alignment);
+      f.options.tau, tnt_tau_source(t), f.options.voxel_size, t.crop,
+      t.registrations.empty() ? (t.alignment.empty() ? "none" : t.alignment)
+                              : fmt::format("run.py's registration from {}", t.alignment));
+  if (!t.registrations.empty()) {
+    const TanksAndTemplesRegistration& r = t.registrations.front().registration;
+    out += fmt::format("  registration ({:.3g} s): RANSAC on {} cameras of {} (seed {}): fitness {:.6g}, RMSE {:.6g}\n",
+                       t.registration_seconds, r.cameras, t.trajectory, r.seed, r.trajectory.fitness,
+                       r.trajectory.inlier_rmse);
+    for (std::size_t k = 0; k < r.rounds.size(); ++k) {
+      const TanksAndTemplesRegistration::Round& round = r.rounds[k];
+      out += fmt::format("    ICP round {} ({}, pairs within {:.6g}): {} TEST and {} REF points, fitness {:.6g}, "
+                         "RMSE {:.6g} after {} update{}\n",
+                         k + 1, round.voxel_size > 0 ? fmt::format("voxels of {:.6g}", round.voxel_size) : "uniform",
+                         round.max_distance, round.source_points, round.target_points, round.icp.fitness,
+                         round.icp.inlier_rmse, round.icp.iterations, round.icp.iterations == 1 ? "" : "s");
+    }
+  }
   out += fmt::format("  reconstruction {} points, {} in the crop, {} after down-sampling; ground truth {}, {}, {}\n",
                      f.reconstruction_points, f.reconstruction_cropped, f.reconstruction_thinned, f.ground_truth_points,
                      f.ground_truth_cropped, f.ground_truth_thinned);
@@ -1036,6 +1119,17 @@ std::string tnt_lines(const TanksAndTemplesReport& t) {
   out += fmt::format("  {:<14} {:>14.8g} {:>28}\n", "recall", f.recall,
                      fmt::format("{} of {}", f.recall_counted, f.ground_truth_thinned));
   out += fmt::format("  {:<14} {:>14.8g}\n", "F-score", f.fscore);
+  if (t.registrations.size() > 1) {
+    out += fmt::format("  {:<14} {:>47} {:>28}\n",
+                       fmt::format("seeds {} to {}", t.registrations.front().registration.seed,
+                                   t.registrations.back().registration.seed),
+                       fmt::format("mean +- sd over {} registrations", t.registrations.size()), "[min, max]");
+    for (const auto& [name, figure] : kTntFigures) {
+      const Spread s = spread_of(t.registrations, figure);
+      out += fmt::format("  {:<14} {:>47} {:>28}\n", std::string(name) == "fscore" ? "F-score" : name,
+                         fmt::format("{:.8g} +- {:.2g}", s.mean, s.sd), fmt::format("[{:.8g}, {:.8g}]", s.min, s.max));
+    }
+  }
   if (!t.curves_png.empty()) out += fmt::format("  curves: {}\n", t.curves_png);
   if (!t.plys.empty()) {
     out += fmt::format("  coloured by distance (hot_r up to 3 tau): {0}.precision.ply, {0}.recall.ply\n", t.plys);

@@ -52,4 +52,15 @@ std::vector<double> PointTree::nearest_distances(const std::vector<Vec3>& from) 
   return distance;
 }
 
+void PointTree::nearest(const std::vector<Vec3>& from, std::vector<std::uint32_t>& index,
+                        std::vector<double>& squared) const {
+  index.assign(from.size(), 0);
+  squared.assign(from.size(), 0);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, from.size(), 4096), [&](const auto& range) {
+    for (std::size_t i = range.begin(); i < range.end(); ++i) {
+      index_->tree.knnSearch(from[i].data(), 1, &index[i], &squared[i]);
+    }
+  });
+}
+
 }  // namespace roving

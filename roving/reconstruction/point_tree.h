@@ -23,6 +23,9 @@ class PointTree {
   // summed over x, y, z in that order (Open3D's and scikit-learn's figure to the last bit); NaN
   // for every point when the tree holds none.
   std::vector<double> nearest_distances(const std::vector<Vec3>& from) const;
+  // The index of each of `from`'s nearest point here and the squared distance to it (summed as
+  // above); the tree must hold points.
+  void nearest(const std::vector<Vec3>& from, std::vector<std::uint32_t>& index, std::vector<double>& squared) const;
 
  private:
   struct Index;

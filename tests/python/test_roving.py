@@ -98,6 +98,12 @@ def assert_same(cli, py, where="report"):
      {"protocol": "tanks-and-temples", "tnt_crop": os.path.join(TNT, "Bench.json"),
       "tnt_alignment": os.path.join(TNT, "Bench_trans.txt"), "tnt_tau": 0.01, "symmetric": True,
       "threshold": "0.02"}),
+    ((os.path.join(TNT, "Bench.ply"), os.path.join(TNT, "Bench_moved_points.ply")),
+     {"protocol": "tanks-and-temples", "tnt_crop": os.path.join(TNT, "Bench.json"),
+      "tnt_alignment": os.path.join(TNT, "Bench_trans.txt"), "tnt_scene": "Barn",
+      "tnt_trajectory": os.path.join(TNT, "Bench_moved.log"),
+      "tnt_reference_trajectory": os.path.join(TNT, "Bench_COLMAP_SfM.log"),
+      "tnt_mapping": os.path.join(TNT, "Bench_mapping_reference.txt"), "protocol_seed": 4, "protocol_runs": 2}),
 ])
 def test_report_equals_the_clis(pair, options):
     result = roving.measure(*pair, **options)

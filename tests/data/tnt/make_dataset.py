@@ -16,6 +16,15 @@ thins both clouds. The only random numbers come from NumPy's PCG64 under a fixed
   grid (140 x 220) with a ripple of 3 mm and noise of 2 mm, missing its cap above z = 0.45 (in the
   ground truth's frame), and a stray square (within the crop, off the surface).
 - Bench_points.ply: the same reconstruction as a point cloud (the mesh's vertices).
+For run.py's registration (RANSAC on the camera trajectories, then three rounds of ICP):
+- Bench_COLMAP_SfM.log: the scene's reference trajectory, 60 cameras on a ring around the sphere,
+  in the frame Bench_trans.txt takes to the ground truth (the reconstruction's above).
+- Bench_moved_points.ply: the reconstruction in a frame of its own (turned 0.05 rad, scaled by
+  0.97 and shifted a few cm from the one above), as another pipeline would have made it.
+- Bench_moved.log: its camera trajectory, a video of 1,700 frames in that frame (more than 1,600:
+  run.py then picks the reference's frames by the mapping file), each camera 2 mm off (normal
+  noise), and three of the picked frames 0.4 m off (outliers RANSAC must leave out).
+- Bench_mapping_reference.txt: which of the video's frames (1-based) each reference camera is.
 """
 import json
 import os
@@ -98,6 +107,56 @@ def reconstruction():
     return local, faces
 
 
+def look_at(eye, target):
+    """A camera-to-world pose looking from `eye` at `target`, z forward, y down (as COLMAP's)."""
+    forward = (target - eye) / np.linalg.norm(target - eye)
+    right = np.cross(forward, [0.0, 0.0, 1.0])
+    right /= np.linalg.norm(right)
+    down = np.cross(forward, right)
+    pose = np.eye(4)
+    pose[:3, :3] = np.stack([right, down, forward], 1)
+    pose[:3, 3] = eye
+    return pose
+
+
+def moved():
+    """The similarity from the reference trajectory's frame to the moved reconstruction's."""
+    axis = np.array([-2.0, 1.0, 2.0]) / 3.0
+    angle = 0.05
+    k = np.array([[0, -axis[2], axis[1]], [axis[2], 0, -axis[0]], [-axis[1], axis[0], 0]])
+    t = np.eye(4)
+    t[:3, :3] = 0.97 * (np.eye(3) + np.sin(angle) * k + (1 - np.cos(angle)) * k @ k)
+    t[:3, 3] = [0.03, -0.02, 0.01]
+    return t
+
+
+def write_log(path, poses):
+    """A trajectory as the toolbox's write_trajectory writes it: per camera 'i i+1 count', then its 4 x 4."""
+    with open(path, "w") as f:
+        for i, pose in enumerate(poses):
+            f.write(f"{i} {i + 1} {len(poses)}\n")
+            f.write("\n".join(" ".join(f"{v:.12f}" for v in row) for row in pose) + "\n")
+
+
+def trajectories():
+    rng = np.random.default_rng(20261129)
+    frames, picked = 1700, 60
+    angles = np.arange(frames) / frames * 2 * np.pi
+    centre = np.array([0.0, 0.0, 0.25])
+    in_truth = [look_at(np.array([0.9 * np.cos(a), 0.9 * np.sin(a), 0.5 + 0.05 * np.sin(3 * a)]), centre)
+                for a in angles]
+    to_reference = np.linalg.inv(alignment())
+    video = [moved() @ to_reference @ pose for pose in in_truth]
+    for pose in video:
+        pose[:3, 3] += rng.normal(0, 0.002, 3)
+    frame_of = np.round(np.arange(picked) * frames / picked + 7).astype(int)  # 0-based
+    for outlier in frame_of[[5, 23, 41]]:
+        radial = video[outlier][:3, 3] - (moved() @ to_reference @ np.append(centre, 1))[:3]
+        video[outlier][:3, 3] += 0.4 * radial / np.linalg.norm(radial)
+    reference = [to_reference @ in_truth[f] for f in frame_of]
+    return reference, video, frame_of
+
+
 def main():
     write_ply(os.path.join(HERE, "Bench.ply"), ground_truth())
     np.savetxt(os.path.join(HERE, "Bench_trans.txt"), alignment())
@@ -111,6 +170,14 @@ def main():
     points, faces = reconstruction()
     write_ply(os.path.join(HERE, "Bench_mesh.ply"), points, faces)
     write_ply(os.path.join(HERE, "Bench_points.ply"), points)
+    m = moved()
+    write_ply(os.path.join(HERE, "Bench_moved_points.ply"), points @ m[:3, :3].T + m[:3, 3])
+    reference, video, frame_of = trajectories()
+    write_log(os.path.join(HERE, "Bench_COLMAP_SfM.log"), reference)
+    write_log(os.path.join(HERE, "Bench_moved.log"), video)
+    with open(os.path.join(HERE, "Bench_mapping_reference.txt"), "w") as f:
+        f.write(f"{len(frame_of)}\n{len(video)}\n")
+        f.write("".join(f"{i} {frame + 1}\n" for i, frame in enumerate(frame_of)))
 
 
 if __name__ == "__main__":

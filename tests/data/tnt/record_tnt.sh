@@ -7,10 +7,9 @@
 # python3 with python3-open3d 0.16.1, python3-matplotlib 3.6.3 and NumPy 1.24.2. run.py's last
 # two steps are called as it calls them, untouched: EvaluateHisto(pcd, gt_pcd, trans, vol,
 # tau / 2, tau, out_dir, 5, scene), then plot_graph with what it returned; `trans` is the scene's
-# alignment file as read by np.loadtxt (run.py's registration, which refines its own alignment by
-# RANSAC and ICP, is the step before and not recorded here). The toolbox imports its registration
-# module under Open3D's old name (o3d.registration, o3d.pipelines.registration since 0.10); this
-# driver does not import it.
+# alignment file as read by np.loadtxt. registration.txt is run.py's whole run_evaluation with its
+# registration (RANSAC and ICP) on the moved reconstruction; the toolbox's registration module
+# needs toolbox_on_open3d_0_16.py (beside this script) on Open3D 0.16.
 set -euo pipefail
 toolbox="$(cd "$1/python_toolbox/evaluation" && pwd)"
 here="$(cd "$(dirname "$0")" && pwd)"
@@ -86,6 +85,59 @@ for name in ("precision", "recall"):
     print(" ".join(f"{r},{g},{b}:{n}" for (r, g, b), n in zip(colours.tolist(), counts.tolist())))
 PY
 }
+# run.py itself (run_evaluation, untouched) on the scene laid out as its dataset folder (tau 0.01 as
+# Barn's, so the folder is named Barn), the moved reconstruction and its trajectory: once per seed,
+# on one thread (OMP_NUM_THREADS=1: Open3D's RANSAC then draws in order from utility.random.seed).
+# Its registration functions and EvaluateHisto are wrapped to record what they return.
+record_registration() {  # golden file
+  local scene="$work/Barn"
+  mkdir -p "$scene"
+  for suffix in .ply .json _trans.txt _COLMAP_SfM.log _mapping_reference.txt; do
+    ln -sf "$here/Bench$suffix" "$scene/Barn$suffix"
+  done
+  OMP_NUM_THREADS=1 /usr/bin/python3 - "$toolbox" "$here" "$scene" "$work" "$commit" >"$out/$1" <<'PY'
+import sys
+toolbox, here, scene, work, commit = sys.argv[1:]
+sys.path.insert(0, here)
+import toolbox_on_open3d_0_16  # noqa: F401  (before the toolbox imports Open3D's registration)
+sys.path.insert(0, toolbox)
+import contextlib, io, os
+import matplotlib
+matplotlib.use("Agg")
+import numpy as np
+import open3d as o3d
+import run
+print(f"# TanksAndTemples {commit} python_toolbox/evaluation run.py, open3d {o3d.__version__}, numpy {np.__version__},")
+print("# OMP_NUM_THREADS=1, through toolbox_on_open3d_0_16.py; per seed, after o3d.utility.random.seed(seed):")
+print("# run_evaluation('<scene>/Barn', 'Bench_moved.log', 'Bench_moved_points.ply', out), the folder holding")
+print("# Bench's files as Barn's. Lines: seed; RANSAC's transformation (16 values, row by row); then per ICP round")
+print("# its fitness, inlier RMSE and the alignment after it (16 values); then precision recall fscore")
+steps = []
+def recorded(function):
+    def call(*args, **kwargs):
+        result = function(*args, **kwargs)
+        steps.append(result)
+        return result
+    return call
+run.trajectory_alignment = recorded(run.trajectory_alignment)
+run.registration_vol_ds = recorded(run.registration_vol_ds)
+run.registration_unif = recorded(run.registration_unif)
+run.EvaluateHisto = recorded(run.EvaluateHisto)
+for seed in range(1, 6):
+    steps.clear()
+    o3d.utility.random.seed(seed)
+    with contextlib.redirect_stdout(io.StringIO()):
+        run.run_evaluation(scene, os.path.join(here, "Bench_moved.log"), os.path.join(here, "Bench_moved_points.ply"),
+                           os.path.join(work, "out"))
+    o3d.utility.set_verbosity_level(o3d.utility.VerbosityLevel.Error)
+    print(seed)
+    print(" ".join(repr(float(v)) for v in np.asarray(steps[0]).ravel()))
+    for r in steps[1:4]:
+        print(repr(r.fitness), repr(r.inlier_rmse), " ".join(repr(float(v)) for v in np.asarray(r.transformation).ravel()))
+    print(repr(steps[4][0]), repr(steps[4][1]), repr(steps[4][2]))
+PY
+}
+record_registration registration.txt
 record mesh.txt Bench_mesh.ply
 record points.txt Bench_points.ply
 record_plys points_plys.txt

@@ -1,0 +1,135 @@
+#include "roving/reconstruction/tanks_and_temples_registration.h"
+
+#include <fmt/format.h>
+#include <tbb/parallel_for.h>
+
+#include <cmath>
+
+#include "roving/core/error.h"
+#include "roving/reconstruction/correspondence_ransac.h"
+#include "roving/reconstruction/tanks_and_temples_protocol.h"
+#include "roving/reconstruction/voxel_down_sample.h"
+
+namespace roving {
+namespace {
+
+constexpr std::size_t kVideoCameras = 1600;     // above this, run.py picks the reference's frames
+constexpr double kCameraDistance = 0.2;         // RANSAC's inlier distance (metres, any scene)
+constexpr int kCameraSample = 6;                // cameras drawn at a time
+constexpr double kUniformPoints = 4e6;          // registration.py's MAX_POINT_NUMBER
+const IcpCriteria kToolboxIcp{1e-6, 20, 30};    // ICPConvergenceCriteria(1e-6, max_itr=20), positionally
+
+std::vector<Vec3> centres(const std::vector<Eigen::Matrix4d>& poses) {
+  std::vector<Vec3> points;
+  points.reserve(poses.size());
+  for (const Eigen::Matrix4d& pose : poses) points.emplace_back(pose.block<3, 1>(0, 3));
+  return points;
+}
+
+// registration.py's crop_and_downsample: moved (a copy), cropped, then thinned by voxels of
+// `voxel_size`, or (0) every k-th point kept with k = round(n / 4 M) where n is above 4 M.
+std::vector<Vec3> cropped_and_thinned(const std::vector<Vec3>& points, const Eigen::Matrix4d& transformation,
+                                      const CropVolume& crop, double voxel_size, const std::string& name) {
+  std::vector<Vec3> moved = points;
+  if (transformation != Eigen::Matrix4d::Identity()) transform_points(transformation, moved);
+  std::vector<std::uint8_t> inside(moved.size());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, moved.size(), 1 << 14), [&](const auto& range) {
+    for (std::size_t i = range.begin(); i < range.end(); ++i) inside[i] = crop.contains(moved[i]) ? 1 : 0;
+  });
+  if (voxel_size > 0) return voxel_down_sample(moved, voxel_size, name, &inside);
+  std::vector<Vec3> kept;
+  for (std::size_t i = 0; i < moved.size(); ++i) {
+    if (inside[i]) kept.push_back(moved[i]);
+  }
+  const double n = static_cast<double>(kept.size());
+  if (n <= kUniformPoints) return kept;
+  // int(round(n / 4e6)): Python's round, halves to even, as nearbyint rounds by default.
+  const auto every = static_cast<std::size_t>(std::nearbyint(n / kUniformPoints));
+  std::vector<Vec3> thinned;
+  for (std::size_t i = 0; i < kept.size(); i += every) thinned.push_back(kept[i]);
+  return thinned;
+}
+
+}  // namespace
+
+std::vector<Vec3> matched_camera_centres(const TanksAndTemplesTrajectories& t,
+                                         const std::array<std::string, 2>& names) {
+  std::vector<Eigen::Matrix4d> poses;
+  if (t.reconstruction.size() > kVideoCameras) {
+    if (t.mapping.empty()) {
+      throw Error(fmt::format("{}: {} cameras, more than {}: run.py then picks the reference's frames by the scene's "
+                              "<scene>_mapping_reference.txt; expected it (--tnt-mapping)",
+                              names[0], t.reconstruction.size(), kVideoCameras));
+    }
+    for (const std::size_t frame : t.mapping) {
+      if (frame < 1 || frame > t.reconstruction.size()) {
+        throw Error(fmt::format("{}: frame {}; expected a frame from 1 to {} (the cameras of {})", names[1], frame,
+                                t.reconstruction.size(), names[0]));
+      }
+      poses.push_back(t.reconstruction[frame - 1]);
+    }
+  } else {
+    poses = t.reconstruction;
+  }
+  if (poses.size() < t.reference.size() || t.reference.size() < kCameraSample) {
+    const bool mapped = t.reconstruction.size() > kVideoCameras;
+    throw Error(fmt::format("{}: {} cameras matched to the reference's {}{}; expected at least as many as the "
+                            "reference has, and at least {}",
+                            mapped ? names[1] : names[0], poses.size(), t.reference.size(),
+                            mapped ? fmt::format(" (frames of {})", names[0]) : "", kCameraSample));
+  }
+  return centres(poses);
+}
+
+TanksAndTemplesRegistration tanks_and_temples_registration(const std::vector<Vec3>& reconstruction,
+                                                           const std::vector<Vec3>& ground_truth,
+                                                           const CropVolume& crop, double tau,
+                                                           const TanksAndTemplesTrajectories& trajectories,
+                                                           std::uint32_t seed,
+                                                           const std::array<std::string, 4>& names,
+                                                           const ProgressFn& progress) {
+  if (!(std::isfinite(tau) && tau > 0)) {
+    throw Error(fmt::format("Tanks and Temples registration: tau {}; expected a length > 0", tau));
+  }
+  const auto step = [&](std::size_t done) {
+    if (progress) progress("registration steps", done, 4);
+  };
+  step(0);
+  TanksAndTemplesRegistration r;
+  r.seed = seed;
+  const std::vector<Vec3> cameras = matched_camera_centres(trajectories, {names[0], names[1]});
+  std::vector<Vec3> reference = centres(trajectories.reference);
+  transform_points(trajectories.reference_alignment, reference);
+  r.cameras = cameras.size();
+  PointPairs pairs(reference.size());
+  for (std::size_t i = 0; i < pairs.size(); ++i) pairs[i] = {static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(i)};
+  r.trajectory = ransac_on_pairs(cameras, reference, pairs, kCameraDistance, kCameraSample, {}, seed);
+  step(1);
+  Eigen::Matrix4d alignment = r.trajectory.transformation;
+  const std::array<std::pair<double, double>, 3> rounds = {
+      {{tau, tau * 80}, {tau / 2.0, tau * 20}, {0.0, 2 * tau}}};  // (voxel size, largest pair distance)
+  for (std::size_t k = 0; k < rounds.size(); ++k) {
+    TanksAndTemplesRegistration::Round& round = r.rounds[k];
+    round.voxel_size = rounds[k].first;
+    round.max_distance = rounds[k].second;
+    const std::vector<Vec3> source = cropped_and_thinned(reconstruction, alignment, crop, round.voxel_size, names[2]);
+    const std::vector<Vec3> target =
+        cropped_and_thinned(ground_truth, Eigen::Matrix4d::Identity(), crop, round.voxel_size, names[3]);
+    round.source_points = source.size();
+    round.target_points = target.size();
+    if (source.empty() || target.empty()) {
+      throw Error(fmt::format("Tanks and Temples registration, round {}: {} of {}'s points and {} of {}'s in the crop "
+                              "volume; expected some of each (is the trajectory the reconstruction's?)",
+                              k + 1, source.size(), names[2], target.size(), names[3]));
+    }
+    round.icp = icp_point_to_point(source, target, round.max_distance, kToolboxIcp);
+    round.icp.pairs.clear();
+    alignment = round.icp.transformation * alignment;  // np.matmul(reg.transformation, init_trans)
+    round.transformation = alignment;
+    step(k + 2);
+  }
+  r.transformation = alignment;
+  return r;
+}
+
+}  // namespace roving
