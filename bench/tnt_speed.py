@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """The Tanks and Temples protocol, end to end: `roving measure --protocol tanks-and-temples`
-against the toolbox's own EvaluateHisto.
+against the toolbox's own EvaluateHisto, or with --registration against its whole run.py
+(registration, then EvaluateHisto) from the reconstruction's camera trajectory.
 
 Each runs in its own process from the files to the figures (wall time, CPU time and peak resident
 memory from os.wait4), on the same machine, one after the other: the toolbox's EvaluateHisto and
@@ -16,7 +17,14 @@ whose height range cuts its cap. The toolbox is not part of roving:
 https://github.com/isl-org/TanksAndTemples (Debian's python3-open3d, -matplotlib).
 
     /usr/bin/python3 bench/tnt_speed.py --roving build/roving/roving --toolbox /path/to/TanksAndTemples \\
-        --points 3000000 30000000 --out results
+        --points 3000000 30000000 --out results [--registration]
+
+With --registration the scene also has the reference's camera trajectory (100 cameras on a ring,
+in the reconstruction's frame, as COLMAP's are) and the reconstruction's own (the same cameras);
+run.py is run untouched through tests/data/tnt/toolbox_on_open3d_0_16.py (Open3D 0.16's names for
+its calls), on every core and unseeded, as users run it; roving runs one registration
+(--protocol-runs 1). The trajectories agree exactly, so any draw of RANSAC gives the same alignment
+to rounding, and the figures must again be equal before anything is timed.
 """
 import argparse
 import json
@@ -53,6 +61,45 @@ plot_graph("Scene", f, tau, edges_s, cum_s, edges_t, cum_t, 5, out)
 print("FIGURES", repr(p), repr(r), repr(f))
 """ % TAU
 
+# run.py's run_evaluation itself, on the scene laid out as its dataset folder (named Barn: tau 0.01),
+# EvaluateHisto wrapped to print its figures in full (run.py prints 4 digits).
+RUN_PY = r"""
+import sys
+toolbox, shim, scene, traj, recon, out = sys.argv[1:]
+sys.path.insert(0, shim)
+import toolbox_on_open3d_0_16  # noqa: F401
+sys.path.insert(0, toolbox)
+import matplotlib
+matplotlib.use("Agg")
+import run
+figures = []
+def recorded(*args, **kwargs):
+    result = evaluate(*args, **kwargs)
+    figures.append(result[:3])
+    return result
+evaluate, run.EvaluateHisto = run.EvaluateHisto, recorded
+run.run_evaluation(scene, traj, recon, out)
+print("FIGURES", *map(repr, figures[0]))
+"""
+
+
+def write_log(path, poses):
+    with open(path, "w") as f:
+        for i, pose in enumerate(poses):
+            f.write(f"{i} {i + 1} {len(poses)}\n" + "\n".join(" ".join(f"{v:.12f}" for v in row) for row in pose) + "\n")
+
+
+def make_trajectories(folder, radius):
+    """100 cameras on a ring 1.5 radii out, in the reconstruction's frame: the reference's and its own."""
+    inverse = np.linalg.inv(alignment())
+    poses = []
+    for a in np.arange(100) / 100 * 2 * np.pi:
+        pose = np.eye(4)
+        pose[:3, 3] = [1.5 * radius * np.cos(a), 1.5 * radius * np.sin(a), 0.3 * radius]
+        poses.append(inverse @ pose)
+    write_log(f"{folder}/Scene_COLMAP_SfM.log", poses)
+    write_log(f"{folder}/recon.log", poses)
+
 
 def alignment():
     angle = 0.4
@@ -84,6 +131,7 @@ def make_scene(folder, points, truth):
             "bounding_polygon": [[-side, -side, 0], [side, -side, 0], [side, side, 0], [0, 0.5 * side, 0],
                                  [-side, side, 0]]}
     json.dump(crop, open(f"{folder}/Scene.json", "w"))
+    make_trajectories(folder, radius)
     return radius
 
 
@@ -94,12 +142,16 @@ def main():
     parser.add_argument("--points", type=int, nargs="+", default=[3000000],
                         help="the reconstruction's points, one scene per number")
     parser.add_argument("--truth-ratio", type=float, default=10, help="reconstruction points per ground-truth point")
-    parser.add_argument("--out", help="a folder for tnt-speed.md; else stdout")
+    parser.add_argument("--out", help="a folder for tnt-speed.md (tnt-registration-speed.md); else stdout")
+    parser.add_argument("--registration", action="store_true",
+                        help="run.py's registration first, from the camera trajectories (roving: one run)")
     args = parser.parse_args()
+    what = "run.py (registration, then EvaluateHisto)" if args.registration else "EvaluateHisto"
     lines = [
-        "# The Tanks and Temples protocol: roving against the toolbox's EvaluateHisto",
+        f"# The Tanks and Temples protocol: roving against the toolbox's {what}",
         "",
-        f"Written by `bench/tnt_speed.py --points {' '.join(map(str, args.points))}` on {platform.node()} "
+        f"Written by `bench/tnt_speed.py --points {' '.join(map(str, args.points))}"
+        f"{' --registration' if args.registration else ''}` on {platform.node()} "
         f"({os.cpu_count()} cores), {time.strftime('%Y-%m-%d')}. Each scene: a reconstruction of N points in its own "
         f"frame with its alignment, against a ground truth of N / {args.truth_ratio:g} points, tau {TAU} m, cropped by "
         "a polygon and a height range. One run each; precision, recall and F equal before anything is timed.",
@@ -115,28 +167,43 @@ def main():
             # the high-water mark), so this process stays small while the scene's arrays are made.
             run([sys.executable, __file__, "--make-scene", folder, str(points), str(truth)])
             rows = []
+            registration = ["--tnt-trajectory", f"{folder}/recon.log", "--tnt-reference-trajectory",
+                            f"{folder}/Scene_COLMAP_SfM.log", "--protocol-runs", "1"] if args.registration else []
             wall, cpu, rss, _ = run([args.roving, "measure", f"{folder}/Scene.ply", f"{folder}/recon.ply",
                                      "--protocol", "tanks-and-temples", "--tnt-crop", f"{folder}/Scene.json",
                                      "--tnt-alignment", f"{folder}/Scene_trans.txt", "--tnt-tau", str(TAU),
                                      "--tnt-curves", f"{folder}/curves.png", "--json", f"{folder}/report.json",
-                                     "--quiet"])
+                                     "--quiet"] + registration)
             report = json.load(open(f"{folder}/report.json"))["tanks_and_temples_protocol"]
             ours = [report["precision"], report["recall"], report["fscore"]]
             rows.append(("roving measure --protocol tanks-and-temples", wall, cpu, rss, ours))
-            if args.toolbox:
+            if args.toolbox and args.registration:
+                scene = f"{folder}/Barn"
+                os.makedirs(scene)
+                for suffix in (".ply", ".json", "_trans.txt", "_COLMAP_SfM.log"):
+                    os.symlink(f"{folder}/Scene{suffix}", f"{scene}/Barn{suffix}")
+                driver = f"{folder}/run_py.py"
+                open(driver, "w").write(RUN_PY)
+                here = os.path.dirname(os.path.abspath(__file__))
+                wall, cpu, rss, out = run([sys.executable, driver, os.path.join(args.toolbox, "python_toolbox", "evaluation"),
+                                           os.path.join(here, "..", "tests", "data", "tnt"), scene, f"{folder}/recon.log",
+                                           f"{folder}/recon.ply", f"{folder}/out"])
+            elif args.toolbox:
                 driver = f"{folder}/driver.py"
                 open(driver, "w").write(DRIVER)
                 os.makedirs(f"{folder}/out")
                 wall, cpu, rss, out = run([sys.executable, driver, os.path.join(args.toolbox, "python_toolbox", "evaluation"),
                                            f"{folder}/recon.ply", f"{folder}/Scene.ply", f"{folder}/Scene_trans.txt",
                                            f"{folder}/Scene.json", f"{folder}/out"])
+            if args.toolbox:
                 theirs = [float(v) for v in next(l for l in out.splitlines() if l.startswith("FIGURES")).split()[1:]]
                 if ours != theirs:
                     raise SystemExit(f"roving {ours!r}, the toolbox {theirs!r}: not the same figures; nothing timed")
-                rows.append(("TanksAndTemples EvaluateHisto", wall, cpu, rss, theirs))
+                rows.append((f"TanksAndTemples {'run.py' if args.registration else 'EvaluateHisto'}", wall, cpu, rss,
+                             theirs))
                 ratios.append((report["reconstruction_points"], rows[1][1] / rows[0][1], rows[1][3] / rows[0][3]))
         add_rows(lines, rows, report["reconstruction_points"], report["ground_truth_points"], "{:.6f}")
-    write_report(lines, ratios, args.out, "tnt-speed.md")
+    write_report(lines, ratios, args.out, "tnt-registration-speed.md" if args.registration else "tnt-speed.md")
 
 
 if __name__ == "__main__":

@@ -39,8 +39,9 @@ PointRegistration evaluate_registration(const std::vector<Vec3>& source, const P
                                         const Eigen::Matrix4d& transformation);
 
 // The similarity (rotation, scale, shift) that takes the pairs' source points closest to their
-// target points in the least-squares sense: Eigen's umeyama with scaling, as Open3D's
-// TransformationEstimationPointToPoint(with_scaling=True). The identity for no pair.
+// target points in the least-squares sense: Umeyama's, as Eigen's umeyama with scaling computes it
+// for Open3D's TransformationEstimationPointToPoint(with_scaling=True), the pairs summed in order.
+// The identity for no pair.
 Eigen::Matrix4d similarity_of_pairs(const std::vector<Vec3>& source, const std::vector<Vec3>& target,
                                     const PointPairs& pairs);
 

@@ -48,6 +48,7 @@ struct TanksAndTemplesClouds {
 
 // Open3D's PointCloud::transform: each point (x, y, z, 1) times the 4 x 4 matrix, divided by the
 // result's w, the products summed in Eigen's order.
+Vec3 transformed_point(const Eigen::Matrix4d& transformation, const Vec3& p);
 void transform_points(const Eigen::Matrix4d& transformation, std::vector<Vec3>& points);
 
 // The curves' edges, as np.arange(0, stop, step) makes them: ceil(stop / step) values k * step.

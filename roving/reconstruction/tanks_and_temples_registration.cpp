@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "roving/core/error.h"
@@ -26,28 +27,37 @@ std::vector<Vec3> centres(const std::vector<Eigen::Matrix4d>& poses) {
   return points;
 }
 
-// registration.py's crop_and_downsample: moved (a copy), cropped, then thinned by voxels of
-// `voxel_size`, or (0) every k-th point kept with k = round(n / 4 M) where n is above 4 M.
-std::vector<Vec3> cropped_and_thinned(const std::vector<Vec3>& points, const Eigen::Matrix4d& transformation,
-                                      const CropVolume& crop, double voxel_size, const std::string& name) {
-  std::vector<Vec3> moved = points;
-  if (transformation != Eigen::Matrix4d::Identity()) transform_points(transformation, moved);
-  std::vector<std::uint8_t> inside(moved.size());
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, moved.size(), 1 << 14), [&](const auto& range) {
-    for (std::size_t i = range.begin(); i < range.end(); ++i) inside[i] = crop.contains(moved[i]) ? 1 : 0;
+}  // namespace
+
+std::vector<Vec3> moved_and_cropped(const std::vector<Vec3>& points, const Eigen::Matrix4d& transformation,
+                                    const CropVolume& crop) {
+  const bool identity = transformation == Eigen::Matrix4d::Identity();
+  const auto moved = [&](std::size_t i) { return identity ? points[i] : transformed_point(transformation, points[i]); };
+  std::vector<std::uint8_t> inside(points.size());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, points.size(), 1 << 14), [&](const auto& range) {
+    for (std::size_t i = range.begin(); i < range.end(); ++i) inside[i] = crop.contains(moved(i)) ? 1 : 0;
   });
-  if (voxel_size > 0) return voxel_down_sample(moved, voxel_size, name, &inside);
   std::vector<Vec3> kept;
-  for (std::size_t i = 0; i < moved.size(); ++i) {
-    if (inside[i]) kept.push_back(moved[i]);
+  kept.reserve(static_cast<std::size_t>(std::count(inside.begin(), inside.end(), 1)));
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    if (inside[i]) kept.push_back(moved(i));
   }
-  const double n = static_cast<double>(kept.size());
-  if (n <= kUniformPoints) return kept;
+  return kept;
+}
+
+namespace {
+
+// registration.py's crop_and_downsample, second half: thinned by voxels of `voxel_size`, or (0) every k-th point kept with
+// k = round(n / 4 M) where n is above 4 M.
+std::vector<Vec3> thinned(std::vector<Vec3> cropped, double voxel_size, const std::string& name) {
+  if (voxel_size > 0) return voxel_down_sample(cropped, voxel_size, name);
+  const double n = static_cast<double>(cropped.size());
+  if (n <= kUniformPoints) return cropped;
   // int(round(n / 4e6)): Python's round, halves to even, as nearbyint rounds by default.
   const auto every = static_cast<std::size_t>(std::nearbyint(n / kUniformPoints));
-  std::vector<Vec3> thinned;
-  for (std::size_t i = 0; i < kept.size(); i += every) thinned.push_back(kept[i]);
-  return thinned;
+  std::vector<Vec3> kept;
+  for (std::size_t i = 0; i < cropped.size(); i += every) kept.push_back(cropped[i]);
+  return kept;
 }
 
 }  // namespace
@@ -106,15 +116,16 @@ TanksAndTemplesRegistration tanks_and_temples_registration(const std::vector<Vec
   r.trajectory = ransac_on_pairs(cameras, reference, pairs, kCameraDistance, kCameraSample, {}, seed);
   step(1);
   Eigen::Matrix4d alignment = r.trajectory.transformation;
+  const std::vector<Vec3> truth_cropped = moved_and_cropped(ground_truth, Eigen::Matrix4d::Identity(), crop);
   const std::array<std::pair<double, double>, 3> rounds = {
       {{tau, tau * 80}, {tau / 2.0, tau * 20}, {0.0, 2 * tau}}};  // (voxel size, largest pair distance)
   for (std::size_t k = 0; k < rounds.size(); ++k) {
     TanksAndTemplesRegistration::Round& round = r.rounds[k];
     round.voxel_size = rounds[k].first;
     round.max_distance = rounds[k].second;
-    const std::vector<Vec3> source = cropped_and_thinned(reconstruction, alignment, crop, round.voxel_size, names[2]);
-    const std::vector<Vec3> target =
-        cropped_and_thinned(ground_truth, Eigen::Matrix4d::Identity(), crop, round.voxel_size, names[3]);
+    const std::vector<Vec3> source =
+        thinned(moved_and_cropped(reconstruction, alignment, crop), round.voxel_size, names[2]);
+    const std::vector<Vec3> target = thinned(truth_cropped, round.voxel_size, names[3]);
     round.source_points = source.size();
     round.target_points = target.size();
     if (source.empty() || target.empty()) {

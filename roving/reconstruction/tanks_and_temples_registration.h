@@ -47,6 +47,12 @@ struct TanksAndTemplesRegistration {
   Eigen::Matrix4d transformation = Eigen::Matrix4d::Identity();  // what EvaluateHisto is given
 };
 
+// registration.py's crop_and_downsample, first half: the points moved by `transformation` (as
+// transform_points moves them), those inside the crop volume kept, in order. Each is moved twice
+// rather than the cloud copied whole (30 M points are 720 MB).
+std::vector<Vec3> moved_and_cropped(const std::vector<Vec3>& points, const Eigen::Matrix4d& transformation,
+                                    const CropVolume& crop);
+
 // The cameras of a trajectory run.py matches to the reference's, as centres: all of them, or where
 // there are more than 1,600, those `mapping` names. Throws roving::Error (naming `names`: the
 // trajectory's file, the mapping's) for fewer cameras than the reference has, an empty mapping
