@@ -72,13 +72,22 @@ sys.path.insert(0, toolbox)
 import matplotlib
 matplotlib.use("Agg")
 import run
-figures = []
+figures, rounds = [], []
 def recorded(*args, **kwargs):
     result = evaluate(*args, **kwargs)
     figures.append(result[:3])
     return result
+def registered(function):
+    def call(*args, **kwargs):
+        result = function(*args, **kwargs)
+        rounds.append((result.fitness, result.inlier_rmse))
+        return result
+    return call
 evaluate, run.EvaluateHisto = run.EvaluateHisto, recorded
+run.registration_vol_ds = registered(run.registration_vol_ds)
+run.registration_unif = registered(run.registration_unif)
 run.run_evaluation(scene, traj, recon, out)
+print("ROUNDS", *(f"{f!r} {r!r}" for f, r in rounds))
 print("FIGURES", *map(repr, figures[0]))
 """
 
@@ -154,12 +163,14 @@ def main():
         f"{' --registration' if args.registration else ''}` on {platform.node()} "
         f"({os.cpu_count()} cores), {time.strftime('%Y-%m-%d')}. Each scene: a reconstruction of N points in its own "
         f"frame with its alignment, against a ground truth of N / {args.truth_ratio:g} points, tau {TAU} m, cropped by "
-        "a polygon and a height range. One run each; precision, recall and F equal before anything is timed.",
+        "a polygon and a height range. One run each; precision, recall and F equal before anything is timed"
+        + (" (with the registration: or a few thinned points apart, as noted below the table)." if args.registration
+           else "."),
         "",
         "| reconstruction | ground truth | tool | wall s | CPU s | peak RSS MiB | precision | recall | F-score |",
         "| ---: | ---: | --- | ---: | ---: | ---: | ---: | ---: | ---: |",
     ]
-    ratios = []
+    ratios, notes = [], []
     for points in args.points:
         truth = int(points / args.truth_ratio)
         with tempfile.TemporaryDirectory() as folder:
@@ -197,12 +208,25 @@ def main():
                                            f"{folder}/Scene.json", f"{folder}/out"])
             if args.toolbox:
                 theirs = [float(v) for v in next(l for l in out.splitlines() if l.startswith("FIGURES")).split()[1:]]
-                if ours != theirs:
+                # run.py's RANSAC is unseeded and threaded: its matrix moves by 1e-15 from run to run,
+                # which can move a point of tens of millions across a voxel's boundary in the crop and
+                # down-sampling that follow. With it the figures must agree to a few points of the
+                # thinned clouds (and are equal where no point moves); without it, exactly.
+                counts = [report["reconstruction_thinned"], report["ground_truth_thinned"]]
+                points_apart = [abs(a - b) * n for a, b, n in zip(ours, theirs, counts)]
+                if ours != theirs and not (args.registration and max(points_apart) <= 5.5):
                     raise SystemExit(f"roving {ours!r}, the toolbox {theirs!r}: not the same figures; nothing timed")
+                if ours != theirs:
+                    notes.append(f"{report['reconstruction_points']:,} points: precision and recall "
+                                 f"{points_apart[0]:.0f} and {points_apart[1]:.0f} thinned points apart "
+                                 f"(of {counts[0]:,} and {counts[1]:,}), run.py's own RANSAC matrix moving a "
+                                 "point across a cube's boundary (docs/reconstruction.md)")
                 rows.append((f"TanksAndTemples {'run.py' if args.registration else 'EvaluateHisto'}", wall, cpu, rss,
                              theirs))
                 ratios.append((report["reconstruction_points"], rows[1][1] / rows[0][1], rows[1][3] / rows[0][3]))
-        add_rows(lines, rows, report["reconstruction_points"], report["ground_truth_points"], "{:.6f}")
+        add_rows(lines, rows, report["reconstruction_points"], report["ground_truth_points"],
+                 "{:.8f}" if args.registration else "{:.6f}")
+    lines += [""] + [f"- {note}." for note in notes] if notes else []
     write_report(lines, ratios, args.out, "tnt-registration-speed.md" if args.registration else "tnt-speed.md")
 
 
