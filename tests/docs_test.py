@@ -30,7 +30,8 @@ measure = options_of(roving, "measure", "--help")
 batch = options_of(roving, "batch", "--help")
 known = (measure | batch | options_of(roving, "--help") | options_of(bench, "--help") | options_of(datasets, "--help")
          | options_of(sys.executable, str(source / "bench" / "gl_timings.py"), "--help")
-         | options_of(sys.executable, str(source / "bench" / "cloudcompare_c2m.py"), "--help"))
+         | options_of(sys.executable, str(source / "bench" / "cloudcompare_c2m.py"), "--help")
+         | options_of(sys.executable, str(source / "bench" / "tnt_speed.py"), "--help"))
 pages = [source / "README.md"] + sorted((source / "docs").glob("*.md"))
 failures = []
 for option, command, page in ([(o, "measure", "measuring.md") for o in sorted(measure)] +
