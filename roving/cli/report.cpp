@@ -836,6 +836,19 @@ Spread spread_of(const std::vector<Run>& runs, double Run::*figure) {
   return s;
 }
 
+// Each figure's spread over the runs as JSON (null for one run).
+template <class Run, std::size_t N>
+nlohmann::json spread_json(const std::vector<Run>& runs,
+                           const std::array<std::pair<const char*, double Run::*>, N>& figures) {
+  if (runs.size() < 2) return nullptr;
+  nlohmann::json spread = nlohmann::json::object();
+  for (const auto& [name, figure] : figures) {
+    const Spread s = spread_of(runs, figure);
+    spread[name] = {{"mean", s.mean}, {"sd", s.sd}, {"min", s.min}, {"max", s.max}};
+  }
+  return spread;
+}
+
 constexpr std::array<std::pair<const char*, double DtuRun::*>, 3> kDtuFigures = {
     {{"accuracy", &DtuRun::accuracy}, {"completeness", &DtuRun::completeness}, {"overall", &DtuRun::overall}}};
 
@@ -878,14 +891,6 @@ nlohmann::json dtu_json(const DtuReport& d) {
                     {"accuracy_counted", r.accuracy_counted},
                     {"completeness_counted", r.completeness_counted}});
   }
-  nlohmann::json spread = nullptr;
-  if (f.runs.size() > 1) {
-    spread = nlohmann::json::object();
-    for (const auto& [name, figure] : kDtuFigures) {
-      const Spread s = spread_of(f.runs, figure);
-      spread[name] = {{"mean", s.mean}, {"sd", s.sd}, {"min", s.min}, {"max", s.max}};
-    }
-  }
   return {{"definition",
            "DTU MVS evaluation as DTUeval-python's eval.py computes it: TEST sampled (a mesh: its vertices, then "
            "per face a grid of step density scaled to its shape) or read (points), shuffled, thinned to no two "
@@ -909,7 +914,7 @@ nlohmann::json dtu_json(const DtuReport& d) {
           {"completeness", first.completeness},
           {"overall", first.overall},
           {"runs", runs},
-          {"spread", spread},
+          {"spread", spread_json(f.runs, kDtuFigures)},
           {"exact_within_region", dtu_exact_json(d)},
           {"seconds", d.seconds}};
 }
@@ -1002,14 +1007,6 @@ nlohmann::json tnt_registration_json(const TanksAndTemplesReport& t) {
                     {"recall", run.recall},
                     {"fscore", run.fscore}});
   }
-  nlohmann::json spread = nullptr;
-  if (t.registrations.size() > 1) {
-    spread = nlohmann::json::object();
-    for (const auto& [name, figure] : kTntFigures) {
-      const Spread s = spread_of(t.registrations, figure);
-      spread[name] = {{"mean", s.mean}, {"sd", s.sd}, {"min", s.min}, {"max", s.max}};
-    }
-  }
   return {{"definition",
            "run.py's registration before EvaluateHisto: the reconstruction's camera centres (those the mapping "
            "names where there are more than 1,600) aligned to the scene's (COLMAP's, moved by alignment_file) by "
@@ -1024,7 +1021,7 @@ nlohmann::json tnt_registration_json(const TanksAndTemplesReport& t) {
           {"mapping", t.mapping.empty() ? nlohmann::json(nullptr) : nlohmann::json(t.mapping)},
           {"cameras", t.registrations.front().registration.cameras},
           {"runs", runs},
-          {"spread", spread},
+          {"spread", spread_json(t.registrations, kTntFigures)},
           {"seconds", t.registration_seconds}};
 }
 
