@@ -47,8 +47,8 @@ std::vector<Vec3> moved_and_cropped(const std::vector<Vec3>& points, const Eigen
 
 namespace {
 
-// registration.py's crop_and_downsample, second half: thinned by voxels of `voxel_size`, or (0) every k-th point kept with
-// k = round(n / 4 M) where n is above 4 M.
+// registration.py's crop_and_downsample, second half: thinned by voxels of `voxel_size`, or (0)
+// every k-th point kept with k = round(n / 4 M) where n is above 4 M.
 std::vector<Vec3> thinned(std::vector<Vec3> cropped, double voxel_size, const std::string& name) {
   if (voxel_size > 0) return voxel_down_sample(cropped, voxel_size, name);
   const double n = static_cast<double>(cropped.size());
