@@ -8,7 +8,7 @@ cd "$(dirname "$0")/../.."
 seconds="${1:-60}"
 shift || true
 formats=("$@")
-[ ${#formats[@]} -gt 0 ] || formats=(obj ply off stl binvox bpt xyz gltf glb 3mf png jpg mat part crop)
+[ ${#formats[@]} -gt 0 ] || formats=(obj ply off stl binvox bpt xyz gltf glb 3mf png jpg mat part crop log)
 if [ ! -x build-fuzz/tests/fuzz/fuzz_obj ]; then
   CC=clang CXX=clang++ cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DROVING_FUZZ=ON >/dev/null
 fi
