@@ -167,12 +167,46 @@ TEST(PointRegistration, IcpUndoesASmallSimilarity) {
   for (Vec3& p : target) p = Vec3(1.0 * p[0], 0.7 * p[1], 0.5 * p[2]);  // no symmetry to slide along
   std::vector<Vec3> source = target;
   transform_points(known_similarity(), source);
-  const PointRegistration r = icp_point_to_point(source, target, 0.5, {0, 0, 200});
+  const PointTree tree(target);
+  const PointRegistration r = icp_point_to_point(source, tree, 0.5, {0, 0, 200});
   EXPECT_TRUE(r.transformation.isApprox(known_similarity().inverse(), 1e-6)) << r.transformation;
   EXPECT_EQ(r.fitness, 1.0);
   EXPECT_LT(r.inlier_rmse, 1e-6);
-  EXPECT_THROW(icp_point_to_point(source, target, 0), Error);
-  EXPECT_THROW(icp_point_to_point(source, {}, 1), Error);
+  EXPECT_THROW(icp_point_to_point(source, tree, 0), Error);
+  const std::vector<Vec3> none;
+  EXPECT_THROW(icp_point_to_point(source, PointTree(none), 1), Error);
+}
+
+// ICP carries each point's nearest target point from step to step and searches again only where
+// the point moved far enough to change it: every step's pairs, fitness and RMSE must be those of
+// a search from scratch, bit for bit. A noisy ellipsoid, its copy moved, a distance that leaves
+// some points without a pair.
+TEST(PointRegistration, IcpPairsAreThoseOfASearchFromScratch) {
+  std::vector<Vec3> target = sphere_points(3000);
+  for (Vec3& p : target) p = Vec3(1.0 * p[0], 0.7 * p[1], 0.5 * p[2]);
+  std::vector<Vec3> source = sphere_points(5000);
+  for (std::size_t k = 0; k < source.size(); ++k) {
+    const Vec3& p = source[k];
+    source[k] = Vec3(1.0 * p[0], 0.7 * p[1], 0.5 * p[2]) * (1 + 0.01 * std::sin(37.0 * double(k)));
+  }
+  transform_points(known_similarity(), source);
+  const PointTree tree(target);
+  const double max_distance = 0.03;
+  std::vector<Vec3> moved = source;  // ICP's steps, each searched from scratch
+  PointRegistration scratch = evaluate_registration(moved, tree, max_distance, Eigen::Matrix4d::Identity());
+  for (int steps = 1; steps <= 12; ++steps) {
+    const Eigen::Matrix4d update = similarity_of_pairs(moved, target, scratch.pairs);
+    transform_points(update, moved);
+    scratch = evaluate_registration(moved, tree, max_distance, update * scratch.transformation);
+    const PointRegistration carried = icp_point_to_point(source, tree, max_distance, {-1, -1, steps});
+    ASSERT_EQ(carried.iterations, steps);
+    EXPECT_EQ(carried.pairs, scratch.pairs) << steps << " steps";
+    EXPECT_EQ(carried.fitness, scratch.fitness) << steps << " steps";
+    EXPECT_EQ(carried.inlier_rmse, scratch.inlier_rmse) << steps << " steps";
+    EXPECT_EQ(carried.transformation, scratch.transformation) << steps << " steps";
+  }
+  EXPECT_GT(scratch.fitness, 0.9);
+  EXPECT_LT(scratch.fitness, 1.0);
 }
 
 // RANSAC on pairs of which a quarter are wrong: a draw of inliers alone gives the similarity

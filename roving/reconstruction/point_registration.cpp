@@ -1,6 +1,7 @@
 #include "roving/reconstruction/point_registration.h"
 
 #include <fmt/format.h>
+#include <tbb/parallel_for.h>
 
 #include <Eigen/SVD>
 #include <algorithm>
@@ -11,18 +12,18 @@
 
 namespace roving {
 
-PointRegistration evaluate_registration(const std::vector<Vec3>& source, const PointTree& target, double max_distance,
-                                        const Eigen::Matrix4d& transformation) {
+namespace {
+
+// The registration of source points whose nearest target points are `nearest`, `squared` away.
+PointRegistration registration_of(const std::vector<std::uint32_t>& nearest, const std::vector<double>& squared,
+                                  double max_distance, const Eigen::Matrix4d& transformation) {
   PointRegistration result;
   result.transformation = transformation;
-  std::vector<std::uint32_t> nearest;
-  std::vector<double> squared;
-  target.nearest(source, nearest, squared);
   const double limit = max_distance * max_distance;
   result.pairs.reserve(static_cast<std::size_t>(
       std::count_if(squared.begin(), squared.end(), [&](double d) { return d < limit; })));
   double error2 = 0;
-  for (std::size_t i = 0; i < source.size(); ++i) {
+  for (std::size_t i = 0; i < squared.size(); ++i) {
     if (squared[i] < limit) {
       error2 += squared[i];
       result.pairs.emplace_back(static_cast<std::uint32_t>(i), nearest[i]);
@@ -30,10 +31,74 @@ PointRegistration evaluate_registration(const std::vector<Vec3>& source, const P
   }
   if (!result.pairs.empty()) {
     const double count = static_cast<double>(result.pairs.size());
-    result.fitness = count / static_cast<double>(source.size());
+    result.fitness = count / static_cast<double>(squared.size());
     result.inlier_rmse = std::sqrt(error2 / count);
   }
   return result;
+}
+
+// Each source point's nearest target point, carried from one ICP step to the next. A point whose
+// nearest target point is d1 away and whose second nearest is d2 keeps that nearest point while
+// it moves less than (d2 - d1) / 2 in all (the triangle inequality), and ICP's later steps move
+// the points by little: most points then need no search, only their distance computed again, as
+// the k-d tree computes it. The same pairs as a search from scratch (a tie aside, where any of the
+// equally near points is as right, and duplicates add the same to every sum).
+class NearestTargets {
+ public:
+  NearestTargets(const PointTree& tree, const std::vector<Vec3>& source)
+      : tree_(tree), index_(source.size()), squared_(source.size()), slack_(source.size()) {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, source.size(), 4096), [&](const auto& range) {
+      for (std::size_t i = range.begin(); i < range.end(); ++i) search(i, source[i]);
+    });
+  }
+
+  // Moves each source point as transform_points does, and finds its nearest target point again.
+  void move(const Eigen::Matrix4d& update, std::vector<Vec3>& source) {
+    const std::vector<Vec3>& target = tree_.points();
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, source.size(), 4096), [&](const auto& range) {
+      for (std::size_t i = range.begin(); i < range.end(); ++i) {
+        const Vec3 moved = transformed_point(update, source[i]);
+        slack_[i] -= (moved - source[i]).norm();
+        source[i] = moved;
+        if (slack_[i] > 0) {
+          const Vec3& t = target[index_[i]];
+          const double dx = moved[0] - t[0], dy = moved[1] - t[1], dz = moved[2] - t[2];
+          squared_[i] = dx * dx + dy * dy + dz * dz;  // the tree's sum, in its order
+        } else {
+          search(i, moved);
+        }
+      }
+    });
+  }
+
+  PointRegistration registration(double max_distance, const Eigen::Matrix4d& transformation) const {
+    return registration_of(index_, squared_, max_distance, transformation);
+  }
+
+ private:
+  void search(std::size_t i, const Vec3& p) {
+    double second = 0;
+    tree_.nearest_two(p, index_[i], squared_[i], second);
+    // Half the gap, less a margin far above the rounding of the distances (so that a point kept
+    // is one the search would also find first).
+    const double d1 = std::sqrt(squared_[i]), d2 = std::sqrt(second);
+    slack_[i] = (d2 - d1) / 2 - 1e-9 * (p.cwiseAbs().maxCoeff() + d2);
+  }
+
+  const PointTree& tree_;
+  std::vector<std::uint32_t> index_;
+  std::vector<double> squared_;
+  std::vector<double> slack_;  // how far the point may still move and keep its nearest target point
+};
+
+}  // namespace
+
+PointRegistration evaluate_registration(const std::vector<Vec3>& source, const PointTree& target, double max_distance,
+                                        const Eigen::Matrix4d& transformation) {
+  std::vector<std::uint32_t> nearest;
+  std::vector<double> squared;
+  target.nearest(source, nearest, squared);
+  return registration_of(nearest, squared, max_distance, transformation);
 }
 
 Eigen::Matrix4d similarity_of_pairs(const std::vector<Vec3>& source, const std::vector<Vec3>& target,
@@ -41,24 +106,40 @@ Eigen::Matrix4d similarity_of_pairs(const std::vector<Vec3>& source, const std::
   if (pairs.empty()) return Eigen::Matrix4d::Identity();
   // Eigen's umeyama step for step, its 3 x n matrices (and their centred copies, 4 x 24 bytes a
   // pair: 230 MB for the 2.4 M pairs of a 3 M-point cloud, each fresh allocation a page fault a
-  // page) replaced by sums over the pairs in order. Its sums are blocked and vectorised, so the
-  // last bits of the means and of sigma differ from these.
+  // page) replaced by sums over the pairs. Eigen's sums are blocked and vectorised, these are
+  // blocks of pairs summed on every core and added in order (the same bits on any number of
+  // cores): the last bits of the means and of sigma differ from Eigen's.
   const double one_over_n = 1.0 / static_cast<double>(pairs.size());
-  Vec3 source_sum = Vec3::Zero(), target_sum = Vec3::Zero();
-  for (const auto& [from, to] : pairs) {
-    source_sum += source[from];
-    target_sum += target[to];
-  }
-  const Vec3 source_mean = source_sum * one_over_n, target_mean = target_sum * one_over_n;
-  Eigen::Matrix3d sigma = Eigen::Matrix3d::Zero();  // the covariance of target against source
-  double source_variance = 0;
-  for (const auto& [from, to] : pairs) {
-    const Vec3 a = source[from] - source_mean, b = target[to] - target_mean;
-    sigma += b * a.transpose();
-    source_variance += a.squaredNorm();
-  }
-  sigma *= one_over_n;
-  source_variance *= one_over_n;
+  const auto summed = [&](auto term, auto zero) {
+    constexpr std::size_t kBlock = 1 << 15;
+    std::vector<decltype(zero)> block_sums((pairs.size() + kBlock - 1) / kBlock, zero);
+    tbb::parallel_for(std::size_t(0), block_sums.size(), [&](std::size_t b) {
+      for (std::size_t k = b * kBlock; k < std::min(pairs.size(), (b + 1) * kBlock); ++k) {
+        term(block_sums[b], source[pairs[k].first], target[pairs[k].second]);
+      }
+    });
+    for (std::size_t b = 1; b < block_sums.size(); ++b) block_sums[0] += block_sums[b];
+    return block_sums[0];
+  };
+  using Sums = Eigen::Matrix<double, 3, 2>;  // the source's, the target's
+  const Sums means = summed(
+                         [](Sums& sum, const Vec3& a, const Vec3& b) {
+                           sum.col(0) += a;
+                           sum.col(1) += b;
+                         },
+                         Sums::Zero().eval()) *
+                     one_over_n;
+  const Vec3 source_mean = means.col(0), target_mean = means.col(1);
+  using Moments = Eigen::Matrix<double, 3, 4>;  // the covariance of target against source; the source's variance
+  const Moments moments = summed(
+      [&](Moments& sum, const Vec3& source_point, const Vec3& target_point) {
+        const Vec3 a = source_point - source_mean, b = target_point - target_mean;
+        sum.leftCols<3>() += b * a.transpose();
+        sum(0, 3) += a.squaredNorm();
+      },
+      Moments::Zero().eval());
+  const Eigen::Matrix3d sigma = moments.leftCols<3>() * one_over_n;
+  const double source_variance = moments(0, 3) * one_over_n;
   const Eigen::JacobiSVD<Eigen::Matrix3d> svd(sigma, Eigen::ComputeFullU | Eigen::ComputeFullV);
   Vec3 s = Vec3::Ones();  // a reflection turned into the nearest rotation
   if (svd.matrixU().determinant() * svd.matrixV().determinant() < 0) s(2) = -1;
@@ -70,24 +151,26 @@ Eigen::Matrix4d similarity_of_pairs(const std::vector<Vec3>& source, const std::
   return m;
 }
 
-PointRegistration icp_point_to_point(std::vector<Vec3> source, const std::vector<Vec3>& target, double max_distance,
+PointRegistration icp_point_to_point(std::vector<Vec3> source, const PointTree& tree, double max_distance,
                                      const IcpCriteria& criteria) {
   if (!(std::isfinite(max_distance) && max_distance > 0)) {
     throw Error(fmt::format("ICP: the largest distance of a pair is {}; expected a length > 0", max_distance));
   }
+  const std::vector<Vec3>& target = tree.points();
   if (target.empty()) throw Error("ICP: the target has no point");
-  const PointTree tree(target);
+  NearestTargets nearest(tree, source);
   Eigen::Matrix4d transformation = Eigen::Matrix4d::Identity();
-  PointRegistration result = evaluate_registration(source, tree, max_distance, transformation);
+  PointRegistration result = nearest.registration(max_distance, transformation);
   for (int i = 0; i < criteria.max_iterations; ++i) {
     const Eigen::Matrix4d update = similarity_of_pairs(source, target, result.pairs);
     transformation = update * transformation;
-    transform_points(update, source);
-    const PointRegistration last = std::move(result);
-    result = evaluate_registration(source, tree, max_distance, transformation);
+    nearest.move(update, source);
+    const double last_fitness = result.fitness, last_rmse = result.inlier_rmse;
+    result.pairs = {};  // freed before the next are made
+    result = nearest.registration(max_distance, transformation);
     result.iterations = i + 1;
-    if (std::abs(last.fitness - result.fitness) < criteria.relative_fitness &&
-        std::abs(last.inlier_rmse - result.inlier_rmse) < criteria.relative_rmse) {
+    if (std::abs(last_fitness - result.fitness) < criteria.relative_fitness &&
+        std::abs(last_rmse - result.inlier_rmse) < criteria.relative_rmse) {
       break;
     }
   }

@@ -56,7 +56,7 @@ struct IcpCriteria {  // Open3D's ICPConvergenceCriteria and its defaults
 // evaluate again, stopping once both the fitness and the RMSE changed by less than their criteria.
 // The result's transformation is the product of the updates. Throws roving::Error for a
 // max_distance that is not finite and > 0, or a target with no point.
-PointRegistration icp_point_to_point(std::vector<Vec3> source, const std::vector<Vec3>& target, double max_distance,
+PointRegistration icp_point_to_point(std::vector<Vec3> source, const PointTree& target, double max_distance,
                                      const IcpCriteria& criteria = {});
 
 }  // namespace roving

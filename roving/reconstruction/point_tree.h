@@ -26,6 +26,9 @@ class PointTree {
   // The index of each of `from`'s nearest point here and the squared distance to it (summed as
   // above); the tree must hold points.
   void nearest(const std::vector<Vec3>& from, std::vector<std::uint32_t>& index, std::vector<double>& squared) const;
+  // The nearest point to `p` (its index and squared distance, as above) and the squared distance
+  // to the second nearest (infinity where the tree holds one point); the tree must hold points.
+  void nearest_two(const Vec3& p, std::uint32_t& index, double& squared, double& second_squared) const;
 
  private:
   struct Index;

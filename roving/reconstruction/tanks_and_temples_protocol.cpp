@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
+#include <tbb/parallel_sort.h>
 
 #include <algorithm>
 #include <cmath>
@@ -38,7 +39,7 @@ std::vector<double> histogram_edges(double stop, double step) {
 
 std::vector<double> cumulative_shares(std::vector<double> distances, const std::vector<double>& edges) {
   if (edges.size() < 2 || distances.empty()) return {};
-  std::sort(distances.begin(), distances.end());
+  tbb::parallel_sort(distances.begin(), distances.end());
   std::vector<double> shares(edges.size() - 1);
   const double total = static_cast<double>(distances.size());
   for (std::size_t i = 1; i < edges.size(); ++i) {

@@ -2,9 +2,11 @@
 
 #include <fmt/format.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 
 #include "roving/core/error.h"
 #include "roving/reconstruction/correspondence_ransac.h"
@@ -32,16 +34,28 @@ std::vector<Vec3> centres(const std::vector<Eigen::Matrix4d>& poses) {
 std::vector<Vec3> moved_and_cropped(const std::vector<Vec3>& points, const Eigen::Matrix4d& transformation,
                                     const CropVolume& crop) {
   const bool identity = transformation == Eigen::Matrix4d::Identity();
-  const auto moved = [&](std::size_t i) { return identity ? points[i] : transformed_point(transformation, points[i]); };
+  // Blocks of points, each counted on some core, then each copied to its place after the blocks
+  // before it: the points in their order, every core busy.
+  constexpr std::size_t kBlock = 1 << 14;
+  const std::size_t blocks = (points.size() + kBlock - 1) / kBlock;
   std::vector<std::uint8_t> inside(points.size());
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, points.size(), 1 << 14), [&](const auto& range) {
-    for (std::size_t i = range.begin(); i < range.end(); ++i) inside[i] = crop.contains(moved(i)) ? 1 : 0;
+  std::vector<std::size_t> start(blocks + 1, 0);
+  tbb::parallel_for(std::size_t(0), blocks, [&](std::size_t b) {
+    std::size_t count = 0;
+    for (std::size_t i = b * kBlock; i < std::min(points.size(), (b + 1) * kBlock); ++i) {
+      inside[i] = crop.contains(identity ? points[i] : transformed_point(transformation, points[i])) ? 1 : 0;
+      count += inside[i];
+    }
+    start[b + 1] = count;
   });
-  std::vector<Vec3> kept;
-  kept.reserve(static_cast<std::size_t>(std::count(inside.begin(), inside.end(), 1)));
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    if (inside[i]) kept.push_back(moved(i));
-  }
+  for (std::size_t b = 0; b < blocks; ++b) start[b + 1] += start[b];
+  std::vector<Vec3> kept(start[blocks]);
+  tbb::parallel_for(std::size_t(0), blocks, [&](std::size_t b) {
+    std::size_t k = start[b];
+    for (std::size_t i = b * kBlock; i < std::min(points.size(), (b + 1) * kBlock); ++i) {
+      if (inside[i]) kept[k++] = identity ? points[i] : transformed_point(transformation, points[i]);
+    }
+  });
   return kept;
 }
 
@@ -123,9 +137,13 @@ TanksAndTemplesRegistration tanks_and_temples_registration(const std::vector<Vec
     TanksAndTemplesRegistration::Round& round = r.rounds[k];
     round.voxel_size = rounds[k].first;
     round.max_distance = rounds[k].second;
-    const std::vector<Vec3> source =
-        thinned(moved_and_cropped(reconstruction, alignment, crop), round.voxel_size, names[2]);
     const std::vector<Vec3> target = thinned(truth_cropped, round.voxel_size, names[3]);
+    // nanoflann builds a tree on one core: the target's while the source is moved and thinned.
+    std::unique_ptr<PointTree> tree;
+    std::vector<Vec3> source;
+    tbb::parallel_invoke(
+        [&] { tree = std::make_unique<PointTree>(target); },
+        [&] { source = thinned(moved_and_cropped(reconstruction, alignment, crop), round.voxel_size, names[2]); });
     round.source_points = source.size();
     round.target_points = target.size();
     if (source.empty() || target.empty()) {
@@ -133,7 +151,7 @@ TanksAndTemplesRegistration tanks_and_temples_registration(const std::vector<Vec
                               "volume; expected some of each (is the trajectory the reconstruction's?)",
                               k + 1, source.size(), names[2], target.size(), names[3]));
     }
-    round.icp = icp_point_to_point(source, target, round.max_distance, kToolboxIcp);
+    round.icp = icp_point_to_point(std::move(source), *tree, round.max_distance, kToolboxIcp);
     round.icp.pairs.clear();
     alignment = round.icp.transformation * alignment;  // np.matmul(reg.transformation, init_trans)
     round.transformation = alignment;
