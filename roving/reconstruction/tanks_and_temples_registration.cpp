@@ -31,50 +31,71 @@ std::vector<Vec3> centres(const std::vector<Eigen::Matrix4d>& poses) {
 
 }  // namespace
 
-std::vector<Vec3> moved_and_cropped(const std::vector<Vec3>& points, const Eigen::Matrix4d& transformation,
-                                    const CropVolume& crop) {
+namespace {
+
+// Which points, moved by a transformation, the crop volume holds: a mark per point, and per block
+// of kCropBlock points how many are marked before it (the last entry: all of them). The blocks are
+// counted on every core, and the points copied after them in order.
+constexpr std::size_t kCropBlock = 1 << 14;
+struct CropMarks {
+  std::vector<std::uint8_t> inside;
+  std::vector<std::size_t> before;
+};
+
+CropMarks crop_marks(const std::vector<Vec3>& points, const Eigen::Matrix4d& transformation, const CropVolume& crop) {
   const bool identity = transformation == Eigen::Matrix4d::Identity();
-  // Blocks of points, each counted on some core, then each copied to its place after the blocks
-  // before it: the points in their order, every core busy.
-  constexpr std::size_t kBlock = 1 << 14;
-  const std::size_t blocks = (points.size() + kBlock - 1) / kBlock;
-  std::vector<std::uint8_t> inside(points.size());
-  std::vector<std::size_t> start(blocks + 1, 0);
+  const std::size_t blocks = (points.size() + kCropBlock - 1) / kCropBlock;
+  CropMarks marks{std::vector<std::uint8_t>(points.size()), std::vector<std::size_t>(blocks + 1, 0)};
   tbb::parallel_for(std::size_t(0), blocks, [&](std::size_t b) {
     std::size_t count = 0;
-    for (std::size_t i = b * kBlock; i < std::min(points.size(), (b + 1) * kBlock); ++i) {
-      inside[i] = crop.contains(identity ? points[i] : transformed_point(transformation, points[i])) ? 1 : 0;
-      count += inside[i];
+    for (std::size_t i = b * kCropBlock; i < std::min(points.size(), (b + 1) * kCropBlock); ++i) {
+      marks.inside[i] = crop.contains(identity ? points[i] : transformed_point(transformation, points[i])) ? 1 : 0;
+      count += marks.inside[i];
     }
-    start[b + 1] = count;
+    marks.before[b + 1] = count;
   });
-  for (std::size_t b = 0; b < blocks; ++b) start[b + 1] += start[b];
-  std::vector<Vec3> kept(start[blocks]);
-  tbb::parallel_for(std::size_t(0), blocks, [&](std::size_t b) {
-    std::size_t k = start[b];
-    for (std::size_t i = b * kBlock; i < std::min(points.size(), (b + 1) * kBlock); ++i) {
-      if (inside[i]) kept[k++] = identity ? points[i] : transformed_point(transformation, points[i]);
+  for (std::size_t b = 0; b < blocks; ++b) marks.before[b + 1] += marks.before[b];
+  return marks;
+}
+
+// Every `every`-th of the marked points, moved, in order (each moved again: no copy of the cloud).
+std::vector<Vec3> moved_marked(const std::vector<Vec3>& points, const Eigen::Matrix4d& transformation,
+                               const CropMarks& marks, std::size_t every) {
+  const bool identity = transformation == Eigen::Matrix4d::Identity();
+  std::vector<Vec3> kept((marks.before.back() + every - 1) / every);
+  tbb::parallel_for(std::size_t(0), marks.before.size() - 1, [&](std::size_t b) {
+    std::size_t k = marks.before[b];  // the marked points before this one
+    for (std::size_t i = b * kCropBlock; i < std::min(points.size(), (b + 1) * kCropBlock); ++i) {
+      if (!marks.inside[i]) continue;
+      if (k % every == 0) kept[k / every] = identity ? points[i] : transformed_point(transformation, points[i]);
+      ++k;
     }
   });
   return kept;
 }
 
-namespace {
-
-// registration.py's crop_and_downsample, second half: thinned by voxels of `voxel_size`, or (0)
-// every k-th point kept with k = round(n / 4 M) where n is above 4 M.
-std::vector<Vec3> thinned(std::vector<Vec3> cropped, double voxel_size, const std::string& name) {
-  if (voxel_size > 0) return voxel_down_sample(cropped, voxel_size, name);
-  const double n = static_cast<double>(cropped.size());
-  if (n <= kUniformPoints) return cropped;
+// registration.py's crop_and_downsample: the points moved, cropped, and thinned by voxels of
+// `voxel_size`, or (0) every k-th point kept with k = round(n / 4 M) where the n cropped points
+// are above 4 M. Neither copies the moved cloud whole (30 M points are 720 MB).
+std::vector<Vec3> cropped_and_thinned(const std::vector<Vec3>& points, const Eigen::Matrix4d& transformation,
+                                      const CropVolume& crop, double voxel_size, const std::string& name) {
+  const CropMarks marks = crop_marks(points, transformation, crop);
+  if (voxel_size > 0) {
+    const bool identity = transformation == Eigen::Matrix4d::Identity();
+    return voxel_down_sample(points, voxel_size, name, &marks.inside, identity ? nullptr : &transformation);
+  }
+  const double n = static_cast<double>(marks.before.back());
   // int(round(n / 4e6)): Python's round, halves to even, as nearbyint rounds by default.
-  const auto every = static_cast<std::size_t>(std::nearbyint(n / kUniformPoints));
-  std::vector<Vec3> kept;
-  for (std::size_t i = 0; i < cropped.size(); i += every) kept.push_back(cropped[i]);
-  return kept;
+  const auto every = n > kUniformPoints ? static_cast<std::size_t>(std::nearbyint(n / kUniformPoints)) : 1;
+  return moved_marked(points, transformation, marks, every);
 }
 
 }  // namespace
+
+std::vector<Vec3> moved_and_cropped(const std::vector<Vec3>& points, const Eigen::Matrix4d& transformation,
+                                    const CropVolume& crop) {
+  return moved_marked(points, transformation, crop_marks(points, transformation, crop), 1);
+}
 
 std::vector<Vec3> matched_camera_centres(const TanksAndTemplesTrajectories& t,
                                          const std::array<std::string, 2>& names) {
@@ -130,20 +151,20 @@ TanksAndTemplesRegistration tanks_and_temples_registration(const std::vector<Vec
   r.trajectory = ransac_on_pairs(cameras, reference, pairs, kCameraDistance, kCameraSample, {}, seed);
   step(1);
   Eigen::Matrix4d alignment = r.trajectory.transformation;
-  const std::vector<Vec3> truth_cropped = moved_and_cropped(ground_truth, Eigen::Matrix4d::Identity(), crop);
   const std::array<std::pair<double, double>, 3> rounds = {
       {{tau, tau * 80}, {tau / 2.0, tau * 20}, {0.0, 2 * tau}}};  // (voxel size, largest pair distance)
   for (std::size_t k = 0; k < rounds.size(); ++k) {
     TanksAndTemplesRegistration::Round& round = r.rounds[k];
     round.voxel_size = rounds[k].first;
     round.max_distance = rounds[k].second;
-    const std::vector<Vec3> target = thinned(truth_cropped, round.voxel_size, names[3]);
+    const std::vector<Vec3> target =
+        cropped_and_thinned(ground_truth, Eigen::Matrix4d::Identity(), crop, round.voxel_size, names[3]);
     // nanoflann builds a tree on one core: the target's while the source is moved and thinned.
     std::unique_ptr<PointTree> tree;
     std::vector<Vec3> source;
     tbb::parallel_invoke(
         [&] { tree = std::make_unique<PointTree>(target); },
-        [&] { source = thinned(moved_and_cropped(reconstruction, alignment, crop), round.voxel_size, names[2]); });
+        [&] { source = cropped_and_thinned(reconstruction, alignment, crop, round.voxel_size, names[2]); });
     round.source_points = source.size();
     round.target_points = target.size();
     if (source.empty() || target.empty()) {

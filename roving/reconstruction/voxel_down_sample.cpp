@@ -1,9 +1,9 @@
 #include "roving/reconstruction/voxel_down_sample.h"
 
 #include <fmt/format.h>
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
-#include <tbb/parallel_sort.h>
-#include <tbb/task_arena.h>
+#include <tbb/parallel_reduce.h>
 
 #include <algorithm>
 #include <cmath>
@@ -12,6 +12,7 @@
 #include <unordered_map>
 
 #include "roving/core/error.h"
+#include "roving/reconstruction/tanks_and_temples_protocol.h"
 
 namespace roving {
 namespace {
@@ -54,6 +55,10 @@ class CubeTable {
         return cubes_.emplace_back();
       }
     }
+  }
+  void clear() {  // no cube, the room kept
+    std::fill(keys_.begin(), keys_.end(), kEmpty);
+    cubes_.clear();
   }
   const std::vector<Cube>& cubes() const { return cubes_; }
   // Each cube's key and its place in cubes().
@@ -101,20 +106,29 @@ std::uint64_t spread(std::uint64_t v) {
 }  // namespace
 
 std::vector<Vec3> voxel_down_sample(const std::vector<Vec3>& points, double voxel_size, const std::string& name,
-                                    const std::vector<std::uint8_t>* keep) {
+                                    const std::vector<std::uint8_t>* keep, const Eigen::Matrix4d* move) {
   if (!(std::isfinite(voxel_size) && voxel_size > 0)) {
     throw Error(fmt::format("{}: voxel down-sampling: voxel size {}; expected a length > 0", name, voxel_size));
   }
   const auto kept = [&](std::size_t i) { return !keep || (*keep)[i]; };
+  const auto point = [&](std::size_t i) { return move ? transformed_point(*move, points[i]) : points[i]; };
   std::size_t first = 0;
   while (first < points.size() && !kept(first)) ++first;
   if (first == points.size()) return {};
-  Vec3 low = points[first], high = points[first];
-  for (std::size_t i = first; i < points.size(); ++i) {
-    if (!kept(i)) continue;
-    low = low.cwiseMin(points[i]);
-    high = high.cwiseMax(points[i]);
-  }
+  using Box = std::pair<Vec3, Vec3>;
+  const Box start{point(first), point(first)};
+  const auto [low, high] = tbb::parallel_reduce(
+      tbb::blocked_range<std::size_t>(first, points.size(), 1 << 14), start,
+      [&](const tbb::blocked_range<std::size_t>& range, Box box) {
+        for (std::size_t i = range.begin(); i < range.end(); ++i) {
+          if (!kept(i)) continue;
+          const Vec3 p = point(i);
+          box.first = box.first.cwiseMin(p);
+          box.second = box.second.cwiseMax(p);
+        }
+        return box;
+      },
+      [](const Box& a, const Box& b) { return Box{a.first.cwiseMin(b.first), a.second.cwiseMax(b.second)}; });
   const Vec3 half = Vec3::Constant(voxel_size) * 0.5;
   const Vec3 grid_low = low - half, grid_high = high + half;
   if (voxel_size * std::numeric_limits<int>::max() < (grid_high - grid_low).maxCoeff()) {
@@ -139,61 +153,99 @@ std::vector<Vec3> voxel_down_sample(const std::vector<Vec3>& points, double voxe
     std::vector<Cube> cubes;
     for (std::size_t i = first; i < points.size(); ++i) {
       if (!kept(i)) continue;
-      const auto [it, added] = index.try_emplace(cube_of(points[i], grid_low, voxel_size), std::uint32_t(cubes.size()));
+      const Vec3 p = point(i);
+      const auto [it, added] = index.try_emplace(cube_of(p, grid_low, voxel_size), std::uint32_t(cubes.size()));
       if (added) cubes.emplace_back();
-      cubes[it->second].sum += points[i];
+      cubes[it->second].sum += p;
       ++cubes[it->second].count;
     }
     means_of(cubes, means);
     return means;
   }
-  // Each core takes the cubes whose hash falls to it and reads every point in order, so that each
-  // cube's sum is in the points' order whatever the number of cores. The cubes' keys are found
-  // first for a block of points on every core (the divisions once, not once a core).
-  const int parts = std::clamp(tbb::this_task_arena::max_concurrency(), 1, 16);
-  std::vector<CubeTable> tables(parts);
-  constexpr std::size_t kBlock = std::size_t{1} << 18;
-  constexpr std::uint64_t kNone = ~std::uint64_t{0};  // a point left out
-  std::vector<std::uint64_t> keys(std::min(kBlock, points.size() - first));
-  for (std::size_t begin = first; begin < points.size(); begin += kBlock) {
-    const std::size_t end = std::min(points.size(), begin + kBlock);
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(begin, end, 1 << 14), [&](const auto& range) {
-      for (std::size_t i = range.begin(); i < range.end(); ++i) {
-        const CubeIndex c = cube_of(points[i], grid_low, voxel_size);
-        keys[i - begin] = kept(i) ? std::uint64_t(c.x) | std::uint64_t(c.y) << kBits | std::uint64_t(c.z) << (2 * kBits)
-                                  : kNone;
-      }
-    });
-    tbb::parallel_for(0, parts, [&](int part) {
-      CubeTable& table = tables[part];
-      for (std::size_t i = begin; i < end; ++i) {
-        const std::uint64_t key = keys[i - begin];
-        if (key == kNone || static_cast<int>((mix(key) >> 40) % parts) != part) continue;
-        Cube& cube = table[key];
-        cube.sum += points[i];
-        ++cube.count;
-      }
-    });
+  // The cubes' Morton codes (x, y, z interleaved) ordered, their leading bits name a bucket: a
+  // compact region of space. The kept points are first listed bucket by bucket, each bucket's in
+  // the points' order; then every bucket is summed on some core in a table that stays in cache (a
+  // table of all the cubes does not: at 30 M points each point would cost a trip to memory), and
+  // its cubes put in Morton order. The means come out in Morton order of the cubes, neighbours in
+  // space neighbours in memory, so that the k-d trees built on them and the searches from them run
+  // from cache; each cube's sum is over its points in their order, whatever the number of cores.
+  if (points.size() > std::numeric_limits<std::uint32_t>::max()) {
+    throw Error(fmt::format("{}: voxel down-sampling: {} points; at most {}", name, points.size(),
+                            std::numeric_limits<std::uint32_t>::max()));
   }
-  // Out in Morton order of the cubes: neighbours in space are neighbours in memory, so that the
-  // k-d trees built on the means and the searches from them run from cache (on 30 M points the
-  // protocol takes 9.9 s where it took 12.6 s in the order of the points).
-  struct Entry {
-    std::uint64_t morton;
-    const Cube* cube;
+  const auto morton_of = [&](std::size_t i) {
+    const CubeIndex c = cube_of(point(i), grid_low, voxel_size);
+    return spread(std::uint64_t(c.x)) | spread(std::uint64_t(c.y)) << 1 | spread(std::uint64_t(c.z)) << 2;
   };
-  std::vector<Entry> entries;
-  for (const CubeTable& table : tables) {
-    for (const auto& [key, index] : table.keys()) {
-      const std::uint64_t low = (1u << kBits) - 1;
-      entries.push_back({spread(key & low) | spread(key >> kBits & low) << 1 | spread(key >> (2 * kBits)) << 2,
-                         &table.cubes()[index]});
+  int code_bits = 3;
+  while (code_bits < 3 * kBits && (std::max({last.x, last.y, last.z}) >> (code_bits / 3)) != 0) code_bits += 3;
+  const std::size_t count = points.size() - first;
+  int bucket_bits = 0;  // about 4,096 points a bucket, at most 2^14 buckets
+  while (bucket_bits < std::min(14, code_bits) && (count >> (bucket_bits + 12)) != 0) ++bucket_bits;
+  const std::size_t buckets = std::size_t{1} << bucket_bits;
+  const auto bucket_of = [&](std::size_t i) { return std::size_t(morton_of(i) >> (code_bits - bucket_bits)); };
+  // Chunks of points, each counted and then listed by one task, in order.
+  const std::size_t chunks = std::min<std::size_t>(64, (count + 65535) / 65536);
+  const auto chunk_range = [&](std::size_t c) {
+    return std::pair{first + count * c / chunks, first + count * (c + 1) / chunks};
+  };
+  std::vector<std::uint32_t> place(chunks * buckets, 0);  // [chunk][bucket]: counts, then where it lists
+  tbb::parallel_for(std::size_t(0), chunks, [&](std::size_t c) {
+    const auto [begin, end] = chunk_range(c);
+    for (std::size_t i = begin; i < end; ++i) {
+      if (kept(i)) ++place[c * buckets + bucket_of(i)];
+    }
+  });
+  std::vector<std::size_t> bucket_start(buckets + 1, 0);
+  std::size_t listed = 0;
+  for (std::size_t b = 0; b < buckets; ++b) {
+    bucket_start[b] = listed;
+    for (std::size_t c = 0; c < chunks; ++c) {
+      const std::uint32_t n = place[c * buckets + b];
+      place[c * buckets + b] = std::uint32_t(listed);
+      listed += n;
     }
   }
-  tbb::parallel_sort(entries.begin(), entries.end(), [](const Entry& a, const Entry& b) { return a.morton < b.morton; });
-  means.resize(entries.size());
-  tbb::parallel_for(std::size_t(0), entries.size(),
-                    [&](std::size_t k) { means[k] = entries[k].cube->sum / double(entries[k].cube->count); });
+  bucket_start[buckets] = listed;
+  std::vector<std::uint32_t> order(listed);
+  tbb::parallel_for(std::size_t(0), chunks, [&](std::size_t c) {
+    const auto [begin, end] = chunk_range(c);
+    for (std::size_t i = begin; i < end; ++i) {
+      if (kept(i)) order[place[c * buckets + bucket_of(i)]++] = std::uint32_t(i);
+    }
+  });
+  std::vector<std::vector<Vec3>> bucket_means(buckets);
+  tbb::enumerable_thread_specific<CubeTable> tables;
+  tbb::parallel_for(std::size_t(0), buckets, [&](std::size_t b) {
+    if (bucket_start[b] == bucket_start[b + 1]) return;
+    CubeTable& table = tables.local();
+    table.clear();
+    for (std::size_t k = bucket_start[b]; k < bucket_start[b + 1]; ++k) {
+      const Vec3 p = point(order[k]);
+      const CubeIndex c = cube_of(p, grid_low, voxel_size);
+      Cube& cube = table[std::uint64_t(c.x) | std::uint64_t(c.y) << kBits | std::uint64_t(c.z) << (2 * kBits)];
+      cube.sum += p;
+      ++cube.count;
+    }
+    std::vector<std::pair<std::uint64_t, std::uint32_t>> cubes = table.keys();
+    const std::uint64_t mask = (std::uint64_t{1} << kBits) - 1;
+    for (auto& [key, index] : cubes) {
+      key = spread(key & mask) | spread(key >> kBits & mask) << 1 | spread(key >> (2 * kBits)) << 2;
+    }
+    std::sort(cubes.begin(), cubes.end());
+    std::vector<Vec3>& out = bucket_means[b];
+    out.reserve(cubes.size());
+    for (const auto& [morton, index] : cubes) {
+      const Cube& cube = table.cubes()[index];
+      out.push_back(cube.sum / double(cube.count));
+    }
+  });
+  std::vector<std::size_t> out_start(buckets + 1, 0);
+  for (std::size_t b = 0; b < buckets; ++b) out_start[b + 1] = out_start[b] + bucket_means[b].size();
+  means.resize(out_start[buckets]);
+  tbb::parallel_for(std::size_t(0), buckets, [&](std::size_t b) {
+    std::copy(bucket_means[b].begin(), bucket_means[b].end(), means.begin() + std::ptrdiff_t(out_start[b]));
+  });
   return means;
 }
 
