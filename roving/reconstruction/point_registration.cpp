@@ -82,7 +82,7 @@ class NearestTargets {
     // Half the gap, less a margin far above the rounding of the distances (so that a point kept
     // is one the search would also find first).
     const double d1 = std::sqrt(squared_[i]), d2 = std::sqrt(second);
-    slack_[i] = (d2 - d1) / 2 - 1e-9 * (p.cwiseAbs().maxCoeff() + d2);
+    slack_[i] = std::isinf(d2) ? d2 : (d2 - d1) / 2 - 1e-9 * (p.cwiseAbs().maxCoeff() + d2);
   }
 
   const PointTree& tree_;

@@ -66,10 +66,10 @@ void PointTree::nearest(const std::vector<Vec3>& from, std::vector<std::uint32_t
 void PointTree::nearest_two(const Vec3& p, std::uint32_t& index, double& squared, double& second_squared) const {
   std::uint32_t indices[2] = {0, 0};
   double squares[2] = {0, std::numeric_limits<double>::infinity()};
-  index_->tree.knnSearch(p.data(), 2, indices, squares);
+  const std::size_t found = index_->tree.knnSearch(p.data(), 2, indices, squares);
   index = indices[0];
   squared = squares[0];
-  second_squared = squares[1];
+  second_squared = found == 2 ? squares[1] : std::numeric_limits<double>::infinity();
 }
 
 }  // namespace roving

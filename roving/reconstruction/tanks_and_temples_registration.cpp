@@ -64,7 +64,7 @@ std::vector<Vec3> moved_marked(const std::vector<Vec3>& points, const Eigen::Mat
   const bool identity = transformation == Eigen::Matrix4d::Identity();
   std::vector<Vec3> kept((marks.before.back() + every - 1) / every);
   tbb::parallel_for(std::size_t(0), marks.before.size() - 1, [&](std::size_t b) {
-    std::size_t k = marks.before[b];  // the marked points before this one
+    std::size_t k = marks.before[b];  // the marked points before this block
     for (std::size_t i = b * kCropBlock; i < std::min(points.size(), (b + 1) * kCropBlock); ++i) {
       if (!marks.inside[i]) continue;
       if (k % every == 0) kept[k / every] = identity ? points[i] : transformed_point(transformation, points[i]);
