@@ -15,24 +15,41 @@ namespace roving {
 namespace {
 
 // The registration of source points whose nearest target points are `nearest`, `squared` away.
+// In blocks on every core: each block's pairs counted, then listed in order, and its squared
+// distances summed; the blocks' sums added in order (the same bits on any number of cores).
 PointRegistration registration_of(const std::vector<std::uint32_t>& nearest, const std::vector<double>& squared,
                                   double max_distance, const Eigen::Matrix4d& transformation) {
   PointRegistration result;
   result.transformation = transformation;
   const double limit = max_distance * max_distance;
-  result.pairs.reserve(static_cast<std::size_t>(
-      std::count_if(squared.begin(), squared.end(), [&](double d) { return d < limit; })));
-  double error2 = 0;
-  for (std::size_t i = 0; i < squared.size(); ++i) {
-    if (squared[i] < limit) {
-      error2 += squared[i];
-      result.pairs.emplace_back(static_cast<std::uint32_t>(i), nearest[i]);
+  constexpr std::size_t kBlock = 1 << 15;
+  const std::size_t n = squared.size(), blocks = (n + kBlock - 1) / kBlock;
+  std::vector<std::size_t> before(blocks + 1, 0);  // pairs in the blocks before each
+  std::vector<double> error2(blocks, 0);
+  tbb::parallel_for(std::size_t(0), blocks, [&](std::size_t b) {
+    std::size_t count = 0;
+    for (std::size_t i = b * kBlock; i < std::min(n, (b + 1) * kBlock); ++i) {
+      if (squared[i] < limit) {
+        error2[b] += squared[i];
+        ++count;
+      }
     }
-  }
+    before[b + 1] = count;
+  });
+  for (std::size_t b = 0; b < blocks; ++b) before[b + 1] += before[b];
+  result.pairs.resize(before[blocks]);
+  tbb::parallel_for(std::size_t(0), blocks, [&](std::size_t b) {
+    std::size_t k = before[b];
+    for (std::size_t i = b * kBlock; i < std::min(n, (b + 1) * kBlock); ++i) {
+      if (squared[i] < limit) result.pairs[k++] = {static_cast<std::uint32_t>(i), nearest[i]};
+    }
+  });
   if (!result.pairs.empty()) {
+    double sum = 0;
+    for (const double e : error2) sum += e;
     const double count = static_cast<double>(result.pairs.size());
-    result.fitness = count / static_cast<double>(squared.size());
-    result.inlier_rmse = std::sqrt(error2 / count);
+    result.fitness = count / static_cast<double>(n);
+    result.inlier_rmse = std::sqrt(sum / count);
   }
   return result;
 }

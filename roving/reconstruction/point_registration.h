@@ -3,8 +3,9 @@
 // point's nearest target point closer than a distance (fitness: the share that has one;
 // inlier RMSE: the root mean square of their distances), and point-to-point ICP with scale
 // repeats Umeyama's similarity on those pairs until the fitness and the RMSE stop changing.
-// Every pair is taken in the source points' order, as Open3D takes them on one thread; its
-// OpenMP threads merge their pairs in any order, which moves a sum's last bits and nothing else.
+// Every pair is listed in the source points' order, as Open3D lists them on one thread, and summed
+// in blocks added in order (the same bits on any number of cores); Open3D's OpenMP threads merge
+// their pairs in any order, which moves a sum's last bits and nothing else.
 #pragma once
 
 #include <Eigen/Core>

@@ -17,13 +17,6 @@
 
 namespace roving {
 
-Vec3 transformed_point(const Eigen::Matrix4d& m, const Vec3& p) {
-  // Eigen's 4 x 4 times 4-vector: the columns scaled and added left to right.
-  double r[4];
-  for (int row = 0; row < 4; ++row) r[row] = ((m(row, 0) * p[0] + m(row, 1) * p[1]) + m(row, 2) * p[2]) + m(row, 3);
-  return Vec3(r[0] / r[3], r[1] / r[3], r[2] / r[3]);
-}
-
 void transform_points(const Eigen::Matrix4d& m, std::vector<Vec3>& points) {
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, points.size(), 1 << 14), [&](const auto& range) {
     for (std::size_t i = range.begin(); i < range.end(); ++i) points[i] = transformed_point(m, points[i]);

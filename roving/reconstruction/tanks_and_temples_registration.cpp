@@ -10,6 +10,7 @@
 
 #include "roving/core/error.h"
 #include "roving/reconstruction/correspondence_ransac.h"
+#include "roving/reconstruction/spatial_order.h"
 #include "roving/reconstruction/tanks_and_temples_protocol.h"
 #include "roving/reconstruction/voxel_down_sample.h"
 
@@ -87,7 +88,11 @@ std::vector<Vec3> cropped_and_thinned(const std::vector<Vec3>& points, const Eig
   const double n = static_cast<double>(marks.before.back());
   // int(round(n / 4e6)): Python's round, halves to even, as nearbyint rounds by default.
   const auto every = n > kUniformPoints ? static_cast<std::size_t>(std::nearbyint(n / kUniformPoints)) : 1;
-  return moved_marked(points, transformation, marks, every);
+  // The same points, in the order of their place in space, as the voxels' means come out: ICP's
+  // searches from them then run from cache. Only the order of ICP's sums changes (their last bits).
+  std::vector<Vec3> kept = moved_marked(points, transformation, marks, every);
+  order_in_space(kept);
+  return kept;
 }
 
 }  // namespace

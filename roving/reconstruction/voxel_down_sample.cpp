@@ -28,9 +28,11 @@ struct CubeIndex {
   bool operator==(const CubeIndex& o) const { return x == o.x && y == o.y && z == o.z; }
 };
 
-CubeIndex cube_of(const Vec3& p, const Vec3& grid_low, double voxel_size) {
+// Every point is at least half a cube above grid_low, so r > 0 and truncation is floor (without
+// SSE4.1, std::floor is a call into libm).
+inline CubeIndex cube_of(const Vec3& p, const Vec3& grid_low, double voxel_size) {
   const Vec3 r = (p - grid_low) / voxel_size;
-  return {static_cast<int>(std::floor(r[0])), static_cast<int>(std::floor(r[1])), static_cast<int>(std::floor(r[2]))};
+  return {static_cast<int>(r[0]), static_cast<int>(r[1]), static_cast<int>(r[2])};
 }
 
 std::uint64_t mix(std::uint64_t h) {  // splitmix64's finaliser
