@@ -28,7 +28,9 @@
 #include "roving/formats/file_hash.h"
 #include "roving/reconstruction/correspondence_ransac.h"
 #include "roving/reconstruction/crop_volume.h"
+#include "roving/core/geometry.h"
 #include "roving/reconstruction/point_registration.h"
+#include "roving/reconstruction/spatial_order.h"
 #include "roving/reconstruction/tanks_and_temples_protocol.h"
 #include "roving/reconstruction/voxel_down_sample.h"
 #include "sample_rows.h"
@@ -207,6 +209,45 @@ TEST(PointRegistration, IcpPairsAreThoseOfASearchFromScratch) {
   }
   EXPECT_GT(scratch.fitness, 0.9);
   EXPECT_LT(scratch.fitness, 1.0);
+}
+
+// order_in_space keeps every point (duplicates too) and lists them by their Morton buckets, each
+// bucket's points in their first order: 5,000 points of a sphere in its spiral's order, which
+// jumps about the surface, and each point again at the end.
+TEST(SpatialOrder, KeepsEveryPointInBucketsOfSpace) {
+  std::vector<Vec3> points = sphere_points(5000);
+  points.insert(points.end(), points.begin(), points.end());
+  std::vector<Vec3> ordered = points;
+  order_in_space(ordered);
+  BoundingBox box;
+  for (const Vec3& p : points) box.extend(p);
+  const auto bucket = [&](const Vec3& p) { return morton_code(p, box) >> (30 - 4); };  // 10,000 points: 2^4 buckets
+  const auto less = [](const Vec3& a, const Vec3& b) {
+    return std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3);
+  };
+  std::vector<Vec3> a = points, b = ordered;
+  std::sort(a.begin(), a.end(), less);
+  std::sort(b.begin(), b.end(), less);
+  EXPECT_EQ(a, b);
+  std::size_t moved = 0;
+  for (std::size_t k = 1; k < ordered.size(); ++k) {
+    ASSERT_LE(bucket(ordered[k - 1]), bucket(ordered[k])) << k;
+    moved += ordered[k] != points[k];
+  }
+  EXPECT_GT(moved, ordered.size() / 2);  // the spiral's order is not space's
+  for (std::uint64_t code = 0; code < 16; ++code) {  // within a bucket, the first order
+    std::vector<Vec3> first, after;
+    for (const Vec3& p : points)
+      if (bucket(p) == code) first.push_back(p);
+    for (const Vec3& p : ordered)
+      if (bucket(p) == code) after.push_back(p);
+    EXPECT_EQ(first, after) << code;
+  }
+  std::vector<Vec3> one{Vec3(1, 2, 3)}, none;
+  order_in_space(one);
+  order_in_space(none);
+  EXPECT_EQ(one, std::vector<Vec3>{Vec3(1, 2, 3)});
+  EXPECT_TRUE(none.empty());
 }
 
 // RANSAC on pairs of which a quarter are wrong: a draw of inliers alone gives the similarity
