@@ -221,7 +221,8 @@ TEST(SpatialOrder, KeepsEveryPointInBucketsOfSpace) {
   order_in_space(ordered);
   BoundingBox box;
   for (const Vec3& p : points) box.extend(p);
-  const auto bucket = [&](const Vec3& p) { return morton_code(p, box) >> (30 - 4); };  // 10,000 points: 2^4 buckets
+  // 10,000 points: 2^4 buckets of about 1,024.
+  const auto bucket = [&](const Vec3& p) { return morton_code(p, box) >> (30 - 4); };
   const auto less = [](const Vec3& a, const Vec3& b) {
     return std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3);
   };
@@ -235,7 +236,8 @@ TEST(SpatialOrder, KeepsEveryPointInBucketsOfSpace) {
     moved += ordered[k] != points[k];
   }
   EXPECT_GT(moved, ordered.size() / 2);  // the spiral's order is not space's
-  for (std::uint64_t code = 0; code < 16; ++code) {  // within a bucket, the first order
+  // Within a bucket, the first order.
+  for (std::uint64_t code = 0; code < 16; ++code) {
     std::vector<Vec3> first, after;
     for (const Vec3& p : points)
       if (bucket(p) == code) first.push_back(p);
