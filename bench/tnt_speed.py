@@ -118,8 +118,12 @@ def alignment():
     return t
 
 
-def make_scene(folder, points, truth):
-    """The scene's files; the reconstruction's spacing about tau / 5, so that tau / 2 thins it."""
+def make_scene(folder, points, truth, triangles=0):
+    """The scene's files; the reconstruction's spacing about tau / 5, so that tau / 2 thins it.
+    With `triangles`, both are meshes (latitude-longitude spheres) of about `triangles` and
+    `truth` triangles, and `points` is ignored: the toolbox reads a mesh as its vertices."""
+    if triangles:
+        points = triangles // 2  # a closed mesh has about half as many vertices as triangles
     radius = float(np.sqrt(points * (TAU / 5) ** 2 / (4 * np.pi)))
     def fibonacci(n, ripple):
         i = np.arange(n) + 0.5
@@ -127,12 +131,23 @@ def make_scene(folder, points, truth):
         phi = np.pi * (3 - np.sqrt(5)) * i
         r = np.sqrt(1 - z * z)
         rr = radius + ripple * np.sin(7 * np.arccos(z)) * np.sin(5 * phi)
-        return rr[:, None] * np.stack([r * np.cos(phi), r * np.sin(phi), z], 1)
-    write_ply(f"{folder}/Scene.ply", fibonacci(truth, 0.0))
+        return rr[:, None] * np.stack([r * np.cos(phi), r * np.sin(phi), z], 1), None
+    def lat_long(n, ripple):  # 4 rings^2 triangles, poles left open
+        rings = max(8, int(np.sqrt(n / 4)))
+        segments = 2 * rings
+        t, p = np.meshgrid(np.linspace(0, np.pi, rings + 1)[1:-1],
+                           np.linspace(0, 2 * np.pi, segments, endpoint=False), indexing="ij")
+        rr = radius + ripple * np.sin(7 * t) * np.sin(5 * p)
+        vertices = np.stack([rr * np.sin(t) * np.cos(p), rr * np.sin(t) * np.sin(p), rr * np.cos(t)], -1).reshape(-1, 3)
+        a = (np.arange(rings - 2)[:, None] * segments + np.arange(segments)[None, :]).ravel()
+        b = (np.arange(rings - 2)[:, None] * segments + (np.arange(segments)[None, :] + 1) % segments).ravel()
+        return vertices, np.concatenate([np.stack([a, a + segments, b], 1), np.stack([b, a + segments, b + segments], 1)])
+    shape = lat_long if triangles else fibonacci
+    write_ply(f"{folder}/Scene.ply", *shape(truth, 0.0))
     t = alignment()
-    recon = fibonacci(points, 1.5 * TAU)
+    recon, faces = shape(triangles or points, 1.5 * TAU)
     inverse = np.linalg.inv(t)
-    write_ply(f"{folder}/recon.ply", recon @ inverse[:3, :3].T + inverse[:3, 3])
+    write_ply(f"{folder}/recon.ply", recon @ inverse[:3, :3].T + inverse[:3, 3], faces)
     np.savetxt(f"{folder}/Scene_trans.txt", t)
     side = 1.2 * radius
     crop = {"class_name": "SelectionPolygonVolume", "version_major": 1, "version_minor": 0, "orthogonal_axis": "Z",
@@ -151,18 +166,26 @@ def main():
     parser.add_argument("--points", type=int, nargs="+", default=[3000000],
                         help="the reconstruction's points, one scene per number")
     parser.add_argument("--truth-ratio", type=float, default=10, help="reconstruction points per ground-truth point")
+    parser.add_argument("--triangles", type=int, nargs="+",
+                        help="meshes instead of clouds: the reconstruction's triangles, one scene per number, against "
+                             "a mesh of 1 / --truth-ratio as many (writes tnt-speed-mesh.md or tnt-registration-speed-mesh.md)")
     parser.add_argument("--out", help="a folder for tnt-speed.md (tnt-registration-speed.md); else stdout")
     parser.add_argument("--registration", action="store_true",
                         help="run.py's registration first, from the camera trajectories (roving: one run)")
     args = parser.parse_args()
     what = "run.py (registration, then EvaluateHisto)" if args.registration else "EvaluateHisto"
+    sizes = (f"--triangles {' '.join(map(str, args.triangles))} --truth-ratio {args.truth_ratio:g}" if args.triangles
+             else f"--points {' '.join(map(str, args.points))}")
+    scene = (f"a reconstruction mesh of T triangles in its own frame with its alignment, against a ground-truth mesh "
+             f"of T / {args.truth_ratio:g}, both read as their vertices (as the toolbox reads a mesh)" if args.triangles
+             else f"a reconstruction of N points in its own frame with its alignment, against a ground truth of "
+                  f"N / {args.truth_ratio:g} points")
     lines = [
         f"# The Tanks and Temples protocol: roving against the toolbox's {what}",
         "",
-        f"Written by `bench/tnt_speed.py --points {' '.join(map(str, args.points))}"
+        f"Written by `bench/tnt_speed.py {sizes}"
         f"{' --registration' if args.registration else ''}` on {platform.node()} "
-        f"({os.cpu_count()} cores), {time.strftime('%Y-%m-%d')}. Each scene: a reconstruction of N points in its own "
-        f"frame with its alignment, against a ground truth of N / {args.truth_ratio:g} points, tau {TAU} m, cropped by "
+        f"({os.cpu_count()} cores), {time.strftime('%Y-%m-%d')}. Each scene: {scene}, tau {TAU} m, cropped by "
         "a polygon and a height range. One run each; precision, recall and F equal before anything is timed"
         + (" (with the registration: or a few thinned points apart, as noted below the table)." if args.registration
            else "."),
@@ -171,12 +194,13 @@ def main():
         "| ---: | ---: | --- | ---: | ---: | ---: | ---: | ---: | ---: |",
     ]
     ratios, notes = [], []
-    for points in args.points:
+    for points in args.triangles or args.points:
         truth = int(points / args.truth_ratio)
         with tempfile.TemporaryDirectory() as folder:
             # In a process of its own: a child's peak RSS counts its parent's at the fork (Linux copies
             # the high-water mark), so this process stays small while the scene's arrays are made.
-            run([sys.executable, __file__, "--make-scene", folder, str(points), str(truth)])
+            run([sys.executable, __file__, "--make-scene", folder, str(points), str(truth),
+                 str(points if args.triangles else 0)])
             rows = []
             registration = ["--tnt-trajectory", f"{folder}/recon.log", "--tnt-reference-trajectory",
                             f"{folder}/Scene_COLMAP_SfM.log", "--protocol-runs", "1"] if args.registration else []
@@ -227,11 +251,12 @@ def main():
         add_rows(lines, rows, report["reconstruction_points"], report["ground_truth_points"],
                  "{:.8f}" if args.registration else "{:.6f}")
     lines += [""] + [f"- {note}." for note in notes] if notes else []
-    write_report(lines, ratios, args.out, "tnt-registration-speed.md" if args.registration else "tnt-speed.md")
+    name = ("tnt-registration-speed" if args.registration else "tnt-speed") + ("-mesh" if args.triangles else "")
+    write_report(lines, ratios, args.out, name + ".md")
 
 
 if __name__ == "__main__":
     if sys.argv[1:2] == ["--make-scene"]:
-        make_scene(sys.argv[2], int(sys.argv[3]), int(sys.argv[4]))
+        make_scene(sys.argv[2], int(sys.argv[3]), int(sys.argv[4]), int(sys.argv[5]))
     else:
         main()

@@ -95,6 +95,26 @@ TEST(TanksAndTemplesGolden, PointsAreTheToolboxs) { expect_the_toolboxs("Bench_p
 // A mesh is read as its vertices (Open3D's read_point_cloud): the same figures as the cloud of them.
 TEST(TanksAndTemplesGolden, MeshVerticesAreTheToolboxs) { expect_the_toolboxs("Bench_mesh.ply", "mesh.txt"); }
 
+// A binary PLY mesh is read as its vertices alone (the toolbox's read_point_cloud reads no face):
+// the report says so, and its vertices are checked as the whole mesh's reader checks them.
+TEST(TanksAndTemplesProtocol, AMeshIsReadAsItsVertices) {
+  const CliRun run = run_cli("measure " + kTruth + " " + kData + "Bench_mesh.ply --protocol tanks-and-temples" +
+                             kScene + " --tnt-tau 0.01");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(run.out.find("Bench_mesh.ply: mesh, read as its 24820 vertices"), std::string::npos) << run.out;
+  // A vertex of NaN: one line naming the file and the vertex.
+  std::ifstream in(kData + "Bench_mesh.ply", std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::size_t body = bytes.find("end_header\n") + 11;
+  const float nan = std::nanf("");
+  std::memcpy(&bytes[body + 7 * 12 + 4], &nan, sizeof nan);  // vertex 7's y
+  const std::string bad = (std::filesystem::temp_directory_path() / "roving-tnt-nan-vertex.ply").string();
+  std::ofstream(bad, std::ios::binary) << bytes;
+  expect_error("measure " + kTruth + " " + bad + " --protocol tanks-and-temples" + kScene + " --tnt-tau 0.01",
+               {"roving-tnt-nan-vertex.ply", "vertex 7", "non-finite"});
+  std::filesystem::remove(bad);
+}
+
 // run.py's registration (--tnt-trajectory) against run.py's own, seed by seed: its RANSAC draws are
 // Open3D's on one thread from utility.random.seed, so the cameras' alignment is the toolbox's; each
 // ICP round's count of pairs (fitness) is equal, and its RMSE and alignment agree to 1e-12: the

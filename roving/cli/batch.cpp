@@ -466,13 +466,13 @@ struct LoadedModel {
 };
 
 const Model& cached_model(LoadedModel& cache, const std::string& path, const std::string& type_text,
-                          const MeasurePlan& plan, std::optional<ModelType> type) {
+                          const MeasurePlan& plan, std::optional<ModelType> type, bool reference) {
   const std::string how = type_text + (plan.pcc_only ? "|pcc" : "");  // --pcc reads point clouds as they are
   if (!cache.model || cache.path != path || cache.type != how) {
     cache.model.reset();
     cache.samples.reset();
     cache.samples_spec.clear();
-    cache.model = std::make_unique<Model>(load_for(plan, path, type));
+    cache.model = std::make_unique<Model>(load_for(plan, path, type, reference));
     cache.path = path, cache.type = how;
   }
   return *cache.model;
@@ -592,11 +592,11 @@ int run_batch(const BatchArguments& args, std::string& stage, const Progress::Li
       MeasureReport report;
       Stopwatch load;
       stage = fmt::format("loading {}", pair.reference);
-      const Model& reference = cached_model(reference_cache, pair.reference, a.reference_type, plan, plan.reference_type);
+      const Model& reference = cached_model(reference_cache, pair.reference, a.reference_type, plan, plan.reference_type, true);
       report.load_seconds[0] = load.seconds();
       load = Stopwatch();
       stage = fmt::format("loading {}", pair.test);
-      const Model& test = cached_model(test_cache, pair.test, a.test_type, plan, plan.test_type);
+      const Model& test = cached_model(test_cache, pair.test, a.test_type, plan, plan.test_type, false);
       report.load_seconds[1] = load.seconds();
       report.provenance = {{"tool", tool_json()},
                            {"command_line", a.command_line},

@@ -31,6 +31,7 @@
 #include "roving/formats/ply_reader.h"
 #include "roving/formats/point_cloud_io.h"
 #include "roving/formats/sample_output.h"
+#include "roving/formats/triangle_stream.h"
 #include "roving/mpeg/mmetric_sampling.h"
 #include "roving/mpeg/mpeg_points.h"
 #include "roving/mpeg/surface_psnr.h"
@@ -610,11 +611,35 @@ MpegReport mpeg_report(const Model& a, const Model& b, std::optional<double> res
   return report;
 }
 
+// A binary PLY mesh's vertices alone (open_triangle_stream reads them, checked, before any face);
+// nullopt for any other file.
+std::optional<Model> mesh_vertices(const std::string& path) {
+  std::string extension = std::filesystem::path(path).extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return std::tolower(c); });
+  if (extension != ".ply") return std::nullopt;
+  const std::unique_ptr<TriangleStream> stream = open_triangle_stream(path, 0);
+  if (!stream) return std::nullopt;
+  if (stream->position_count() == 0) throw Error(fmt::format("{}: no vertices; expected a mesh", path));
+  Model model;
+  model.type = ModelType::Points;
+  model.mesh.path = path;
+  model.mesh_vertices_only = true;
+  model.points.positions.resize(stream->position_count());
+  for (std::size_t i = 0; i < model.points.positions.size(); ++i) {
+    model.points.positions[i] = stream->position(static_cast<int>(i));
+  }
+  return model;
+}
+
 }  // namespace
 
-Model load_for(const MeasurePlan& plan, const std::string& path, std::optional<ModelType> type) {
+Model load_for(const MeasurePlan& plan, const std::string& path, std::optional<ModelType> type, bool reference) {
   const bool raw = plan.pcc_only || plan.protocol_only;  // clouds as their files have them
-  if (!raw || (type ? *type : model_type_of(path)) != ModelType::Points) return load_model(path, type);
+  const ModelType found = type ? *type : model_type_of(path);
+  if (plan.protocol_only && found == ModelType::Mesh && (plan.tnt || (plan.dtu && reference))) {
+    if (std::optional<Model> vertices = mesh_vertices(path)) return std::move(*vertices);
+  }
+  if (!raw || found != ModelType::Points) return load_model(path, type);
   Model model;
   model.type = ModelType::Points;
   model.mesh.path = path;
@@ -935,7 +960,9 @@ MeasureRun measure_run(const MeasureArguments& args, std::string& stage, Progres
     return given ? std::async(std::launch::deferred, [] { return std::string(); })
                  : std::async(std::launch::async, file_sha256, path);
   };
-  const auto load = [&](const std::string& path, std::optional<ModelType> type) { return load_for(plan, path, type); };
+  const auto load = [&](const std::string& path, std::optional<ModelType> type, bool reference) {
+    return load_for(plan, path, type, reference);
+  };
   std::optional<DtuFiles> dtu_files;  // the data set's files before the models: a wrong one fails at once
   if (plan.dtu) {
     stage = fmt::format("reading the DTU data set's files {} and {}", plan.dtu->obs_mask, plan.dtu->plane);
@@ -959,7 +986,7 @@ MeasureRun measure_run(const MeasureArguments& args, std::string& stage, Progres
   if (!given_b) {
     test_load = std::async(std::launch::async, [&] {
       const Stopwatch watch;
-      auto model = std::make_unique<Model>(load(args.test_path, plan.test_type));
+      auto model = std::make_unique<Model>(load(args.test_path, plan.test_type, false));
       report.load_seconds[1] = watch.seconds();
       return model;
     });
@@ -975,7 +1002,7 @@ MeasureRun measure_run(const MeasureArguments& args, std::string& stage, Progres
   } else {
     stage = fmt::format("loading the reference {}", args.reference_path);
     progress.stage("loading " + file_name(args.reference_path));
-    run.a = std::make_unique<Model>(load(args.reference_path, plan.reference_type));
+    run.a = std::make_unique<Model>(load(args.reference_path, plan.reference_type, true));
   }
   report.load_seconds[0] = watch.seconds();
   if (given_b) {

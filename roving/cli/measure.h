@@ -132,8 +132,11 @@ HeatmapLayout heatmap_layout(const Model& reference, const SampleSet& samples);
 using WarnFn = std::function<void(const std::vector<std::string>&)>;
 
 // A model read for `plan`: as load_model reads it, or, with --pcc, a point cloud as its file has it
-// (no surfels, no normals estimated).
-Model load_for(const MeasurePlan& plan, const std::string& path, std::optional<ModelType> type);
+// (no surfels, no normals estimated). With a protocol alone, a point cloud as its file has it too,
+// and a binary PLY mesh whose points the protocol takes as its vertices (Tanks and Temples' both
+// models, DTU's reference: `reference` says which this is) read as its vertices alone
+// (Model::mesh_vertices_only): a 10 M-triangle mesh's faces are 120 MB not read.
+Model load_for(const MeasurePlan& plan, const std::string& path, std::optional<ModelType> type, bool reference);
 
 // --pcc where a model is a point cloud: MPEG's figures of a and b alone (report.pcc_only; a mesh
 // among them sampled as mmetric samples it); throws naming a model that is neither a point cloud

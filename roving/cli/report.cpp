@@ -102,6 +102,10 @@ namespace {
 std::string model_line(const std::string& role, const Model& model) {
   const LoadedMesh& loaded = model.mesh;
   const TriangleMesh& m = loaded.mesh;
+  if (model.mesh_vertices_only) {
+    return fmt::format("{:<10} {}: mesh, read as its {} vertices (the protocol's points; faces not read)\n", role,
+                       loaded.path, model.points.positions.size());
+  }
   if (model.type == ModelType::Points) {
     std::string line = fmt::format("{:<10} {}: point cloud, {} points, normals {}{}\n", role, loaded.path,
                                    model.points.positions.size(),

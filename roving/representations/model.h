@@ -34,6 +34,9 @@ struct Model {
   // --pcc (load_for): a point cloud not read yet; MPEG's figures read its file straight into their
   // single precision (mpeg_points of a PackedPointCloud), and `points` stays empty.
   bool points_in_file = false;
+  // A protocol's model (load_for): a mesh file read as its vertices alone, its faces left unread, as
+  // Open3D's read_point_cloud reads a mesh; `points` holds the vertices, `type` is Points.
+  bool mesh_vertices_only = false;
   // A point cloud's surfels, made the first time it is the test model (test_surface).
   mutable std::optional<SurfelSurface> surfels;
 
