@@ -55,15 +55,16 @@ PointRegistration registration_of(const std::vector<std::uint32_t>& nearest, con
 }
 
 // Each source point's nearest target point, carried from one ICP step to the next. A point whose
-// nearest target point is d1 away and whose second nearest is d2 keeps that nearest point while
-// it moves less than (d2 - d1) / 2 in all (the triangle inequality), and ICP's later steps move
-// the points by little: most points then need no search, only their distance computed again, as
-// the k-d tree computes it. The same pairs as a search from scratch (a tie aside, where any of the
-// equally near points is as right, and duplicates add the same to every sum).
+// second nearest target point is d2 away is at least d2 - m from every target point but its
+// nearest after it has moved m in all (the triangle inequality), so while its nearest, measured
+// again, is nearer than that, it is still its nearest; ICP's later steps move the points by
+// little: most points then need no search, only their distance computed again, as the k-d tree
+// computes it. The same pairs as a search from scratch (a tie aside, where any of the equally
+// near points is as right, and duplicates add the same to every sum).
 class NearestTargets {
  public:
   NearestTargets(const PointTree& tree, const std::vector<Vec3>& source)
-      : tree_(tree), index_(source.size()), squared_(source.size()), slack_(source.size()) {
+      : tree_(tree), index_(source.size()), squared_(source.size()), reach_(source.size()) {
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, source.size(), 4096), [&](const auto& range) {
       for (std::size_t i = range.begin(); i < range.end(); ++i) search(i, source[i]);
     });
@@ -75,12 +76,13 @@ class NearestTargets {
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, source.size(), 4096), [&](const auto& range) {
       for (std::size_t i = range.begin(); i < range.end(); ++i) {
         const Vec3 moved = transformed_point(update, source[i]);
-        slack_[i] -= (moved - source[i]).norm();
+        reach_[i] -= (moved - source[i]).norm();
         source[i] = moved;
-        if (slack_[i] > 0) {
-          const Vec3& t = target[index_[i]];
-          const double dx = moved[0] - t[0], dy = moved[1] - t[1], dz = moved[2] - t[2];
-          squared_[i] = dx * dx + dy * dy + dz * dz;  // the tree's sum, in its order
+        const Vec3& t = target[index_[i]];
+        const double dx = moved[0] - t[0], dy = moved[1] - t[1], dz = moved[2] - t[2];
+        const double squared = dx * dx + dy * dy + dz * dz;  // the tree's sum, in its order
+        if (reach_[i] > 0 && squared < reach_[i] * reach_[i]) {
+          squared_[i] = squared;
         } else {
           search(i, moved);
         }
@@ -96,16 +98,16 @@ class NearestTargets {
   void search(std::size_t i, const Vec3& p) {
     double second = 0;
     tree_.nearest_two(p, index_[i], squared_[i], second);
-    // Half the gap, less a margin far above the rounding of the distances (so that a point kept
-    // is one the search would also find first).
-    const double d1 = std::sqrt(squared_[i]), d2 = std::sqrt(second);
-    slack_[i] = std::isinf(d2) ? d2 : (d2 - d1) / 2 - 1e-9 * (p.cwiseAbs().maxCoeff() + d2);
+    // The second nearest's distance, less a margin far above the rounding of the distances (so
+    // that a point kept is one the search would also find first); infinite where there is none.
+    const double d2 = std::sqrt(second);
+    reach_[i] = std::isinf(d2) ? d2 : d2 - 1e-9 * (p.cwiseAbs().maxCoeff() + d2);
   }
 
   const PointTree& tree_;
   std::vector<std::uint32_t> index_;
   std::vector<double> squared_;
-  std::vector<double> slack_;  // how far the point may still move and keep its nearest target point
+  std::vector<double> reach_;  // every target point but the nearest is at least this far
 };
 
 }  // namespace
