@@ -614,9 +614,7 @@ MpegReport mpeg_report(const Model& a, const Model& b, std::optional<double> res
 // A binary PLY mesh's vertices alone (open_triangle_stream reads them, checked, before any face);
 // nullopt for any other file.
 std::optional<Model> mesh_vertices(const std::string& path) {
-  std::string extension = std::filesystem::path(path).extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return std::tolower(c); });
-  if (extension != ".ply") return std::nullopt;
+  if (!read_as_ply(path)) return std::nullopt;
   const std::unique_ptr<TriangleStream> stream = open_triangle_stream(path, 0);
   if (!stream) return std::nullopt;
   if (stream->position_count() == 0) throw Error(fmt::format("{}: no vertices; expected a mesh", path));
