@@ -19,11 +19,11 @@ struct Shells {
   std::vector<Offset> offsets;
   std::vector<std::uint32_t> end;  // per shell, one past its last offset
   std::vector<int> squared;        // per shell
-  // The first shells as bits of the cubes around a query (cube_around): those of the 3^3 cube
-  // (squared lengths 0 to 3) and then of the 5^3 cube (4 to 8); `small_end` and `large_end`: the
-  // first shell each leaves out.
-  std::vector<std::uint32_t> small_masks;
-  std::vector<unsigned __int128> large_masks;  // indexed from small_end
+  // The first shells as bits of the cubes around a query (cube_around), a word per layer: those
+  // of the 3^3 cube (squared lengths 0 to 3) and then of the 5^3 cube (4 to 8); `small_end` and
+  // `large_end`: the first shell each leaves out.
+  std::vector<std::array<std::uint64_t, 3>> small_masks;
+  std::vector<std::array<std::uint64_t, 5>> large_masks;  // indexed from small_end
   std::size_t small_end = 0, large_end = 0;
 };
 
@@ -58,21 +58,17 @@ const Shells& shells() {
       }
       return true;
     };
-    const auto bit = [](const Offset& o, int reach) {
-      const int side = 2 * reach + 1;
-      return side * side * (o.z + reach) + side * (o.y + reach) + o.x + reach;
+    const auto add = [](auto& layers, const Offset& o, int reach) {
+      layers[std::size_t(o.z + reach)] |= std::uint64_t{1} << (8 * (o.y + reach) + o.x + reach);
     };
     for (std::size_t g = 0; within(g, 1); ++g) {
-      s.small_masks.push_back(0);
-      for (std::size_t k = g == 0 ? 0 : s.end[g - 1]; k < s.end[g]; ++k)
-        s.small_masks[g] |= 1u << bit(s.offsets[k], 1);
+      s.small_masks.emplace_back();
+      for (std::size_t k = g == 0 ? 0 : s.end[g - 1]; k < s.end[g]; ++k) add(s.small_masks.back(), s.offsets[k], 1);
       s.small_end = g + 1;
     }
     for (std::size_t g = s.small_end; within(g, 2); ++g) {
-      s.large_masks.push_back(0);
-      for (std::size_t k = s.end[g - 1]; k < s.end[g]; ++k) {
-        s.large_masks.back() |= static_cast<unsigned __int128>(1) << bit(s.offsets[k], 2);
-      }
+      s.large_masks.emplace_back();
+      for (std::size_t k = s.end[g - 1]; k < s.end[g]; ++k) add(s.large_masks.back(), s.offsets[k], 2);
       s.large_end = g + 1;
     }
     return s;
@@ -84,23 +80,46 @@ std::uint64_t brick_key(std::int32_t x, std::int32_t y, std::int32_t z) {
   return std::uint64_t(x + kBias) << 42 | std::uint64_t(y + kBias) << 21 | std::uint64_t(z + kBias);
 }
 
-// The voxels within `kReach` of a query at (lx, ly, lz) of its brick, as bits of a cube of side
-// 2 kReach + 1 (bit side^2 (dz + kReach) + side (dy + kReach) + dx + kReach: the query's voxel
-// + (dx, dy, dz)), read a row at a time: `row(tx, ty, tz)` is row (ty, tz) of the brick holding
-// those coordinates (each within -8 .. 15), 8 bits.
-template <class Bits, int kReach, class Row>
-Bits cube_around(std::int32_t lx, std::int32_t ly, std::int32_t lz, const Row& row) {
+// A byte repeated in every byte of a word.
+constexpr std::uint64_t bytes(std::uint64_t byte) {
+  return byte * 0x0101010101010101ull;
+}
+
+// The voxels within `kReach` of a query at (lx, ly, lz) of its brick, as a word per layer of a
+// cube of side 2 kReach + 1: bit 8 (dy + kReach) + dx + kReach of layer dz + kReach is the query's
+// voxel + (dx, dy, dz). A layer is read from the bricks' words whole, a byte per row:
+// `word(sx, sy, tz)` is word tz & 7 of the brick (sx, sy, tz >> 3) from the query's (tz within
+// -8 .. 15).
+template <int kReach, class Word>
+std::array<std::uint64_t, 2 * kReach + 1> cube_around(std::int32_t lx, std::int32_t ly, std::int32_t lz,
+                                                      const Word& word) {
   constexpr int side = 2 * kReach + 1;
-  Bits cube = 0;
-  for (std::int32_t dz = -kReach; dz <= kReach; ++dz) {
-    for (std::int32_t dy = -kReach; dy <= kReach; ++dy) {
-      const std::int32_t ty = ly + dy, tz = lz + dz;
-      std::uint32_t bits = row(lx, ty, tz) << 8;  // bit i: x = i - 8 of the query's brick
-      if (lx < kReach) bits |= row(-1, ty, tz);
-      if (lx > 7 - kReach) bits |= row(8, ty, tz) << 16;
-      cube |= Bits(bits >> (8 + lx - kReach) & ((1u << side) - 1))
-              << (side * side * (dz + kReach) + side * (dy + kReach));
+  constexpr std::uint64_t lanes = ((std::uint64_t{1} << (8 * side)) - 1) & bytes((1u << side) - 1);
+  const std::int32_t first_row = ly - kReach;
+  // Rows first_row .. first_row + 2 kReach of layer tz of the bricks sx from the query's, a byte
+  // each from the lowest (kReach < 4: they reach into one brick either way at most).
+  const auto rows = [&](std::int32_t sx, std::int32_t tz) {
+    if (first_row < 0) return word(sx, 0, tz) << (-8 * first_row) | word(sx, -1, tz) >> (64 + 8 * first_row);
+    std::uint64_t stack = word(sx, 0, tz) >> (8 * first_row);
+    if (ly + kReach > 7) stack |= word(sx, 1, tz) << (64 - 8 * first_row);
+    return stack;
+  };
+  std::array<std::uint64_t, side> cube;
+  for (int k = 0; k < side; ++k) {
+    const std::int32_t tz = lz + k - kReach;
+    std::uint64_t layer;
+    if (lx < kReach) {  // bits x < 0 from the brick before in x
+      const int shift = kReach - lx;
+      layer = (rows(0, tz) << shift & bytes(0xffu << shift & 0xffu)) |
+              (rows(-1, tz) >> (8 - shift) & bytes((1u << shift) - 1));
+    } else if (lx > 7 - kReach) {  // bits x > 7 from the brick after
+      const int shift = lx - kReach;
+      layer = (rows(0, tz) >> shift & bytes(0xffu >> shift)) |
+              (rows(1, tz) << (8 - shift) & bytes(0xffu << (8 - shift) & 0xffu));
+    } else {
+      layer = rows(0, tz) >> (lx - kReach);
     }
+    cube[std::size_t(k)] = layer & lanes;
   }
   return cube;
 }
@@ -113,19 +132,13 @@ std::uint32_t bit_count(std::uint64_t v) {
   return std::uint32_t((v * 0x0101010101010101ull) >> 56);
 }
 
-int lowest_bit(std::uint32_t bits) {
-  return __builtin_ctz(bits);
-}
-int lowest_bit(unsigned __int128 bits) {
-  const std::uint64_t low = std::uint64_t(bits);
-  return low != 0 ? __builtin_ctzll(low) : 64 + __builtin_ctzll(std::uint64_t(bits >> 64));
-}
-
 std::size_t hash(std::uint64_t key, int shift) {
   return std::size_t((key * 0x9E3779B97F4A7C15ull) >> shift);
 }
 
 }  // namespace
+
+const LatticeNeighbours::Brick LatticeNeighbours::kNoBrick{};
 
 bool LatticeNeighbours::on_lattice(const std::array<float, 3>& q) {
   for (const float c : q) {
@@ -153,8 +166,9 @@ std::unique_ptr<LatticeNeighbours> LatticeNeighbours::build(const std::vector<st
   if (!std::all_of(points.begin(), points.end(), on_lattice)) return nullptr;
   auto lattice = std::make_unique<LatticeNeighbours>();
   LatticeNeighbours& l = *lattice;
-  // The bricks, numbered as first met; the table doubles when half full. They are counted first,
-  // then filled, so that they take no more room than they need.
+  // The bricks, numbered as first met; the table doubles when 5/8 full (most lookups are answered
+  // by a probe's recent bricks). They are counted first, then filled, so that they take no more
+  // room than they need.
   l.shift_ = 64 - 10;
   l.table_.assign(std::size_t{1} << 10, Slot{});
   const auto insert = [&l](const Slot& slot) {
@@ -164,16 +178,20 @@ std::unique_ptr<LatticeNeighbours> LatticeNeighbours::build(const std::vector<st
     l.table_[at] = slot;
   };
   std::vector<std::int32_t> brick_of(points.size());
+  // Sorted points come back to the bricks of the voxels a few steps of x before: those are looked
+  // up in a small cache first, as a probe's are.
+  std::vector<std::pair<std::uint64_t, std::int32_t>> recent(std::size_t{1} << Probe::kRecentBits, {0, -1});
   std::uint64_t last_key = ~std::uint64_t{0};
   std::int32_t last_brick = -1, bricks = 0;
   for (std::size_t i = 0; i < points.size(); ++i) {
     const std::array<float, 3>& p = points[i];
     const std::uint64_t key = brick_key(std::int32_t(p[0]) >> 3, std::int32_t(p[1]) >> 3, std::int32_t(p[2]) >> 3);
     if (key != last_key) {
-      std::int32_t brick = l.find(key);
+      std::pair<std::uint64_t, std::int32_t>& seen = recent[hash(key, 64 - Probe::kRecentBits)];
+      std::int32_t brick = seen.first == key + 1 ? seen.second : l.find(key);
       if (brick < 0) {
         brick = bricks++;
-        if (2 * std::size_t(bricks) > l.table_.size()) {  // rehash into twice the room
+        if (8 * std::size_t(bricks) > 5 * l.table_.size()) {  // rehash into twice the room
           std::vector<Slot> table = std::move(l.table_);
           l.table_.assign(2 * table.size(), Slot{});
           --l.shift_;
@@ -183,6 +201,7 @@ std::unique_ptr<LatticeNeighbours> LatticeNeighbours::build(const std::vector<st
         }
         insert(Slot{key + 1, brick});
       }
+      seen = {key + 1, brick};
       last_key = key;
       last_brick = brick;
     }
@@ -219,15 +238,14 @@ std::unique_ptr<LatticeNeighbours> LatticeNeighbours::build(const std::vector<st
   return lattice;
 }
 
-inline std::int32_t LatticeNeighbours::brick_near(Probe& probe, std::int32_t tx, std::int32_t ty,
-                                                  std::int32_t tz) const {
-  const std::size_t around = std::size_t(((tx >> 3) + 1) * 9 + ((ty >> 3) + 1) * 3 + (tz >> 3) + 1);
-  std::int32_t& brick = probe.near[around];
-  if (brick == -2) {
-    brick = find(
-        brick_key(probe.block[0] + (tx >> 3), probe.block[1] + (ty >> 3), probe.block[2] + (tz >> 3)), probe);
+inline const LatticeNeighbours::Brick& LatticeNeighbours::brick_near(Probe& probe, std::int32_t sx, std::int32_t sy,
+                                                                     std::int32_t sz) const {
+  const Brick*& brick = probe.near[std::size_t((sx + 1) * 9 + (sy + 1) * 3 + sz + 1)];
+  if (brick == nullptr) {
+    const std::int32_t index = find(brick_key(probe.block[0] + sx, probe.block[1] + sy, probe.block[2] + sz), probe);
+    brick = index < 0 ? &kNoBrick : &bricks_[std::size_t(index)];
   }
-  return brick;
+  return *brick;
 }
 
 inline std::size_t LatticeNeighbours::place(std::int32_t brick, std::int32_t tx, std::int32_t ty,
@@ -249,29 +267,32 @@ bool LatticeNeighbours::nearest(const std::array<float, 3>& q, bool skip_zero, P
   const std::array<std::int32_t, 3> block{x >> 3, y >> 3, z >> 3};
   if (block != probe.block) {
     probe.block = block;
-    probe.near.fill(-2);
+    probe.near.fill(nullptr);
   }
   const std::int32_t lx = x & 7, ly = y & 7, lz = z & 7;  // offsets from here reach -8 .. 15
   const Shells& s = shells();
 
   // The nearest shells read at once from the bricks' bits: within the 3^3 cube, then the 5^3.
-  const auto row = [&](std::int32_t tx, std::int32_t ty, std::int32_t tz) {
-    const std::int32_t brick = brick_near(probe, tx, ty, tz);
-    if (brick < 0) return 0u;
-    return std::uint32_t(bricks_[std::size_t(brick)].words[std::size_t(tz & 7)] >> ((ty & 7) * 8)) & 0xffu;
+  const auto word = [&](std::int32_t sx, std::int32_t sy, std::int32_t tz) {
+    return brick_near(probe, sx, sy, tz >> 3).words[std::size_t(tz & 7)];
+  };
+  const auto brick_index = [&](std::int32_t tx, std::int32_t ty, std::int32_t tz) {
+    return std::int32_t(&brick_near(probe, tx >> 3, ty >> 3, tz >> 3) - bricks_.data());
   };
   // The first shell from `first` with a bit in `cube`, listed; false where none.
-  const auto list = [&](auto cube, const auto& masks, std::size_t first, std::size_t end, int reach) {
-    const int side = 2 * reach + 1;
+  const auto list = [&](const auto& cube, const auto& masks, std::size_t first, std::size_t end, int reach) {
     for (std::size_t g = std::max(first, skip_zero ? std::size_t{1} : std::size_t{0}); g < end; ++g) {
-      auto found = cube & masks[g - first];
-      if (found == 0) continue;
+      const auto& mask = masks[g - first];
+      std::uint64_t any = 0;
+      for (std::size_t k = 0; k < cube.size(); ++k) any |= cube[k] & mask[k];
+      if (any == 0) continue;
       std::size_t count = 0;
-      for (; found != 0; found &= found - 1, ++count) {
-        const int bit = lowest_bit(found);
-        const std::int32_t tx = lx + bit % side - reach, ty = ly + bit / side % side - reach,
-                           tz = lz + bit / (side * side) - reach;
-        shell.index[count] = point_in(brick_near(probe, tx, ty, tz), tx, ty, tz);
+      for (std::size_t k = 0; k < cube.size(); ++k) {
+        for (std::uint64_t found = cube[k] & mask[k]; found != 0; found &= found - 1, ++count) {
+          const int bit = __builtin_ctzll(found);
+          const std::int32_t tx = lx + (bit & 7) - reach, ty = ly + (bit >> 3) - reach, tz = lz + int(k) - reach;
+          shell.index[count] = point_in(brick_index(tx, ty, tz), tx, ty, tz);
+        }
       }
       shell.squared = s.squared[g];
       shell.count = count;
@@ -279,10 +300,8 @@ bool LatticeNeighbours::nearest(const std::array<float, 3>& q, bool skip_zero, P
     }
     return false;
   };
-  if (list(cube_around<std::uint32_t, 1>(lx, ly, lz, row), s.small_masks, 0, s.small_end, 1)) return true;
-  if (list(cube_around<unsigned __int128, 2>(lx, ly, lz, row), s.large_masks, s.small_end, s.large_end, 2)) {
-    return true;
-  }
+  if (list(cube_around<1>(lx, ly, lz, word), s.small_masks, 0, s.small_end, 1)) return true;
+  if (list(cube_around<2>(lx, ly, lz, word), s.large_masks, s.small_end, s.large_end, 2)) return true;
 
   // Farther shells offset by offset.
   for (std::size_t g = s.large_end; g < s.end.size(); ++g) {
@@ -290,11 +309,9 @@ bool LatticeNeighbours::nearest(const std::array<float, 3>& q, bool skip_zero, P
     for (std::size_t k = s.end[g - 1]; k < s.end[g]; ++k) {
       const Offset o = s.offsets[k];
       const std::int32_t tx = lx + o.x, ty = ly + o.y, tz = lz + o.z;
-      const std::int32_t brick = brick_near(probe, tx, ty, tz);
-      if (brick < 0) continue;
-      const Brick& b = bricks_[std::size_t(brick)];
+      const Brick& b = brick_near(probe, tx >> 3, ty >> 3, tz >> 3);  // kNoBrick: no bit set
       if (!(b.words[std::size_t(tz & 7)] >> ((tx & 7) | (ty & 7) << 3) & 1)) continue;
-      if (count < kListed) shell.index[count] = point_in(brick, tx, ty, tz);
+      if (count < kListed) shell.index[count] = point_in(std::int32_t(&b - bricks_.data()), tx, ty, tz);
       ++count;
     }
     if (count > 0) {

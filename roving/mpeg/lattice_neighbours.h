@@ -12,6 +12,11 @@
 namespace roving {
 
 class LatticeNeighbours {
+  // One cache line of occupancy: bit (x | y << 3) of word z is voxel (x, y, z) of the brick.
+  struct alignas(64) Brick {
+    std::array<std::uint64_t, 8> words{};
+  };
+
  public:
   // Offsets searched: squared length up to this (a radius of 8 voxels). A query with no point as
   // near gets no answer here.
@@ -36,7 +41,7 @@ class LatticeNeighbours {
   struct Probe {
     static constexpr int kRecentBits = 12;
     std::array<std::int32_t, 3> block{INT32_MIN, INT32_MIN, INT32_MIN};
-    std::array<std::int32_t, 27> near;  // bricks around it: index, -1 none, -2 not looked up
+    std::array<const Brick*, 27> near;  // bricks around it: null not looked up, kNoBrick none
     std::vector<std::pair<std::uint64_t, std::int32_t>> recent =  // key + 1 (0 none) and brick
         std::vector<std::pair<std::uint64_t, std::int32_t>>(std::size_t{1} << kRecentBits, {0, -1});
   };
@@ -50,10 +55,7 @@ class LatticeNeighbours {
   static bool on_lattice(const std::array<float, 3>& q);
 
  private:
-  // One cache line of occupancy: bit (x | y << 3) of word z is voxel (x, y, z) of the brick.
-  struct alignas(64) Brick {
-    std::array<std::uint64_t, 8> words{};
-  };
+  static const Brick kNoBrick;  // empty: where no brick is
   // Where a brick's points are listed: from `first` in `order_`, `before[z]` of them before word z.
   struct BrickStart {
     std::uint32_t first = 0;
@@ -61,8 +63,8 @@ class LatticeNeighbours {
   };
   std::int32_t find(std::uint64_t key) const;
   std::int32_t find(std::uint64_t key, Probe& probe) const;  // through probe.recent
-  // The brick of voxel (tx, ty, tz) of the probe's block (each within -8 .. 15), -1 none.
-  std::int32_t brick_near(Probe& probe, std::int32_t tx, std::int32_t ty, std::int32_t tz) const;
+  // The brick (sx, sy, sz) bricks from the probe's block (each -1, 0 or 1), kNoBrick none.
+  const Brick& brick_near(Probe& probe, std::int32_t sx, std::int32_t sy, std::int32_t sz) const;
   // The point at voxel (tx, ty, tz) (brick-local low 3 bits) of brick `brick`, which holds one.
   std::size_t place(std::int32_t brick, std::int32_t tx, std::int32_t ty,
                     std::int32_t tz) const;  // in order_

@@ -105,6 +105,7 @@ std::size_t seen_of_tied(std::size_t first, std::size_t tied, std::size_t size) 
 struct Scratch {
   LatticeNeighbours::Probe probe;
   LatticeNeighbours::Shell shell;
+  std::vector<std::uint32_t> runs;  // a block's matches, before they are kept at their size
 };
 
 // A cloud's nearest points to a query, as pc_error's search finds them. Where both clouds are
@@ -214,6 +215,7 @@ Matches find_matches(const MpegPoints& from, const NearestPoints& to, double thr
   tbb::enumerable_thread_specific<Scratch> scratches;  // one per thread, for this cloud
   for_each_block(from.size(), [&](std::size_t block, std::size_t begin, std::size_t end) {
     Scratch& scratch = scratches.local();
+    scratch.runs.clear();
     for (std::size_t i = begin; i < end; ++i) {
       const Neighbours n = to.tied(from.positions[i], threshold, scratch);
       // The run holds every point exactly as near (a difference of 0 is within any threshold),
@@ -223,8 +225,9 @@ Matches find_matches(const MpegPoints& from, const NearestPoints& to, double thr
       while (equal < n.found && n.squared[equal] == n.squared[0]) ++equal;
       m.tied[i] = std::uint8_t(n.found);
       m.equal[i] = std::uint8_t(equal);
-      m.index[block].insert(m.index[block].end(), n.index.begin(), n.index.begin() + n.found);
+      scratch.runs.insert(scratch.runs.end(), n.index.begin(), n.index.begin() + n.found);
     }
+    m.index[block].assign(scratch.runs.begin(), scratch.runs.end());
   });
   return m;
 }
@@ -444,11 +447,13 @@ MpegFigures mpeg_point_cloud_figures(const MpegPoints& a, const MpegPoints& b, c
   // Each direction's matches are searched once: B's in A serve B -> A and the points of B that
   // no point of A matched, A's in B carry A's normals over and serve A -> B.
   std::optional<Matches> a_in_b, b_in_a;
-  if (figures.d2 || figures.colour) b_in_a = find_matches(b, a_nearest, threshold);
+  if (figures.d2 || figures.colour) {
+    b_in_a = find_matches(b, a_nearest, threshold);
+    a_nearest.release();  // B -> A reads these matches, and nothing else searches A: its room is A's in B's
+  }
   if (figures.d2 && !own) {
     a_in_b = find_matches(a, b_nearest, threshold);
     // Both directions have their matches: the searches' room goes to the carried normals.
-    a_nearest.release();
     b_nearest.release();
     carried = normals_carried(a, b, *a_in_b, *b_in_a);
   }
