@@ -98,7 +98,7 @@ std::array<std::uint64_t, 2 * kReach + 1> cube_around(std::int32_t lx, std::int3
   const std::int32_t first_row = ly - kReach;
   // Rows first_row .. first_row + 2 kReach of layer tz of the bricks sx from the query's, a byte
   // each from the lowest (kReach < 4: they reach into one brick either way at most).
-  const auto rows = [&](std::int32_t sx, std::int32_t tz) {
+  const auto rows = [&](std::int32_t sx, std::int32_t tz) __attribute__((always_inline)) {
     if (first_row < 0) return word(sx, 0, tz) << (-8 * first_row) | word(sx, -1, tz) >> (64 + 8 * first_row);
     std::uint64_t stack = word(sx, 0, tz) >> (8 * first_row);
     if (ly + kReach > 7) stack |= word(sx, 1, tz) << (64 - 8 * first_row);
@@ -107,17 +107,18 @@ std::array<std::uint64_t, 2 * kReach + 1> cube_around(std::int32_t lx, std::int3
   std::array<std::uint64_t, side> cube;
   for (int k = 0; k < side; ++k) {
     const std::int32_t tz = lz + k - kReach;
+    const std::uint64_t centre = rows(0, tz);
     std::uint64_t layer;
     if (lx < kReach) {  // bits x < 0 from the brick before in x
       const int shift = kReach - lx;
-      layer = (rows(0, tz) << shift & bytes(0xffu << shift & 0xffu)) |
+      layer = (centre << shift & bytes(0xffu << shift & 0xffu)) |
               (rows(-1, tz) >> (8 - shift) & bytes((1u << shift) - 1));
     } else if (lx > 7 - kReach) {  // bits x > 7 from the brick after
       const int shift = lx - kReach;
-      layer = (rows(0, tz) >> shift & bytes(0xffu >> shift)) |
+      layer = (centre >> shift & bytes(0xffu >> shift)) |
               (rows(1, tz) << (8 - shift) & bytes(0xffu << (8 - shift) & 0xffu));
     } else {
-      layer = rows(0, tz) >> (lx - kReach);
+      layer = centre >> (lx - kReach);
     }
     cube[std::size_t(k)] = layer & lanes;
   }
@@ -273,7 +274,7 @@ bool LatticeNeighbours::nearest(const std::array<float, 3>& q, bool skip_zero, P
   const Shells& s = shells();
 
   // The nearest shells read at once from the bricks' bits: within the 3^3 cube, then the 5^3.
-  const auto word = [&](std::int32_t sx, std::int32_t sy, std::int32_t tz) {
+  const auto word = [&](std::int32_t sx, std::int32_t sy, std::int32_t tz) __attribute__((always_inline)) {
     return brick_near(probe, sx, sy, tz >> 3).words[std::size_t(tz & 7)];
   };
   const auto brick_index = [&](std::int32_t tx, std::int32_t ty, std::int32_t tz) {

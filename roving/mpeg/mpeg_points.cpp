@@ -255,7 +255,10 @@ MpegPoints sorted_and_merged(const Cloud& cloud, const Codec& codec, bool averag
       } else if (normals) {
         points.normals[out] = normal_at(run);
       }
-      if (colours) {
+      if (colours && end == run + 1) {  // most points: their own colour, without three divisions
+        const std::uint32_t i = codec.index(order[run]);
+        points.colours[out] = {cloud.colour(i, 0), cloud.colour(i, 1), cloud.colour(i, 2)};
+      } else if (colours) {
         // pc_error sums the 8-bit values and divides as integers: the mean, truncated.
         long sum[3] = {0, 0, 0};
         for (std::size_t k = run; k < end; ++k) {
