@@ -250,7 +250,7 @@ TEST(SamplingIntervals, RefuseTooFewSamples) {
   EXPECT_THROW(roving::sampling_intervals({1.0, 2.0}, {1}, 1.0), roving::Error);
 }
 
-// The radix sort is std::stable_sort's order: keys from each of the 16 bytes (some bytes constant,
+// The radix sort is std::stable_sort's order, on 128- and 64-bit keys: keys from each of the 16 bytes (some bytes constant,
 // as a voxelised cloud's low mantissa bytes are), many ties, sizes across its chunks of 2^16.
 TEST(RadixSort, OrdersAsAStableSortDoes) {
   std::mt19937_64 random(7);
@@ -272,6 +272,17 @@ TEST(RadixSort, OrdersAsAStableSortDoes) {
     roving::radix_sort(items, [](const Item& item) { return item.key; });
     for (std::size_t i = 0; i < n; ++i) {
       ASSERT_EQ(items[i].index, expected[i].index) << "n " << n << ", place " << i;
+    }
+    // The same keys' low words as 64-bit keys (their digits picked out of a word, not two).
+    std::vector<Item> low = expected;
+    std::shuffle(low.begin(), low.end(), random);
+    std::vector<Item> low_expected = low;
+    const auto low_word = [](const Item& item) { return std::uint64_t(item.key); };
+    std::stable_sort(low_expected.begin(), low_expected.end(),
+                     [&](const Item& a, const Item& b) { return low_word(a) < low_word(b); });
+    roving::radix_sort(low, low_word);
+    for (std::size_t i = 0; i < n; ++i) {
+      ASSERT_EQ(low[i].index, low_expected[i].index) << "64-bit keys, n " << n << ", place " << i;
     }
   }
 }

@@ -41,7 +41,8 @@ class LatticeNeighbours {
   struct Probe {
     static constexpr int kRecentBits = 12;
     std::array<std::int32_t, 3> block{INT32_MIN, INT32_MIN, INT32_MIN};
-    std::array<const Brick*, 27> near;  // bricks around it: null not looked up, kNoBrick none
+    std::uint32_t looked_up = 0;        // bit k: near[k] is set (on a new block, one store clears all)
+    std::array<const Brick*, 27> near;  // bricks around it, kNoBrick none
     std::vector<std::pair<std::uint64_t, std::int32_t>> recent =  // key + 1 (0 none) and brick
         std::vector<std::pair<std::uint64_t, std::int32_t>>(std::size_t{1} << kRecentBits, {0, -1});
   };

@@ -82,7 +82,7 @@ struct PackedCodec {
     }
     return {word << layout.index_bits | i};
   }
-  RadixKey position(const PackedEntry& e) const { return e.word >> layout.index_bits; }
+  std::uint64_t position(const PackedEntry& e) const { return e.word >> layout.index_bits; }
   std::uint32_t index(const PackedEntry& e) const {
     return std::uint32_t(e.word & ((std::uint64_t{1} << layout.index_bits) - 1));
   }
@@ -115,33 +115,30 @@ struct WideCodec {
 
 // A cloud in memory. Its normals and colours are first made small (single precision and 8 bits),
 // in file order, by `prepare` in the pass that checks the positions, so that the merging, which
-// reads them in sorted order, has less to fetch.
+// reads them in sorted order, has less to fetch. Pointers, not vectors: each task works on a copy
+// of its own (sorted_and_merged), the room is the caller's.
 struct MemoryCloud {
-  const PointCloud& cloud;
-  std::vector<std::array<float, 3>> normals;
-  std::vector<std::array<std::uint8_t, 4>> colours;
+  const PointCloud* cloud;
+  std::array<float, 3>* normals = nullptr;         // null: none
+  std::array<std::uint8_t, 4>* colours = nullptr;  // null: none
 
-  MemoryCloud(const PointCloud& c, bool with_normals) : cloud(c) {
-    if (with_normals && !cloud.normals.empty()) normals.resize(cloud.positions.size());
-    if (!cloud.colours.empty()) colours.resize(cloud.positions.size());
-  }
-  std::size_t size() const { return cloud.positions.size(); }
-  Vec3 position(std::size_t i) const { return cloud.positions[i]; }
-  bool has_normals() const { return !normals.empty(); }
-  bool has_colours() const { return !colours.empty(); }
-  Vec3 normal_as_read(std::size_t i) const { return cloud.normals[i]; }
+  std::size_t size() const { return cloud->positions.size(); }
+  Vec3 position(std::size_t i) const { return cloud->positions[i]; }
+  bool has_normals() const { return normals != nullptr; }
+  bool has_colours() const { return colours != nullptr; }
+  Vec3 normal_as_read(std::size_t i) const { return cloud->normals[i]; }
   const std::array<float, 3>& normal(std::size_t i) const { return normals[i]; }
   std::uint8_t colour(std::size_t i, int c) const { return colours[i][c]; }
   void prefetch(std::size_t i) const {
     if (has_colours()) __builtin_prefetch(&colours[i]);
     if (has_normals()) __builtin_prefetch(&normals[i]);
   }
-  void prepare(std::size_t i) {
-    if (has_normals()) normals[i] = small_normal(cloud.normals[i]);
+  void prepare(std::size_t i) const {
+    if (has_normals()) normals[i] = small_normal(cloud->normals[i]);
     if (has_colours()) {
       for (int c = 0; c < 3; ++c) {
         // Rounded half away from zero, as lround (the difference from the whole part is exact).
-        const float value = cloud.colours[i][c];
+        const float value = cloud->colours[i][c];
         const float code = value >= 0.0f ? std::min(value, 255.0f) : 0.0f;  // NaN: 0
         const int whole = int(code);
         colours[i][c] = std::uint8_t(whole + (code - float(whole) >= 0.5f));
@@ -157,7 +154,7 @@ struct MemoryCloud {
 // A binary file's records where they lie, read in place: already small, as pc_error reads them
 // (coordinates and normals stored in double are rounded to single precision).
 struct PackedRecords {
-  const PackedPointCloud& packed;
+  PackedPointCloud packed;  // a copy: each task works on a copy of its own (sorted_and_merged)
   bool with_normals;
 
   std::size_t size() const { return packed.count; }
@@ -223,27 +220,38 @@ MpegPoints sorted_and_merged(const Cloud& cloud, const Codec& codec, bool averag
   // A normal that is used must be finite; the first such in sorted order is the one named.
   const bool normals = cloud.has_normals(), colours = cloud.has_colours();
   std::atomic<std::size_t> first_bad_normal{n};
-  const auto normal_at = [&](std::size_t k) {
-    const std::array<float, 3> normal = cloud.normal(codec.index(order[k]));
-    if (std::isnan(normal[0])) keep_least(first_bad_normal, k);
-    return normal;
-  };
   MpegPoints points;
   points.points_read = n;
   points.positions.resize(runs);
   if (normals) points.normals.resize(runs);
   if (colours) points.colours.resize(runs);
   tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t b) {
+    // What the loop reads, copied into this frame: the colours' byte stores might otherwise be
+    // into any of it, and the compiler would read it all again after each.
+    const Cloud source = cloud;
+    const Codec keys = codec;
+    const Entry* const sorted = order.data();
+    std::array<float, 3>* const positions_out = points.positions.data();
+    std::array<float, 3>* const normals_out = points.normals.data();
+    std::array<std::uint8_t, 3>* const colours_out = points.colours.data();
+    const auto same_position = [&](std::size_t k, std::size_t j) {
+      return keys.position(sorted[k]) == keys.position(sorted[j]);
+    };
+    const auto normal_at = [&](std::size_t k) {
+      const std::array<float, 3> normal = source.normal(keys.index(sorted[k]));
+      if (std::isnan(normal[0])) keep_least(first_bad_normal, k);
+      return normal;
+    };
     std::size_t out = first_run[b];
     std::size_t run = b * kBlock;
     while (run < n && run > 0 && same_position(run, run - 1)) ++run;  // the block before's
     for (const std::size_t stop = std::min(n, (b + 1) * kBlock); run < stop; ++out) {
       // The colours and normals are read in sorted order, at random in the file's: asked for
       // ahead, their cache misses overlap instead of following one another.
-      if (run + kAhead < n && (normals || colours)) cloud.prefetch(codec.index(order[run + kAhead]));
+      if (run + kAhead < n && (normals || colours)) source.prefetch(keys.index(sorted[run + kAhead]));
       std::size_t end = run + 1;
       while (end < n && same_position(end, run)) ++end;
-      points.positions[out] = codec.point(order[run]);
+      positions_out[out] = keys.point(sorted[run]);
       if (normals && average_normals) {
         std::array<float, 3> sum = {0, 0, 0};  // in single precision, in the sorted order, as mmetric
         for (std::size_t k = run; k < end; ++k) {
@@ -251,21 +259,21 @@ MpegPoints sorted_and_merged(const Cloud& cloud, const Codec& codec, bool averag
           for (int c = 0; c < 3; ++c) sum[c] += normal[c];
         }
         for (int c = 0; c < 3; ++c) sum[c] /= float(end - run);
-        points.normals[out] = sum;
+        normals_out[out] = sum;
       } else if (normals) {
-        points.normals[out] = normal_at(run);
+        normals_out[out] = normal_at(run);
       }
       if (colours && end == run + 1) {  // most points: their own colour, without three divisions
-        const std::uint32_t i = codec.index(order[run]);
-        points.colours[out] = {cloud.colour(i, 0), cloud.colour(i, 1), cloud.colour(i, 2)};
+        const std::uint32_t i = keys.index(sorted[run]);
+        colours_out[out] = {source.colour(i, 0), source.colour(i, 1), source.colour(i, 2)};
       } else if (colours) {
         // pc_error sums the 8-bit values and divides as integers: the mean, truncated.
         long sum[3] = {0, 0, 0};
         for (std::size_t k = run; k < end; ++k) {
-          for (int c = 0; c < 3; ++c) sum[c] += cloud.colour(codec.index(order[k]), c);
+          for (int c = 0; c < 3; ++c) sum[c] += source.colour(keys.index(sorted[k]), c);
         }
         const long count = long(end - run);
-        points.colours[out] = {std::uint8_t(sum[0] / count), std::uint8_t(sum[1] / count), std::uint8_t(sum[2] / count)};
+        colours_out[out] = {std::uint8_t(sum[0] / count), std::uint8_t(sum[1] / count), std::uint8_t(sum[2] / count)};
       }
       run = end;
     }
@@ -336,7 +344,9 @@ MpegPoints mpeg_points(const PointCloud& cloud, const std::string& name, bool wi
     throw Error(fmt::format("{}: {} colours for {} points; expected one per point or none", name,
                             cloud.colours.size(), n));
   }
-  MemoryCloud memory(cloud, with_normals);
+  std::vector<std::array<float, 3>> normals(with_normals && !cloud.normals.empty() ? n : 0);
+  std::vector<std::array<std::uint8_t, 4>> colours(cloud.colours.empty() ? 0 : n);
+  MemoryCloud memory{&cloud, normals.empty() ? nullptr : normals.data(), colours.empty() ? nullptr : colours.data()};
   return points_of(memory, name, average_normals);
 }
 
