@@ -39,11 +39,18 @@ void keep_least(std::atomic<std::size_t>& least, std::size_t value) {
 
 // A coordinate's single-precision bits turned to keep float's order as unsigned integers (-0 taken
 // as +0, which float's == merges and which changes no distance), and back.
-std::uint32_t ordered_bits(double v) {
-  const float f = float(v) + 0.0f;
+std::uint32_t ordered_bits(float v) {
+  const float f = v + 0.0f;
   std::uint32_t bits;
   std::memcpy(&bits, &f, sizeof bits);
   return bits & 0x80000000u ? ~bits : bits | 0x80000000u;
+}
+
+// A position's ordered bits; false where a coordinate is not a finite single-precision value.
+bool ordered_position(const Vec3& p, std::array<std::uint32_t, 3>& bits) {
+  if (!representable(p)) return false;
+  bits = {ordered_bits(float(p.x())), ordered_bits(float(p.y())), ordered_bits(float(p.z()))};
+  return true;
 }
 
 float from_ordered_bits(std::uint32_t k) {
@@ -124,6 +131,9 @@ struct MemoryCloud {
 
   std::size_t size() const { return cloud->positions.size(); }
   Vec3 position(std::size_t i) const { return cloud->positions[i]; }
+  bool ordered_position(std::size_t i, std::array<std::uint32_t, 3>& bits) const {
+    return roving::ordered_position(position(i), bits);
+  }
   bool has_normals() const { return normals != nullptr; }
   bool has_colours() const { return colours != nullptr; }
   Vec3 normal_as_read(std::size_t i) const { return cloud->normals[i]; }
@@ -156,9 +166,22 @@ struct MemoryCloud {
 struct PackedRecords {
   PackedPointCloud packed;  // a copy: each task works on a copy of its own (sorted_and_merged)
   bool with_normals;
+  bool float_positions = std::none_of(packed.position.begin(), packed.position.end(),
+                                      [](const PackedPointCloud::Field& f) { return f.is_double; });
 
   std::size_t size() const { return packed.count; }
   Vec3 position(std::size_t i) const { return read(i, packed.position); }
+  // As the free function, read straight from single precision where the file stores it so (the
+  // usual case: the points' check and sort keys then take half the instructions).
+  bool ordered_position(std::size_t i, std::array<std::uint32_t, 3>& bits) const {
+    if (!float_positions) return roving::ordered_position(position(i), bits);
+    const char* item = packed.records + packed.stride * i;
+    std::array<float, 3> p;
+    for (int c = 0; c < 3; ++c) std::memcpy(&p[c], item + packed.position[c].offset, sizeof(float));
+    if (!(std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]))) return false;
+    bits = {ordered_bits(p[0]), ordered_bits(p[1]), ordered_bits(p[2])};
+    return true;
+  }
   bool has_normals() const { return with_normals && packed.normals; }
   bool has_colours() const { return packed.colours; }
   Vec3 normal_as_read(std::size_t i) const { return read(i, packed.normal); }
@@ -193,9 +216,10 @@ MpegPoints sorted_and_merged(const Cloud& cloud, const Codec& codec, bool averag
   const std::size_t n = cloud.size();
   std::vector<Entry> order(n);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 65536), [&](const tbb::blocked_range<std::size_t>& range) {
+    std::array<std::uint32_t, 3> bits{};
     for (std::size_t i = range.begin(); i != range.end(); ++i) {
-      const Vec3 p = cloud.position(i);
-      order[i] = codec.make({ordered_bits(p.x()), ordered_bits(p.y()), ordered_bits(p.z())}, i);
+      cloud.ordered_position(i, bits);  // true: checked before
+      order[i] = codec.make(bits, i);
     }
   });
   radix_sort(order, [&codec](const Entry& e) { return codec.position(e); });
@@ -292,23 +316,19 @@ MpegPoints points_of(Cloud& cloud, const std::string& name, bool average_normals
   // On all cores: the points checked and prepared, and the bits in which they differ from the
   // first. The first point that is not representable (in file order) is the one named.
   std::atomic<std::size_t> first_bad{n};
-  const Vec3 start = cloud.position(0);
-  if (!representable(start)) to_float(start, name, "point", 0);  // throws
-  const std::array<std::uint32_t, 3> first = {ordered_bits(start.x()), ordered_bits(start.y()),
-                                              ordered_bits(start.z())};
   using Varying = std::array<std::uint32_t, 3>;
+  Varying first;
+  if (!cloud.ordered_position(0, first)) to_float(cloud.position(0), name, "point", 0);  // throws
   const Varying varying = tbb::parallel_reduce(
       tbb::blocked_range<std::size_t>(0, n, 65536), Varying{},
       [&](const tbb::blocked_range<std::size_t>& range, Varying bits) {
+        Varying p;
         for (std::size_t i = range.begin(); i != range.end(); ++i) {
-          const Vec3 p = cloud.position(i);
-          if (!representable(p)) {
+          if (!cloud.ordered_position(i, p)) {
             keep_least(first_bad, i);
             return bits;
           }
-          bits[0] |= ordered_bits(p.x()) ^ first[0];
-          bits[1] |= ordered_bits(p.y()) ^ first[1];
-          bits[2] |= ordered_bits(p.z()) ^ first[2];
+          for (int c = 0; c < 3; ++c) bits[c] |= p[c] ^ first[c];
           cloud.prepare(i);
         }
         return bits;
