@@ -385,6 +385,9 @@ TEST(LatticeNeighbours, ShellIsEveryPointAtTheLeastDistance) {
   while (unique.size() < 3000)
     unique.insert(P{float(coordinate(random)), float(coordinate(random)), float(coordinate(random))});
   for (int k = -4; k <= 4; ++k) unique.insert(P{float(k), 200, 0});  // a row far off: long shells of 2
+  // Points at the ends of the range, so that the bricks' x spans all it can (the slabs' tables).
+  unique.insert(P{-1048576, 5, 5});
+  unique.insert(P{1048576, -5, 5});
   const std::vector<P> points(unique.begin(), unique.end());
   const auto lattice = LatticeNeighbours::build(points);
   ASSERT_TRUE(lattice);

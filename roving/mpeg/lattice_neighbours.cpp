@@ -154,18 +154,21 @@ bool LatticeNeighbours::on_lattice(const std::array<float, 3>& q) {
   return true;
 }
 
-std::int32_t LatticeNeighbours::find(std::uint64_t key) const {
-  const std::size_t mask = table_.size() - 1;
-  for (std::size_t at = hash(key, shift_);; at = (at + 1) & mask) {
-    if (table_[at].key == key + 1) return table_[at].brick;
-    if (table_[at].key == 0) return -1;
+// Open addressing in table[first, first + 2^bits): the slot holding `key` (as key + 1), or the
+// empty one where it would go.
+inline std::size_t LatticeNeighbours::slot_of(const std::vector<Slot>& table, std::size_t first, int bits,
+                                              std::uint64_t key) {
+  const std::size_t mask = (std::size_t{1} << bits) - 1;
+  for (std::size_t at = hash(key, 64 - bits);; at = (at + 1) & mask) {
+    const Slot& slot = table[first + at];
+    if (slot.key == key + 1 || slot.key == 0) return first + at;
   }
 }
 
-inline std::int32_t LatticeNeighbours::find(std::uint64_t key, Probe& probe) const {
-  std::pair<std::uint64_t, std::int32_t>& recent = probe.recent[hash(key, 64 - Probe::kRecentBits)];
-  if (recent.first != key + 1) recent = {key + 1, find(key)};
-  return recent.second;
+inline std::int32_t LatticeNeighbours::find(std::uint64_t key) const {
+  const std::size_t slab = std::size_t(std::int64_t(key >> 42) - kBias - slab_low_);  // wraps below
+  if (slab >= slabs_.size() || slabs_[slab].bits == 0) return -1;
+  return table_[slot_of(table_, slabs_[slab].first, slabs_[slab].bits, key)].brick;
 }
 
 ROVING_WITH_POPCOUNT std::unique_ptr<LatticeNeighbours> LatticeNeighbours::build(
@@ -174,40 +177,36 @@ ROVING_WITH_POPCOUNT std::unique_ptr<LatticeNeighbours> LatticeNeighbours::build
   if (!std::all_of(points.begin(), points.end(), on_lattice)) return nullptr;
   auto lattice = std::make_unique<LatticeNeighbours>();
   LatticeNeighbours& l = *lattice;
-  // The bricks, numbered as first met; the table doubles when 5/8 full (most lookups are answered
-  // by a probe's recent bricks). They are counted first, then filled, so that they take no more
-  // room than they need.
-  l.shift_ = 64 - 10;
-  l.table_.assign(std::size_t{1} << 10, Slot{});
-  const auto insert = [&l](const Slot& slot) {
-    const std::size_t mask = l.table_.size() - 1;
-    std::size_t at = hash(slot.key - 1, l.shift_);
-    while (l.table_[at].key != 0) at = (at + 1) & mask;
-    l.table_[at] = slot;
-  };
+  // The bricks, numbered as first met, through one table of all (doubled when 5/8 full; sorted
+  // points come back to the bricks of the voxels a few steps of x before: those are looked up in
+  // a small cache first). They are counted first, then filled, so that they take no more room than
+  // they need.
+  std::vector<Slot> all(std::size_t{1} << 10);
+  int all_bits = 10;
+  std::vector<std::uint64_t> keys;  // per brick
   std::vector<std::int32_t> brick_of(points.size());
-  // Sorted points come back to the bricks of the voxels a few steps of x before: those are looked
-  // up in a small cache first, as a probe's are.
-  std::vector<std::pair<std::uint64_t, std::int32_t>> recent(std::size_t{1} << Probe::kRecentBits, {0, -1});
+  constexpr int kRecentBits = 12;
+  std::vector<std::pair<std::uint64_t, std::int32_t>> recent(std::size_t{1} << kRecentBits, {0, -1});
   std::uint64_t last_key = ~std::uint64_t{0};
-  std::int32_t last_brick = -1, bricks = 0;
+  std::int32_t last_brick = -1;
   for (std::size_t i = 0; i < points.size(); ++i) {
     const std::array<float, 3>& p = points[i];
     const std::uint64_t key = brick_key(std::int32_t(p[0]) >> 3, std::int32_t(p[1]) >> 3, std::int32_t(p[2]) >> 3);
     if (key != last_key) {
-      std::pair<std::uint64_t, std::int32_t>& seen = recent[hash(key, 64 - Probe::kRecentBits)];
-      std::int32_t brick = seen.first == key + 1 ? seen.second : l.find(key);
+      std::pair<std::uint64_t, std::int32_t>& seen = recent[hash(key, 64 - kRecentBits)];
+      std::int32_t brick = seen.first == key + 1 ? seen.second : all[slot_of(all, 0, all_bits, key)].brick;
       if (brick < 0) {
-        brick = bricks++;
-        if (8 * std::size_t(bricks) > 5 * l.table_.size()) {  // rehash into twice the room
-          std::vector<Slot> table = std::move(l.table_);
-          l.table_.assign(2 * table.size(), Slot{});
-          --l.shift_;
-          for (const Slot& slot : table) {
-            if (slot.key != 0) insert(slot);
+        brick = std::int32_t(keys.size());
+        keys.push_back(key);
+        if (8 * keys.size() > 5 * all.size()) {  // rehash into twice the room
+          all.assign(2 * all.size(), Slot{});
+          ++all_bits;
+          for (std::size_t b = 0; b < keys.size(); ++b) {
+            all[slot_of(all, 0, all_bits, keys[b])] = {keys[b] + 1, std::int32_t(b)};
           }
+        } else {
+          all[slot_of(all, 0, all_bits, key)] = {key + 1, brick};
         }
-        insert(Slot{key + 1, brick});
       }
       seen = {key + 1, brick};
       last_key = key;
@@ -215,6 +214,30 @@ ROVING_WITH_POPCOUNT std::unique_ptr<LatticeNeighbours> LatticeNeighbours::build
     }
     brick_of[i] = last_brick;
   }
+  all = {};
+  // Each slab's bricks into a table of its own, at most 5/8 full.
+  const auto slab_x = [](std::uint64_t key) { return std::int32_t(key >> 42) - kBias; };
+  const auto [low, high] = std::minmax_element(keys.begin(), keys.end());  // by x first
+  l.slab_low_ = slab_x(*low);
+  l.slabs_.assign(std::size_t(slab_x(*high) - l.slab_low_ + 1), Slab{});
+  std::vector<std::uint32_t> slab_bricks(l.slabs_.size(), 0);
+  for (const std::uint64_t key : keys) ++slab_bricks[std::size_t(slab_x(key) - l.slab_low_)];
+  std::size_t slots = 0;
+  for (std::size_t slab = 0; slab < l.slabs_.size(); ++slab) {
+    if (slab_bricks[slab] == 0) continue;
+    int bits = 1;
+    while (8 * std::size_t(slab_bricks[slab]) > 5 * (std::size_t{1} << bits)) ++bits;
+    l.slabs_[slab] = {std::uint32_t(slots), std::uint8_t(bits)};
+    slots += std::size_t{1} << bits;
+    if (slots > UINT32_MAX) return nullptr;  // past a billion bricks: the general search serves
+  }
+  l.table_.assign(slots, Slot{});
+  for (std::size_t b = 0; b < keys.size(); ++b) {
+    const Slab& slab = l.slabs_[std::size_t(slab_x(keys[b]) - l.slab_low_)];
+    l.table_[slot_of(l.table_, slab.first, slab.bits, keys[b])] = {keys[b] + 1, std::int32_t(b)};
+  }
+  const std::int32_t bricks = std::int32_t(keys.size());
+  keys = {};
   l.bricks_.resize(std::size_t(bricks));
   for (std::size_t i = 0; i < points.size(); ++i) {
     const std::array<float, 3>& p = points[i];
@@ -252,7 +275,7 @@ inline const LatticeNeighbours::Brick& LatticeNeighbours::brick_near(Probe& prob
   const Brick*& brick = probe.near[std::size_t(k)];
   if (!(probe.looked_up >> k & 1)) {
     probe.looked_up |= std::uint32_t{1} << k;
-    const std::int32_t index = find(brick_key(probe.block[0] + sx, probe.block[1] + sy, probe.block[2] + sz), probe);
+    const std::int32_t index = find(brick_key(probe.block[0] + sx, probe.block[1] + sy, probe.block[2] + sz));
     brick = index < 0 ? &kNoBrick : &bricks_[std::size_t(index)];
   }
   return *brick;

@@ -35,16 +35,12 @@ class LatticeNeighbours {
     std::array<std::uint32_t, kListed> index;  // the first min(count, kListed) of them
   };
 
-  // A thread's view of the occupancy near its queries: the bricks around the last query's (kept
-  // while queries fall in the same brick) and the bricks looked up lately (queries in sorted
-  // order come back to them), so that most queries look nothing up in the whole table.
+  // A thread's view of the occupancy near its queries: the bricks around the last query's, kept
+  // while queries fall in the same brick.
   struct Probe {
-    static constexpr int kRecentBits = 12;
     std::array<std::int32_t, 3> block{INT32_MIN, INT32_MIN, INT32_MIN};
     std::uint32_t looked_up = 0;        // bit k: near[k] is set (on a new block, one store clears all)
     std::array<const Brick*, 27> near;  // bricks around it, kNoBrick none
-    std::vector<std::pair<std::uint64_t, std::int32_t>> recent =  // key + 1 (0 none) and brick
-        std::vector<std::pair<std::uint64_t, std::int32_t>>(std::size_t{1} << kRecentBits, {0, -1});
   };
 
   // The nearest shell from `q` (integral, within +-2^20; checked by the caller, as build checks
@@ -62,8 +58,14 @@ class LatticeNeighbours {
     std::uint32_t first = 0;
     std::array<std::uint16_t, 8> before{};
   };
-  std::int32_t find(std::uint64_t key) const;
-  std::int32_t find(std::uint64_t key, Probe& probe) const;  // through probe.recent
+  // Open addressing, a key beside its brick so that a lookup reads one cache line.
+  struct Slot {
+    std::uint64_t key = 0;  // brick key + 1, 0 empty
+    std::int32_t brick = -1;
+  };
+  __attribute__((always_inline)) static std::size_t slot_of(const std::vector<Slot>& table, std::size_t first,
+                                                             int bits, std::uint64_t key);
+  std::int32_t find(std::uint64_t key) const;  // the brick, -1 none
   // The brick (sx, sy, sz) bricks from the probe's block (each -1, 0 or 1), kNoBrick none.
   const Brick& brick_near(Probe& probe, std::int32_t sx, std::int32_t sy, std::int32_t sz) const;
   // The point at voxel (tx, ty, tz) (brick-local low 3 bits) of brick `brick`, which holds one.
@@ -74,13 +76,16 @@ class LatticeNeighbours {
   std::vector<Brick> bricks_;
   std::vector<BrickStart> starts_;
   std::vector<std::uint32_t> order_;  // the points' indices, brick after brick, voxel order within
-  // Open addressing, a key beside its brick so that a lookup reads one cache line.
-  struct Slot {
-    std::uint64_t key = 0;  // brick key + 1, 0 empty
-    std::int32_t brick = -1;
+  // The bricks of each slab (the bricks of one x) in a table of their own, 2^bits slots from
+  // `first` in table_ (0 bits: none): queries in sorted order read the tables of a few slabs at a
+  // time, which stay in the cache, where one table of all would be read at random.
+  struct Slab {
+    std::uint32_t first = 0;
+    std::uint8_t bits = 0;
   };
+  std::vector<Slab> slabs_;  // from the brick x slab_low_
+  std::int32_t slab_low_ = 0;
   std::vector<Slot> table_;
-  int shift_ = 64;
 };
 
 }  // namespace roving
