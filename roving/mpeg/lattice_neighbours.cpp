@@ -135,8 +135,8 @@ __attribute__((always_inline)) inline std::array<std::uint64_t, 2 * kReach + 1> 
   return cube;
 }
 
-// Set bits of a word: one instruction in the functions made for CPUs with POPCNT (ROVING_WITH_POPCOUNT),
-// a call into libgcc in the others.
+// Set bits of a word: one instruction in the functions made for CPUs with POPCNT
+// (ROVING_WITH_POPCOUNT), a call into libgcc in the others.
 inline std::uint32_t bit_count(std::uint64_t v) { return std::uint32_t(__builtin_popcountll(v)); }
 
 std::size_t hash(std::uint64_t key, int shift) {

@@ -223,9 +223,6 @@ MpegPoints sorted_and_merged(const Cloud& cloud, const Codec& codec, bool averag
     }
   });
   radix_sort(order, [&codec](const Entry& e) { return codec.position(e); });
-  const auto same_position = [&](std::size_t k, std::size_t j) {
-    return codec.position(order[k]) == codec.position(order[j]);
-  };
 
   // Runs of equal points, found and merged block by block on all cores: each block merges the runs
   // that begin in it, into the places counted before it.
@@ -235,7 +232,9 @@ MpegPoints sorted_and_merged(const Cloud& cloud, const Codec& codec, bool averag
   std::vector<std::size_t> first_run(blocks + 1, 0);
   tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t b) {
     std::size_t count = 0;
-    for (std::size_t k = b * kBlock; k < std::min(n, (b + 1) * kBlock); ++k) count += k == 0 || !same_position(k, k - 1);
+    for (std::size_t k = b * kBlock; k < std::min(n, (b + 1) * kBlock); ++k) {
+      count += k == 0 || codec.position(order[k]) != codec.position(order[k - 1]);
+    }
     first_run[b + 1] = count;
   });
   std::partial_sum(first_run.begin(), first_run.end(), first_run.begin());
