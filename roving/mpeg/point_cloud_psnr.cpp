@@ -279,12 +279,24 @@ MpegDirection direction(const MpegPoints& from, const MpegPoints& to, const Near
   std::vector<MpegDirection> blocks((from.size() + kBlock - 1) / kBlock);
   tbb::enumerable_thread_specific<Scratch> scratches;  // one per thread, for this cloud
   for_each_block(from.size(), [&](std::size_t block, std::size_t begin, std::size_t end) {
-    MpegDirection& sum = blocks[block];
+    MpegDirection sum;  // in this frame, so that the compiler may keep it in registers
     Scratch& scratch = scratches.local();
     const std::uint32_t* run = matches ? matches->index[block].data() : nullptr;
+    // The matches' points are read at random: those of the point kAhead on are asked for now, so
+    // that the reads' cache misses overlap instead of following one another.
+    constexpr std::size_t kAhead = 8;
+    const std::uint32_t* ahead = run;
+    for (std::size_t i = begin; matches && i < std::min(end, begin + kAhead); ++i) ahead += matches->tied[i];
     for (std::size_t i = begin; i < end; ++i) {
       const Point& p = from.positions[i];
       Neighbours n;
+      if (matches && i + kAhead < end) {
+        const std::uint32_t j = *ahead;
+        __builtin_prefetch(&to.positions[j]);
+        if (to_normals) __builtin_prefetch(&(*to_normals)[j]);
+        if (colour) __builtin_prefetch(&to.colours[j]);
+        ahead += matches->tied[i + kAhead];
+      }
       if (matches) {
         n.found = matches->tied[i];
         n.squared[0] = squared_distance(p, to.positions[run[0]]);  // as the search computed it
@@ -317,7 +329,10 @@ MpegDirection direction(const MpegPoints& from, const MpegPoints& to, const Near
           unsigned total[3] = {0, 0, 0};
           for (std::size_t k = 0; k < n.found; ++k)
             for (int c = 0; c < 3; ++c) total[c] += to.colours[n.index[k]][c];
-          for (int c = 0; c < 3; ++c) mean[c] = std::uint8_t(std::round(double(total[c]) / double(n.found)));
+          // Rounded half away from zero, as std::round of the quotient: a quotient of integers this
+          // small is never nearer a half than 1 / 60, far beyond any rounding of the division.
+          const unsigned count = unsigned(n.found);
+          for (int c = 0; c < 3; ++c) mean[c] = std::uint8_t((2 * total[c] + count) / (2 * count));
         }
         const std::array<float, 3> in = ycbcr(from.colours[i]), met = ycbcr(mean);
         for (int c = 0; c < 3; ++c) {
@@ -329,6 +344,7 @@ MpegDirection direction(const MpegPoints& from, const MpegPoints& to, const Near
         }
       }
     }
+    blocks[block] = sum;
   });
   MpegDirection d;
   d.points = from.size();
