@@ -10,7 +10,7 @@ namespace roving {
 // The closest point to `p` on the closed triangle (a, b, c) with its barycentric weights (of a, b,
 // c; non-negative, summing to 1), for what is interpolated over the triangle there (colour):
 // Ericson, "Real-Time Collision Detection", section 5.1.5. Works for degenerate triangles (a point
-// of the segment or the vertex). Inline: Embree's closest-point callback calls it ~13 times a
+// of the segment or the vertex), equal corners included. Inline: Embree's closest-point callback calls it ~13 times a
 // query, and inlining saved 3% of the query time.
 struct TrianglePoint {
   Vec3 point;
@@ -28,7 +28,9 @@ inline TrianglePoint closest_on_triangle(const Vec3& p, const Vec3& a, const Vec
   if (d3 >= 0 && d4 <= d3) return {b, Vec3(0, 1, 0)};
 
   const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0 && d1 >= 0 && d3 <= 0) {
+  // Each edge's test asks for a positive length too (d1 - d3 is |ab|^2): a triangle with two equal
+  // corners would otherwise take 0 / 0 here, a NaN point, and a NaN distance stops a BVH's search.
+  if (vc <= 0 && d1 >= 0 && d3 <= 0 && d1 - d3 > 0) {
     const double v = d1 / (d1 - d3);
     return {a + v * ab, Vec3(1 - v, v, 0)};
   }
@@ -38,13 +40,13 @@ inline TrianglePoint closest_on_triangle(const Vec3& p, const Vec3& a, const Vec
   if (d6 >= 0 && d5 <= d6) return {c, Vec3(0, 0, 1)};
 
   const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0 && d2 >= 0 && d6 <= 0) {
+  if (vb <= 0 && d2 >= 0 && d6 <= 0 && d2 - d6 > 0) {  // |ac|^2 > 0
     const double w = d2 / (d2 - d6);
     return {a + w * ac, Vec3(1 - w, 0, w)};
   }
 
   const double va = d3 * d6 - d5 * d4;
-  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0 && (d4 - d3) + (d5 - d6) > 0) {  // |bc|^2 > 0
     const double w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
     return {b + w * (c - b), Vec3(0, 1 - w, w)};
   }
