@@ -19,10 +19,12 @@ namespace {
 using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 
 // The distance between triangle `a` and triangle pqr (CGAL's, which gives 0 where it cannot show
-// them apart: still a lower bound); for a degenerate pqr, which CGAL does not take, the distance
-// from a's centre less a's reach (1-Lipschitz), a lower bound too.
+// them apart: still a lower bound); for a degenerate or thin pqr, where CGAL's inexact
+// constructions lose their digits, the distance from a's centre less a's reach (1-Lipschitz, by
+// the exact-deciding kernel), a lower bound too.
 double triangle_distance(const std::array<Vec3, 3>& a, const Vec3& p, const Vec3& q, const Vec3& r) {
-  if ((q - p).cross(r - p).squaredNorm() == 0) {
+  const double longest_squared = std::max({(q - p).squaredNorm(), (r - q).squaredNorm(), (p - r).squaredNorm()});
+  if (!((q - p).cross(r - p).squaredNorm() > 1e-6 * longest_squared * longest_squared)) {
     const Vec3 centre = (a[0] + a[1] + a[2]) / 3;
     double reach = 0;
     for (const Vec3& corner : a) reach = std::max(reach, (corner - centre).norm());
@@ -65,6 +67,12 @@ AreaWithin certified_area_within(const TriangleMesh& a, const TriangleMesh& b, c
   result.undecided.assign(n, 0);
   if (n == 0 || a.total_area() <= 0) return result;
   const ClosestPoints closest(b);
+  // Every distance below is the kernel's, within this of the exact one: each bound is widened by it.
+  double largest_coordinate = 0;
+  for (const TriangleMesh* mesh : {&a, &b}) {
+    for (const Vec3& p : mesh->positions()) largest_coordinate = std::max(largest_coordinate, p.cwiseAbs().maxCoeff());
+  }
+  const double error = closest_point_error_bound(largest_coordinate);
   const double units_per_area = 1 / (AreaWithin::kUnit * a.total_area());
 
   // A piece's verdict; `exact` asks for the piece's own distance to B where the bounds at hand do
@@ -78,14 +86,14 @@ AreaWithin certified_area_within(const TriangleMesh& a, const TriangleMesh& b, c
     const auto [least, most] = std::minmax({piece.distance[0], piece.distance[1], piece.distance[2]});
     // Every point of a triangle is within its longest edge / sqrt 3 of a corner (the circumradius
     // at most, for the largest angle is >= 60 degrees), and within the longest edge of each.
-    const double upper = std::min(piece.upper, most + longest / std::sqrt(3.0));
-    double lower = std::max({0.0, most - longest, least - longest / std::sqrt(3.0)});
+    const double upper = std::min(piece.upper, most + longest / std::sqrt(3.0)) + error;
+    double lower = std::max({0.0, most - longest, least - longest / std::sqrt(3.0)}) - error;
     double open_tau = -1;  // the largest tau neither bound decides
     for (const double tau : thresholds) {
       if (upper > tau && lower <= tau) open_tau = std::max(open_tau, tau);
     }
     if (exact && open_tau >= 0) {
-      lower = std::max(lower, closest.distance_from(c, open_tau, triangle_distance));
+      lower = std::max(lower, closest.distance_from(c, open_tau, triangle_distance) - error);
       ++queries;
     }
     const bool may_split = longest > min_length && piece.depth < kMaxDepth;

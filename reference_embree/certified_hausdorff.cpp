@@ -41,6 +41,7 @@ CertifiedHausdorff::CertifiedHausdorff(const TriangleMesh& b, double max_gap) : 
   }
   const Stopwatch watch;
   closest_ = std::make_unique<ClosestPoints>(b);
+  for (const Vec3& p : b.positions()) largest_coordinate_ = std::max(largest_coordinate_, p.cwiseAbs().maxCoeff());
   result_.seconds = watch.seconds();
 }
 
@@ -48,7 +49,12 @@ CertifiedHausdorff::~CertifiedHausdorff() = default;
 
 HausdorffInterval CertifiedHausdorff::interval() const {
   if (!added_) throw Error("certified Hausdorff distance: no triangles of A were given");
-  return result_;
+  // Every distance above is the kernel's, within its bound of the exact one.
+  const double error = closest_point_error_bound(largest_coordinate_);
+  HausdorffInterval widened = result_;
+  widened.lower = std::max(0.0, result_.lower - error);
+  widened.upper = result_.upper + error;
+  return widened;
 }
 
 void CertifiedHausdorff::add(const TriangleMesh& a, std::size_t first, std::size_t last) {
@@ -68,6 +74,9 @@ void CertifiedHausdorff::add(const TriangleMesh& a, std::size_t first, std::size
   const auto& positions = a.positions();
   const auto& triangles = a.triangles();
   std::vector<bool> used = a.vertex_referenced();
+  for (std::size_t v = 0; v < positions.size(); ++v) {
+    if (used[v]) largest_coordinate_ = std::max(largest_coordinate_, positions[v].cwiseAbs().maxCoeff());
+  }
   const bool whole = first == 0 && last == a.triangle_count();
   if (!whole) {
     used.assign(positions.size(), false);
@@ -81,8 +90,13 @@ void CertifiedHausdorff::add(const TriangleMesh& a, std::size_t first, std::size
   });
   result.distance_queries +=
       whole ? positions.size() : static_cast<std::size_t>(std::count(used.begin(), used.end(), true));
+  // The first point found sets the lower end even at distance 0, so that the farthest point
+  // reported is always a point of A (never the interval's initial origin).
   const auto raise_lower = [&](const Vec3& x, const ClosestPoints::Found& f) {
-    if (f.distance > result.lower) result.lower = f.distance, result.lower_point = x, result.lower_closest = f.point;
+    if (f.distance > result.lower || !attained_) {
+      result.lower = f.distance, result.lower_point = x, result.lower_closest = f.point;
+      attained_ = true;
+    }
   };
   for (std::size_t v = 0; v < positions.size(); ++v) {
     if (used[v]) raise_lower(positions[v], at_vertex[v]);

@@ -86,6 +86,9 @@ class EmbreeReference final : public DistanceMethod {
     // diagonal wherever the model sits; queries are shifted by the same origin in double.
     origin_ = test.bounding_box().centre();
     diagonal_ = test.bounding_box().diagonal();
+    // Every corner one point: Embree's builder asserts on boxes with no extent and equal centres
+    // (the readers refuse such a model as having no area; this says so to the library's callers).
+    if (!(diagonal_ > 0)) throw Error("embree: expected a test surface, found triangles that are all one point");
 
     tolerance_ = kNormalLineTolerance * diagonal_;
     // Triangles as user geometry: Embree's BVH finds the candidates (boxes widened beyond the

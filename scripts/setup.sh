@@ -7,7 +7,7 @@
 set -euo pipefail
 packages=(
   build-essential cmake ninja-build pkg-config ccache
-  libcgal-dev libembree-dev libopenmesh-dev libeigen3-dev libtbb-dev
+  libcgal-dev libembree-dev libopenmesh-dev libeigen3-dev libtbb-dev libgmp-dev
   libosmesa6-dev libegl-dev libegl-mesa0 libgles-dev libgl-dev
   libbenchmark-dev libgtest-dev libgmock-dev
   libcli11-dev libnanoflann-dev libmatio-dev nlohmann-json3-dev libfmt-dev libssl-dev libassimp-dev libcairo2-dev libpng-dev libjpeg-dev libjs-three

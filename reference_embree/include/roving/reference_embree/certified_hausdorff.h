@@ -55,13 +55,15 @@ class CertifiedHausdorff {
   // A's triangles [first, last); throws roving::Error on an empty A or a range outside it.
   void add(const TriangleMesh& a, std::size_t first, std::size_t last);
   void add(const TriangleMesh& a) { add(a, 0, a.triangle_count()); }
-  // The interval over the parts added; throws roving::Error where none was.
+  // The interval over the parts added, each end widened by the closest-point kernel's error bound
+  // (roving/core/geometry.h), so that it holds the exact value; throws roving::Error where none was.
   HausdorffInterval interval() const;
 
  private:
   std::unique_ptr<ClosestPoints> closest_;
   double max_gap_ = 0;
-  bool added_ = false;
+  bool added_ = false, attained_ = false;  // attained_: the lower end has a point of A
+  double largest_coordinate_ = 0;            // of A and B: the scale of the distances' rounding
   HausdorffInterval result_;
 };
 
