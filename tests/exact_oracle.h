@@ -9,6 +9,7 @@
 
 #include <array>
 #include <cmath>
+#include <optional>
 #include <vector>
 
 #include "roving/core/triangle_mesh.h"
@@ -66,6 +67,83 @@ inline mpq_class squared_distance(const Vec3& p, const TriangleMesh& mesh) {
     if (first || d < best) best = d, first = false;
   }
   return best;
+}
+
+// The normal line's rule (roving/core/normal_line.h) on one triangle, exactly, by a formulation
+// of its own: the line's crossing with the triangle's plane and a barycentric inside test; else
+// each edge's nearest point to the line seen along n (the edge projected on the plane across the
+// line). Returns the interval of s (the point is x + s n), not yet clamped.
+struct SInterval {
+  mpq_class low, high;
+};
+inline std::optional<SInterval> line_crossing(const Vec3& x_, const Vec3& n_, const Vec3& a_, const Vec3& b_,
+                                              const Vec3& c_, const mpq_class& tolerance) {
+  const Q3 x = q3(x_), n = q3(n_);
+  const std::array<Q3, 3> v = {q3(a_), q3(b_), q3(c_)};
+  const mpq_class nn = dot(n, n);
+  const Q3 normal = cross(v[1] - v[0], v[2] - v[0]);
+  const mpq_class facing = dot(normal, n);
+  if (facing != 0) {
+    const mpq_class s = dot(normal, v[0] - x) / facing;
+    const Q3 at = x + s * n;
+    bool inside = true;
+    for (int e = 0; e < 3; ++e) inside = inside && sgn(dot(normal, cross(v[(e + 1) % 3] - v[e], at - v[e]))) >= 0;
+    if (inside) return SInterval{s, s};
+  }
+  const auto across = [&](const Q3& p) { return p - (dot(p, n) / nn) * n; };
+  const mpq_class limit = tolerance * tolerance;
+  std::optional<SInterval> met;
+  mpq_class best = limit;
+  for (int e = 0; e < 3; ++e) {
+    const Q3 p = v[e] - x, q = v[(e + 1) % 3] - x;
+    const Q3 a = across(p), d = across(q) - a;
+    mpq_class f = 0;
+    if (dot(d, d) != 0) {
+      f = -dot(a, d) / dot(d, d);
+      if (f < 0) f = 0;
+      if (f > 1) f = 1;
+    }
+    const Q3 nearest = a + f * d;
+    const mpq_class distance = dot(nearest, nearest);
+    if (distance > limit) continue;
+    const mpq_class s = dot(p + f * (q - p), n) / nn;
+    if (facing != 0) {  // outside: the one point nearest the line
+      if (distance <= best) best = distance, met = SInterval{s, s};
+      continue;
+    }
+    SInterval piece{s, s};  // edge-on: every edge near the line; one along it all its length
+    if (dot(a, a) <= limit && dot(across(q), across(q)) <= limit) {
+      const mpq_class sp = dot(p, n) / nn, sq = dot(q, n) / nn;
+      piece = sp < sq ? SInterval{sp, sq} : SInterval{sq, sp};
+    }
+    if (!met) met = piece;
+    if (piece.low < met->low) met->low = piece.low;
+    if (piece.high > met->high) met->high = piece.high;
+  }
+  return met;
+}
+
+// The d the rule gives a sample against a whole mesh: first-hit the top of every crossing's
+// interval, nearest the point of any interval nearest x (the outer one of two equally near);
+// within [-h, h] widened by the tolerance (window, the double h + tolerance), clamped into it.
+inline std::optional<mpq_class> line_d(const Vec3& x, const Vec3& n, const TriangleMesh& mesh, double h,
+                                       double tolerance, bool first_hit) {
+  const mpq_class window = mpq_class(h + tolerance), top = h, tol = tolerance;
+  std::optional<mpq_class> chosen;
+  const auto& p = mesh.positions();
+  for (const Triangle& t : mesh.triangles()) {
+    std::optional<SInterval> c = line_crossing(x, n, p[t[0]], p[t[1]], p[t[2]], tol);
+    if (!c || c->high < -window || c->low > window) continue;
+    for (mpq_class* end : {&c->low, &c->high}) {
+      if (*end > top) *end = top;
+      if (*end < -top) *end = -top;
+    }
+    mpq_class d = c->high;
+    if (!first_hit) d = c->low <= 0 && c->high >= 0 ? mpq_class(0) : (abs(c->low) < abs(c->high) ? c->low : c->high);
+    if (!chosen || (first_hit ? d > *chosen : (abs(d) < abs(*chosen) || (abs(d) == abs(*chosen) && d > *chosen))))
+      chosen = d;
+  }
+  return chosen;
 }
 
 // The distance, within an ulp or two: the square root of the nearest double.

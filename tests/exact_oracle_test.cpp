@@ -1,7 +1,7 @@
 // Every figure called exact or certified against an exact rational oracle (exact_oracle.h) on
 // adversarial pairs (adversarial_pairs.h): the closest-point kernel, every closest-point method
 // (Embree, CGAL, both vertex-to-plane searches) on vertex, face, area and scattered samples, and
-// the certified Hausdorff interval. The bound is the kernel's stated one,
+// the certified Hausdorff interval; every normal-line method (Embree, CGAL) first-hit and nearest. The bound is the kernel's stated one,
 // closest_point_error_bound(M) with M the largest coordinate involved: 1024 ulps of it (1.1e-13 M), far below any
 // distance a user measures, and far above what a correct computation rounds to. Zero
 // discrepancies beyond it. A longer run by hand: ROVING_ORACLE_PAIRS=N (docs/reliability.md).
@@ -16,6 +16,8 @@
 #include "exact_oracle.h"
 #include "roving/core/error.h"
 #include "roving/core/geometry.h"
+#include "roving/core/normal_line.h"
+#include "roving/core/rational.h"
 #include "roving/reference_embree/certified_hausdorff.h"
 #include "roving/registry/method_registry.h"
 
@@ -123,6 +125,60 @@ TEST(ExactOracle, EveryClosestPointMethodOnAdversarialPairs) {
                 tally.compared, tally.wrong, tally.worst);
     EXPECT_EQ(tally.wrong, 0u) << name;
   }
+}
+
+// First-hit and nearest d of both exact methods against the oracle's rule (exact_oracle.h's
+// line_d) on the same samples: needles and caps nearly edge-on, faces edge-on and degenerate,
+// lines through vertices and along edges (REF = TEST's own samples), view volumes of several
+// depths. The same bound as the closest point's.
+TEST(ExactOracle, EveryNormalLineMethodOnAdversarialPairs) {
+  adversarial::Choices choose(4);
+  std::map<std::string, Tally> tallies;
+  std::size_t no_hits = 0;
+  for (int k = 0; k < pair_count(300); ++k) {
+    const adversarial::Pair pair = adversarial::pair(choose, 24);
+    if (!(pair.test.total_area() > 0)) continue;
+    std::vector<std::pair<std::string, SampleSet>> sets = {{"scattered", pair.samples}};
+    for (const char* kind : {"vertices", "faces", "area:16"}) {
+      try {
+        sets.emplace_back(kind, make_samples(pair.test, parse_sample_spec(kind)));
+      } catch (const Error&) {
+      }
+    }
+    const double diagonal = pair.test.bounding_box().diagonal();
+    const double m = oracle::largest_coordinate(pair.test);
+    const double tolerance = kNormalLineTolerance * diagonal;
+    const double h = diagonal * std::pow(10.0, choose.below(4) - 2.0);
+    for (const std::string name : {"embree", "cgal"}) {
+      const auto method = make_method(name);
+      method->build(pair.test);
+      for (const Semantics semantics : {Semantics::FirstHit, Semantics::Nearest}) {
+        const bool first_hit = semantics == Semantics::FirstHit;
+        const std::string what = name + (first_hit ? " first-hit" : " nearest");
+        for (const auto& [set_name, samples] : sets) {
+          const DistanceResult r = method->measure(samples, {semantics, h});
+          for (std::size_t s = 0; s < samples.size(); ++s) {
+            const auto exact =
+                oracle::line_d(samples.positions[s], samples.normals[s], pair.test, h, tolerance, first_hit);
+            ASSERT_EQ(bool(r.hit[s]), exact.has_value()) << what << ", " << set_name << ": " << pair.what;
+            if (!exact) {
+              ++no_hits;
+              continue;
+            }
+            const double bound = closest_point_error_bound(std::max(m, largest(samples.positions[s])));
+            tallies[what].check(r.signed_distance[s], nearest_double(*exact), bound,
+                                what + ", " + set_name + ": " + pair.what);
+          }
+        }
+      }
+    }
+  }
+  for (const auto& [name, tally] : tallies) {
+    std::printf("%s: %zu samples (no-hits apart), %zu beyond the bound, worst error %.3g of the bound\n",
+                name.c_str(), tally.compared, tally.wrong, tally.worst);
+    EXPECT_EQ(tally.wrong, 0u) << name;
+  }
+  std::printf("no-hits, equal to the oracle's: %zu\n", no_hits);
 }
 
 // The certified interval holds the exact one-sided Hausdorff distance: no less than the exact

@@ -1,7 +1,7 @@
 // The exact closest point on a triangle (the inline fast path is in geometry.h) and Morton codes.
 #include "roving/core/geometry.h"
 
-#include <gmpxx.h>
+#include "roving/core/rational.h"
 
 #include <algorithm>
 #include <array>
@@ -34,23 +34,22 @@ struct Exact {
   Exact operator*(const mpq_class& s) const { return {x * s, y * s, z * s}; }
   mpq_class dot(const Exact& o) const { return x * o.x + y * o.y + z * o.z; }
   Exact cross(const Exact& o) const { return {y * o.z - z * o.y, z * o.x - x * o.z, x * o.y - y * o.x}; }
-  Vec3 rounded() const { return Vec3(x.get_d(), y.get_d(), z.get_d()); }
 };
-
-// mpq_class::get_d truncates; the weights and points are rounded to nearest through mpfr-free
-// means: a double's 53 bits of the quotient, corrected by one comparison.
-double nearest_double(const mpq_class& q) {
-  const double t = q.get_d();  // truncated towards zero
-  const double away = std::nextafter(t, q >= 0 ? HUGE_VAL : -HUGE_VAL);
-  const mpq_class error_t = abs(q - mpq_class(t)), error_away = abs(q - mpq_class(away));
-  return error_away < error_t ? away : t;
-}
 
 Vec3 nearest(const Exact& e) {
   return Vec3(nearest_double(e.x), nearest_double(e.y), nearest_double(e.z));
 }
 
 }  // namespace
+
+// mpq_class::get_d truncates; rounded to nearest through mpfr-free means: a double's 53 bits of
+// the quotient, corrected by one comparison.
+double nearest_double(const mpq_class& q) {
+  const double t = q.get_d();  // truncated towards zero
+  const double away = std::nextafter(t, q >= 0 ? HUGE_VAL : -HUGE_VAL);
+  const mpq_class error_t = abs(q - mpq_class(t)), error_away = abs(q - mpq_class(away));
+  return error_away < error_t ? away : t;
+}
 
 TrianglePoint closest_on_triangle_careful(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
   constexpr double u = 0x1p-53;

@@ -170,6 +170,7 @@ void sample_area(const TriangleMesh& mesh, const SampleSpec& spec, SampleSet& sa
     total += mesh.face_normal(f).isZero() ? 0.0 : mesh.face_area(f);
     cumulative[f] = total;
   }
+  if (!(total > 0)) return;  // no face with a normal: no samples, which make_samples refuses
   Mt19937_64 random(spec.seed);
   const auto uniform = [&random] { return (random() >> 11) * 0x1.0p-53; };
   const double weight = total / static_cast<double>(spec.count);
@@ -192,7 +193,8 @@ void sample_area(const TriangleMesh& mesh, const SampleSpec& spec, SampleSet& sa
         const double* u = &draws[3 * (i - begin)];
         const double target = u[0] * total;
         std::size_t f = std::upper_bound(cumulative.begin(), cumulative.end(), target) - cumulative.begin();
-        f = std::min(f, cumulative.size() - 1);
+        // A draw rounded up to the total: the last face with area, not a degenerate one after it.
+        if (f == cumulative.size()) f = std::lower_bound(cumulative.begin(), cumulative.end(), total) - cumulative.begin();
         const double r1 = std::sqrt(u[1]), r2 = u[2];
         const Triangle& t = mesh.triangles()[f];
         const auto& p = mesh.positions();
