@@ -428,6 +428,71 @@ TEST(CooperativeViews, ResolveBesideACreaseExactly) {
   }
 }
 
+// Faces a view cannot draw (issue 79): a fin edge-on to the view, and a face degenerate to a
+// segment along a sample's normal line. Each lies above the floor a view sees, on the lines of
+// some samples: those samples go to the cameras (cooperative), which give the rule's first
+// crossing as Embree does, or stay unresolved (viewpoint alone), never the floor's d. The rest of
+// the floor is resolved by the view.
+TEST(CooperativeViews, NeverResolveALineMeetingAFaceTheViewCannotDraw) {
+  REQUIRE_GL_CONTEXT(default_gl_backend());
+  const Vec3 w = view_directions(24, 12)[8 * 24 + 5];  // a view direction (a cell's centre)
+  const Vec3 e1 = w.cross(Vec3::UnitX()).normalized(), e2 = w.cross(e1);
+  std::vector<Vec3> positions;
+  std::vector<Triangle> triangles;
+  const auto add = [&](const Vec3& a, const Vec3& b, const Vec3& c) {
+    const auto v = static_cast<std::uint32_t>(positions.size());
+    positions.insert(positions.end(), {a, b, c});
+    triangles.push_back({v, v + 1, v + 2});
+  };
+  for (int i = -10; i < 10; ++i) {  // the floor, facing the view, at w = 0
+    for (int j = -10; j < 10; ++j) {
+      const Vec3 p = 0.1 * (i * e1 + j * e2);
+      add(p, p + 0.1 * e1, p + 0.1 * (e1 + e2));
+      add(p, p + 0.1 * (e1 + e2), p + 0.1 * e2);
+    }
+  }
+  // The fin: the plane e2 = 0.25, containing w (edge-on to the view), from w = -0.3 to 0.5; the
+  // lines of the row of samples at e2 = 0.241 cross it at d = 0.09.
+  const Vec3 fin = 0.25 * e2;
+  add(fin - 0.5 * e1 - 0.3 * w, fin + 0.5 * e1 - 0.3 * w, fin + 0.5 * w);
+  // Samples 0.05 below the floor, their normals tilted 0.1 towards e2: the floor at d = 0.05.
+  SampleSet samples;
+  const Vec3 n = (w + 0.1 * e2).normalized();
+  for (int i = -7; i < 7; ++i) {
+    for (int j = -7; j <= 2; ++j) {
+      samples.positions.push_back(0.1 * (i + 0.37) * e1 + 0.1 * (j + 0.41) * e2 - 0.05 * w);
+      samples.normals.push_back(n);
+      samples.weights.push_back(1);
+      samples.elements.push_back(0);
+    }
+  }
+  // The degenerate face: a segment on the line of sample `on_segment`, from d = 0.02 to 0.12.
+  const std::size_t on_segment = 3 * 10 + 4;
+  const Vec3 x = samples.positions[on_segment];
+  add(x + 0.02 * n, x + 0.02 * n, x + 0.12 * n);
+  const TriangleMesh test(positions, triangles);
+  const DistanceOptions options{Semantics::FirstHit, 0.3};
+  const DistanceResult e = measure_distances(*make_method("embree"), test, samples, options);
+  const DistanceResult c = measure_distances(*make_method("cooperative"), test, samples, options);
+  const DistanceResult v = measure_distances(*make_method("viewpoint"), test, samples, options);
+  std::size_t blocked = 0, by_view = 0;
+  for (std::size_t k = 0; k < samples.size(); ++k) {
+    ASSERT_TRUE(e.hit[k]);
+    const bool floor_only = std::abs(e.signed_distance[k] - 0.05 / n.dot(w)) < 1e-9;
+    blocked += !floor_only;
+    if (!floor_only) {
+      EXPECT_EQ(c.gl->resolved_by[k], Resolution::Camera) << k;
+      EXPECT_NEAR(c.signed_distance[k], e.signed_distance[k], roving_tolerance(*c.gl)) << k;
+      EXPECT_FALSE(v.hit[k]) << k;
+    } else {
+      by_view += c.gl->resolved_by[k] == Resolution::View;
+    }
+  }
+  EXPECT_GE(blocked, 6u);  // where the fin's row of samples meets the triangle, and the segment's one
+  EXPECT_NEAR(e.signed_distance[on_segment], 0.12, 1e-12);
+  EXPECT_GE(by_view, (samples.size() - blocked) / 2);
+}
+
 // The cooperative method's error is bounded on every kind of pair (the full matrix, 4 shapes x
 // 4 kinds of test x 2 h, is in results/gl-accuracy.md): a CI-sized subset, against Embree.
 TEST(CooperativeBound, WithinOnePercentOnEveryKindOfPair) {
@@ -564,6 +629,39 @@ namespace {
 // where the rule's edge cases abound: lines through every vertex (a model against itself and
 // against a copy moved along its normals), creases, and a model 10^5 of its size from the origin
 // (where float coordinates would lose the camera's width).
+// Faces the rasteriser cannot follow (issue 79): a fin on a floor, edge-on to the cameras of the
+// samples at its foot (their normal lines run up it), and the same fin tilted by 1e-9 (a sliver
+// no pixel centre falls in). Exact roving, its cameras built on the CPU and on the GPU, gives
+// the rule's first crossing as Embree does: the fin's top within the view volume, not the floor.
+TEST_P(EachBackend, ExactRovingFollowsTheRuleOnFacesEdgeOnToItsCameras) {
+  REQUIRE_GL_CONTEXT(GetParam());
+  for (const double tilt : {0.0, 1e-9}) {
+    std::vector<Vec3> positions = {{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}, {0, 0, 0},
+                                   {tilt, 0, 0.3}, {0.3, 0, 0}, {-0.3, 0, 0}};
+    const TriangleMesh test(positions, {{0, 1, 4}, {1, 2, 4}, {2, 3, 4}, {3, 0, 4}, {4, 6, 5}, {7, 4, 5}});
+    SampleSet samples;
+    for (const double x : {-0.2, -0.1, 0.0, 0.1, 0.2}) {  // at the fin's foot, normals up
+      samples.positions.emplace_back(x, 0, 0);
+      samples.normals.emplace_back(0, 0, 1);
+      samples.weights.push_back(1);
+      samples.elements.push_back(0);
+    }
+    const DistanceOptions first_hit{Semantics::FirstHit, 0.2};
+    const DistanceResult e = measure_distances(*make_method("embree"), test, samples, first_hit);
+    for (const bool gpu : {false, true}) {
+      GlMethodOptions gl = options();
+      gl.gpu_cameras = gpu;
+      const DistanceResult r = measure_distances(*make_method("roving", gl), test, samples, first_hit);
+      for (std::size_t k = 0; k < samples.size(); ++k) {
+        ASSERT_TRUE(e.hit[k] && r.hit[k]);
+        EXPECT_GT(e.signed_distance[k], 0.05) << k;  // the fin, above the floor
+        EXPECT_NEAR(r.signed_distance[k], e.signed_distance[k], roving_tolerance(*r.gl))
+            << "tilt " << tilt << (gpu ? ", GPU cameras" : ", CPU cameras") << ", sample " << k;
+      }
+    }
+  }
+}
+
 TEST_P(EachBackend, GpuCamerasGiveTheCpuCamerasAnswers) {
   REQUIRE_GL_CONTEXT(GetParam());
   struct Case {

@@ -134,6 +134,7 @@ void GlScene::prepare_colour() {
 void GlScene::release() {
   grid.reset();
   clusters.reset();
+  blind.reset();
   test = nullptr;
 }
 

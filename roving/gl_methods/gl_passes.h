@@ -12,6 +12,7 @@
 #include "roving/core/distance_method.h"
 #include "roving/gl/depth_renderer.h"
 #include "roving/gl_methods/gl_methods.h"
+#include "blind_faces.h"
 #include "surface_shades.h"
 #include "triangle_clusters.h"
 #include "triangle_grid.h"
@@ -24,6 +25,7 @@ struct GlScene {
   std::unique_ptr<DepthRenderer> renderer;
   std::unique_ptr<TriangleGrid> grid;
   std::unique_ptr<TriangleClusters> clusters;
+  std::unique_ptr<BlindFaces> blind;  // the views' (viewpoint_sampling.cpp), made by the first
   const TriangleMesh* test = nullptr;
   bool gpu_cameras = false;  // GlMethodOptions::gpu_cameras
   SurfaceShades shades;      // colour (prepare_colour()); empty corners: none drawn

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "gl_passes.h"
 #include "hit_colour.h"
@@ -69,13 +70,51 @@ void widen_edge(const Vec3& p, const Vec3& q, const Emit& emit) {
 constexpr std::size_t kTilesPerBatch = 64 * 64;
 constexpr std::size_t kSamplesPerChunk = 512;
 
+// A face less than one camera half-width wide across the camera (edge-on to the line, degenerate
+// to a segment or a point, or nearly so) covers no pixel centre by itself, and the strips along
+// its edges give their own depths, not the face's: the rasteriser cannot follow the rule there.
+// Such a face is not drawn; the rule decides it (normal_line.h), on the same doubles as Embree
+// and CGAL, and the tile's d is the higher of the two (first-hit: the highest crossing).
+bool thin_across(const Vec3 (&offset)[3], const OrthoCamera& camera) {
+  double x[3], y[3], longest_squared = 0;
+  for (int c = 0; c < 3; ++c) x[c] = offset[c].dot(camera.right), y[c] = offset[c].dot(camera.up);
+  for (int e = 0; e < 3; ++e) {
+    const int f = (e + 1) % 3;
+    longest_squared = std::max(longest_squared, (x[f] - x[e]) * (x[f] - x[e]) + (y[f] - y[e]) * (y[f] - y[e]));
+  }
+  const double twice_area = (x[1] - x[0]) * (y[2] - y[0]) - (y[1] - y[0]) * (x[2] - x[0]);
+  return !(twice_area * twice_area > camera.half_width * camera.half_width * longest_squared);
+}
+
+// The tile's top crossing among its thin faces, by the rule.
+class ThinFaces {
+ public:
+  ThinFaces(const SampleSet& samples, std::uint32_t k, double max_error, double tolerance)
+      : samples_(samples), k_(k), max_error_(max_error), tolerance_(tolerance) {}
+  void consider(const TriangleMesh& test, std::uint32_t face) {
+    if (!line_) line_.emplace(samples_.positions[k_], samples_.normals[k_], max_error_, tolerance_);
+    const Triangle& t = test.triangles()[face];
+    const auto crossing = line_->crossing(test.positions()[t[0]], test.positions()[t[1]], test.positions()[t[2]]);
+    if (crossing && (!top_ || crossing->high > *top_)) top_ = crossing->high;
+  }
+  const std::optional<double>& top() const { return top_; }
+
+ private:
+  const SampleSet& samples_;
+  std::uint32_t k_;
+  double max_error_, tolerance_;
+  std::optional<NormalLine> line_;
+  std::optional<double> top_;
+};
+
 // Calls visit(face) for each triangle of the grid cells along the camera's view volume that is
 // not wholly to one side of it across (right or up). The view volume is a pixel across, so most
 // triangles of a cell are: they are passed over on the corners' offsets, before any division.
 // `stamp` marks triangles already seen for this camera (cells share triangles).
+// Faces thin across the camera go to `thin` instead.
 template <class Visit>
 void for_each_candidate(const TriangleMesh& test, const TriangleGrid& grid, const OrthoCamera& camera,
-                        std::vector<std::uint32_t>& stamp, std::uint32_t mark, const Visit& visit) {
+                        std::vector<std::uint32_t>& stamp, std::uint32_t mark, ThinFaces& thin, const Visit& visit) {
   const Vec3 a = camera.centre - camera.half_depth * camera.forward;
   const Vec3 b = camera.centre + camera.half_depth * camera.forward;
   grid.for_each_along(a, b, [&](std::uint32_t face) {
@@ -89,16 +128,23 @@ void for_each_candidate(const TriangleMesh& test, const TriangleGrid& grid, cons
       const double bound = half * (1 + 1e-9);  // beyond it, a / half > 1 whatever the rounding
       return (a0 > bound && a1 > bound && a2 > bound) || (a0 < -bound && a1 < -bound && a2 < -bound);
     };
-    if (!misses(camera.right, camera.half_width) && !misses(camera.up, camera.half_height)) visit(face);
+    if (misses(camera.right, camera.half_width) || misses(camera.up, camera.half_height)) return;
+    if (thin_across(offset, camera)) {
+      thin.consider(test, face);
+    } else {
+      visit(face);
+    }
   });
 }
 
 // One batch of cameras, as the renderer takes it: built on the CPU, the tiles' vertices; built
-// on the GPU, each tile's camera and its candidate triangles.
+// on the GPU, each tile's camera and its candidate triangles. Beside them, the tiles whose lines
+// meet a face too thin across the camera to be drawn, with the highest d the rule gives there.
 struct TileBatch {
   std::vector<TileVertex> vertices;
   std::vector<OrthoCamera> cameras;
   std::vector<TileFace> faces;
+  std::vector<std::pair<std::uint32_t, double>> thin_tops;
 };
 
 // Appends, for sample camera `camera` in tile `tile`, every candidate triangle that reaches the
@@ -109,9 +155,9 @@ struct TileBatch {
 // ray passes through the closed triangle or within the tolerance of it, whatever its fill rule
 // decides on an edge.
 void emit_triangles(const GlScene& scene, const OrthoCamera& camera, std::uint32_t tile,
-                    std::vector<std::uint32_t>& stamp, std::uint32_t mark, TileBatch& out) {
+                    std::vector<std::uint32_t>& stamp, std::uint32_t mark, ThinFaces& thin, TileBatch& out) {
   const TriangleMesh& test = *scene.test;
-  for_each_candidate(test, *scene.grid, camera, stamp, mark, [&](std::uint32_t face) {
+  for_each_candidate(test, *scene.grid, camera, stamp, mark, thin, [&](std::uint32_t face) {
     const Triangle& t = test.triangles()[face];
     Vec3 q[3];
     for (int c = 0; c < 3; ++c) q[c] = camera.to_normalised(test.positions()[t[c]]);
@@ -189,14 +235,16 @@ std::size_t rove(GlScene& scene, const SampleSet& samples, const std::vector<std
               const OrthoCamera camera = OrthoCamera::looking_along(-samples.normals[k], samples.positions[k],
                                                                     half_width, half_width, half_depth);
               const auto t = static_cast<std::uint32_t>(tile);
+              ThinFaces thin(samples, k, max_error, half_width);
               if (on_gpu) {
                 batch.cameras[tile] = camera;
-                for_each_candidate(test, *scene.grid, camera, stamp, mark, [&](std::uint32_t face) {
+                for_each_candidate(test, *scene.grid, camera, stamp, mark, thin, [&](std::uint32_t face) {
                   chunk_batches[chunk].faces.push_back({t, face});
                 });
               } else {
-                emit_triangles(scene, camera, t, stamp, mark, chunk_batches[chunk]);
+                emit_triangles(scene, camera, t, stamp, mark, thin, chunk_batches[chunk]);
               }
+              if (thin.top()) chunk_batches[chunk].thin_tops.emplace_back(t, *thin.top());
             }
           }
         });
@@ -210,6 +258,7 @@ std::size_t rove(GlScene& scene, const SampleSet& samples, const std::vector<std
     };
     join(&TileBatch::vertices);
     join(&TileBatch::faces);
+    join(&TileBatch::thin_tops);
     report.camera_build_seconds += building.seconds();
   };
 
@@ -217,6 +266,7 @@ std::size_t rove(GlScene& scene, const SampleSet& samples, const std::vector<std
   // build the next one.
   TileBatch batch[2];
   std::vector<float> depth;
+  std::vector<std::optional<double>> tile_d;  // a batch's d per tile, drawn and thin faces
   std::vector<std::pair<std::uint32_t, double>> resolved;  // a batch's hits (k, d), for colour
   std::vector<SampleHit> hits;
   const double window = roving_tolerance(report);  // the cameras' bound on their d
@@ -244,13 +294,19 @@ std::size_t rove(GlScene& scene, const SampleSet& samples, const std::vector<std
           report.camera_render_seconds += draw_seconds;
         });
     resolved.clear();
+    // Depth z is t / 2h along the ray from x + h n; d = h - t. 1 is the cleared, empty tile.
+    tile_d.assign(count, std::nullopt);
     for (std::size_t tile = 0; tile < count; ++tile) {
-      // Depth z is t / 2h along the ray from x + h n; d = h - t. 1 is the cleared, empty tile.
-      if (depth[tile] < 1.0f) {
-        const double d = std::clamp(half_depth - double(depth[tile]) * 2 * half_depth, -max_error, max_error);
-        found(indices[first + tile], d);
-        if (coloured) resolved.emplace_back(indices[first + tile], d);
-      }
+      if (depth[tile] < 1.0f)
+        tile_d[tile] = std::clamp(half_depth - double(depth[tile]) * 2 * half_depth, -max_error, max_error);
+    }
+    for (const auto& [tile, top] : batch[b % 2].thin_tops) {
+      if (!tile_d[tile] || top > *tile_d[tile]) tile_d[tile] = top;
+    }
+    for (std::size_t tile = 0; tile < count; ++tile) {
+      if (!tile_d[tile]) continue;
+      found(indices[first + tile], *tile_d[tile]);
+      if (coloured) resolved.emplace_back(indices[first + tile], *tile_d[tile]);
     }
     if (coloured) {
       // Which face each hit's colour comes from, by the exact rule near the cameras' d, then

@@ -7,12 +7,30 @@
 namespace roving {
 
 TriangleGrid::TriangleGrid(const TriangleMesh& mesh, double triangles_per_cell, double margin) {
-  const BoundingBox& box = mesh.bounding_box();
-  const Vec3 size = box.size().cwiseMax(1e-12 * box.diagonal());
-  // About triangle_count / triangles_per_cell cubic cells over the box, at most 256 a side; the
-  // grid overhangs the box by `margin` of a cell on each side, so that inflated boxes fit.
-  const double estimate = std::cbrt(size.prod() / std::max(1.0, mesh.triangle_count() / triangles_per_cell));
-  const double pad = margin * estimate;
+  build(mesh, nullptr, triangles_per_cell, margin, 0);
+}
+
+TriangleGrid::TriangleGrid(const TriangleMesh& mesh, const std::vector<std::uint32_t>& faces, double reach) {
+  build(mesh, &faces, 2.0, 1e-3, reach);
+}
+
+void TriangleGrid::build(const TriangleMesh& mesh, const std::vector<std::uint32_t>* faces,
+                         double triangles_per_cell, double margin, double reach) {
+  const std::size_t count = faces ? faces->size() : mesh.triangle_count();
+  const auto face = [&](std::size_t i) { return faces ? (*faces)[i] : static_cast<std::uint32_t>(i); };
+  BoundingBox box = mesh.bounding_box();
+  if (faces) {
+    box = BoundingBox();
+    for (const std::uint32_t f : *faces) {
+      for (const std::uint32_t v : mesh.triangles()[f]) box.extend(mesh.positions()[v]);
+    }
+    if (faces->empty()) box.extend(Vec3::Zero());
+  }
+  const Vec3 size = box.size().cwiseMax(1e-12 * box.diagonal()).cwiseMax(1e-300);
+  // About count / triangles_per_cell cubic cells over the box, at most 256 a side; the grid
+  // overhangs the box by `margin` of a cell on each side, so that inflated boxes fit.
+  const double estimate = std::cbrt(size.prod() / std::max(1.0, count / triangles_per_cell));
+  const double pad = std::max(margin * estimate, reach);
   origin_ = box.min - Vec3::Constant(pad);
   cell_ = 0;
   for (int axis = 0; axis < 3; ++axis) {
@@ -31,8 +49,8 @@ TriangleGrid::TriangleGrid(const TriangleMesh& mesh, double triangles_per_cell, 
   };
   offsets_.assign(std::size_t(dims_[0]) * dims_[1] * dims_[2] + 1, 0);
   int low[3], high[3];
-  for (const Triangle& t : mesh.triangles()) {  // count
-    cell_range(t, low, high);
+  for (std::size_t i = 0; i < count; ++i) {  // count
+    cell_range(mesh.triangles()[face(i)], low, high);
     for (int z = low[2]; z <= high[2]; ++z)
       for (int y = low[1]; y <= high[1]; ++y)
         for (int x = low[0]; x <= high[0]; ++x) ++offsets_[cell_index(x, y, z) + 1];
@@ -40,12 +58,11 @@ TriangleGrid::TriangleGrid(const TriangleMesh& mesh, double triangles_per_cell, 
   for (std::size_t c = 1; c < offsets_.size(); ++c) offsets_[c] += offsets_[c - 1];
   entries_.resize(offsets_.back());
   std::vector<std::uint32_t> fill(offsets_.begin(), offsets_.end() - 1);
-  for (std::size_t f = 0; f < mesh.triangle_count(); ++f) {  // place
-    cell_range(mesh.triangles()[f], low, high);
+  for (std::size_t i = 0; i < count; ++i) {  // place
+    cell_range(mesh.triangles()[face(i)], low, high);
     for (int z = low[2]; z <= high[2]; ++z)
       for (int y = low[1]; y <= high[1]; ++y)
-        for (int x = low[0]; x <= high[0]; ++x)
-          entries_[fill[cell_index(x, y, z)]++] = static_cast<std::uint32_t>(f);
+        for (int x = low[0]; x <= high[0]; ++x) entries_[fill[cell_index(x, y, z)]++] = face(i);
   }
 }
 

@@ -15,6 +15,9 @@ class TriangleGrid {
   // in every cell its box (inflated by `margin` of a cell) meets, so a point of the triangle
   // that rounding puts in a neighbouring cell is still found.
   explicit TriangleGrid(const TriangleMesh& mesh, double triangles_per_cell = 2.0, double margin = 1e-3);
+  // Only the mesh's triangles `faces` (listed by their ids in the mesh), over their own box, each
+  // listed also in the cells within `reach` (model units) of its box.
+  TriangleGrid(const TriangleMesh& mesh, const std::vector<std::uint32_t>& faces, double reach);
 
   double cell_size() const { return cell_; }
 
@@ -30,6 +33,9 @@ class TriangleGrid {
  private:
   template <class VisitCell>
   void walk(const Vec3& a, const Vec3& b, VisitCell&& visit_cell) const;
+  // Every triangle of the mesh where `faces` is null.
+  void build(const TriangleMesh& mesh, const std::vector<std::uint32_t>* faces, double triangles_per_cell,
+             double margin, double reach);
   std::size_t cell_index(int x, int y, int z) const { return (std::size_t(z) * dims_[1] + y) * dims_[0] + x; }
 
   Vec3 origin_;

@@ -13,6 +13,7 @@
 #include "gl_passes.h"
 #include "hit_colour.h"
 #include "roving/core/error.h"
+#include "roving/core/normal_line.h"
 #include "roving/core/stopwatch.h"
 #include "roving/gl_methods/agreement.h"
 #include "roving/gl_methods/gl_methods.h"
@@ -274,14 +275,21 @@ void view_sample(GlScene& scene, const SampleSet& samples, const std::vector<std
     std::vector<PixelRect> wanted;
     std::vector<std::uint32_t> corners;
     std::vector<float> depth;
+    std::unique_ptr<TriangleGrid> blind;  // the faces it cannot draw; null where there are none
   };
   const bool colour = static_cast<bool>(coloured);
   std::vector<SampleHit> hits;  // the accepted samples, to be shaded once the views are done
   std::mutex hits_mutex;
   if (options.cull_views && !scene.clusters) scene.clusters = std::make_unique<TriangleClusters>(*scene.test);
+  // A view never resolves a sample whose normal line may meet, at or above the view's d, a face
+  // the view cannot draw (blind_faces.h): the cameras (cooperative) or nobody (viewpoint) take it.
+  if (!scene.blind) scene.blind = std::make_unique<BlindFaces>(*scene.test);
+  const double tolerance = kNormalLineTolerance * scene.test->bounding_box().diagonal();
   const auto prepare = [&](View& view, std::uint32_t d) {
     view.direction = d;
     view.camera = OrthoCamera::looking_along(-directions[d], box.centre(), radius, radius, radius);
+    const std::vector<std::uint32_t> blind = scene.blind->for_view(directions[d]);
+    view.blind = blind.empty() ? nullptr : std::make_unique<TriangleGrid>(*scene.test, blind, tolerance);
     if (!options.cull_views) return;
     const ViewFootprint footprint(view.camera, resolution, samples, groups[d],
                                   options.normal_line ? max_error : 0.0);
@@ -297,19 +305,34 @@ void view_sample(GlScene& scene, const SampleSet& samples, const std::vector<std
       scene.renderer->render_view(view.camera, resolution, view.depth);
     }
   };
+  // Whether sample k's normal line meets one of `blind`'s faces, by the rule, at or above `from`.
+  const auto meets_blind = [&](const TriangleGrid& blind, std::uint32_t k, double from) {
+    const Vec3 &x = samples.positions[k], &n = samples.normals[k];
+    const NormalLine line(x, n, max_error, tolerance);
+    const auto& p = scene.test->positions();
+    bool met = false;
+    blind.for_each_along(x + from * n, x + (max_error + tolerance) * n, [&](std::uint32_t face) {
+      if (met) return;
+      const Triangle& t = scene.test->triangles()[face];
+      const auto crossing = line.crossing(p[t[0]], p[t[1]], p[t[2]]);
+      met = crossing && crossing->high >= from;
+    });
+    return met;
+  };
   // The samples of a drawn view: found(k, d) for each it accepts; returns how many.
   const auto read = [&](const View& view) {
     const std::vector<std::uint32_t>& group = groups[view.direction];
     const OrthoCamera& camera = view.camera;
     std::atomic<std::size_t> resolved{0};
     const auto accept = [&](std::uint32_t k, double d) {
-      found(k, d);
-      ++resolved;
-      if (!colour) return;
       // The view's d is good to its tolerance at the sample's angle to the view; past 50 degrees
       // (coarse view grids) that bound grows without limit, and the whole line is searched.
       const double alpha = std::acos(std::clamp(-camera.forward.dot(samples.normals[k]), -1.0, 1.0));
       const double window = alpha < 50 * M_PI / 180 ? view_tolerance(report, alpha, d) : 2 * max_error;
+      if (view.blind && meets_blind(*view.blind, k, d - window)) return;
+      found(k, d);
+      ++resolved;
+      if (!colour) return;
       const SampleHit hit = hit_face(scene, samples, k, d, max_error, window);
       const std::lock_guard<std::mutex> lock(hits_mutex);
       hits.push_back(hit);
