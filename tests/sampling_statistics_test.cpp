@@ -113,6 +113,22 @@ TEST(Samples, BadSpecsNameTheOption) {
   }
 }
 
+// Faces whose area is positive but far too small for a normal (corners collinear but for 1e-21,
+// at edges of 1e-6: below double's resolution of a normal): no face, vertex or area samples, refused with a message, never samples with a zero
+// normal (area sampling took the last face when every face weighed 0).
+TEST(Samples, FacesWithoutANormalGiveNoSamples) {
+  const TriangleMesh tiny({{0, 0, 0}, {1e-6, 0, 0}, {2e-6, 1e-21, 0}, {3e-6, 0, 1e-21}}, {{0, 1, 2}, {1, 3, 2}});
+  ASSERT_GT(tiny.total_area(), 0);
+  for (const char* spec : {"faces", "area:16"}) {
+    try {
+      const SampleSet samples = make_samples(tiny, parse_sample_spec(spec));
+      for (const Vec3& n : samples.normals) EXPECT_NEAR(n.norm(), 1, 1e-12) << spec;
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("no '"), std::string::npos) << e.what();
+    }
+  }
+}
+
 TEST(Statistics, HandComputedCase) {
   // d = {1, -2, 3} (hits) and one no-hit, h = 4: the no-hit counts as +4.
   const std::vector<double> d = {1, -2, 3, 0};
