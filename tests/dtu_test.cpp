@@ -98,6 +98,16 @@ TEST(DtuGolden, PointsShuffledWithinTheScriptsSeedSpread) {
   expect_within_spread("scan1_points.ply", "points_seeds.txt");
 }
 
+// The text report's header names the DTU evaluation (it is written before the figures exist,
+// and once named Tanks and Temples' for every protocol run).
+TEST(DtuProtocol, TheTextHeaderNamesTheDtuEvaluation) {
+  const CliRun run = run_cli("measure " + kTruth + " " + kData + "scan1_mesh.ply --protocol dtu --dtu-obs-mask " +
+                             kMask + " --dtu-plane " + kPlane + " --quiet");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(run.out.find("the DTU benchmark's own evaluation"), std::string::npos) << run.out;
+  EXPECT_EQ(run.out.find("Tanks and Temples"), std::string::npos) << run.out;
+}
+
 TEST(DtuProtocol, ASeedGivesTheSameFiguresEveryRun) {
   const nlohmann::json a = protocol("scan1_mesh.ply", "--protocol-seed 7 --protocol-runs 2")["dtu_protocol"];
   const nlohmann::json b = protocol("scan1_mesh.ply", "--protocol-seed 7 --protocol-runs 2")["dtu_protocol"];

@@ -1092,6 +1092,8 @@ MeasureRun measure_run(const MeasureArguments& args, std::string& stage, Progres
   };
   if (plan.protocol_only) {
     report.protocol_only = true;
+    // The header is written now, before the protocol's figures exist: it names the protocol asked.
+    report.protocol = plan.dtu ? "dtu" : "tanks-and-temples";
     if (on_described) on_described(run);
     run_protocol();
     finish();

@@ -508,7 +508,7 @@ std::string format_header(const Model& a, const Model& b, const MeasureReport& r
   if (r.protocol_only) {
     return model_line("reference", a) + model_line("test", b) +
            fmt::format("{:<10} {}, REF its ground truth\n", "figures",
-                       r.dtu ? "the DTU benchmark's own evaluation (DTUeval-python's eval.py)"
+                       r.dtu || r.protocol == "dtu" ? "the DTU benchmark's own evaluation (DTUeval-python's eval.py)"
                              : "the Tanks and Temples benchmark's own evaluation (its toolbox's EvaluateHisto)");
   }
   if (r.pcc_only) {

@@ -126,6 +126,7 @@ struct MeasureReport {
   std::optional<DtuReport> dtu;
   std::optional<TanksAndTemplesReport> tnt;  // --protocol tanks-and-temples
   bool protocol_only = false;
+  std::string protocol;  // "dtu" or "tanks-and-temples" where one was asked for, known before its figures
   std::optional<ShardSlice> shard;  // a shard's run: its figures are its slice's alone
   double load_seconds[2] = {0, 0};  // A (the reference), B (the test)
   double total_seconds = 0;
