@@ -15,6 +15,11 @@
 // The tolerance is kNormalLineTolerance of the test model's bounding-box diagonal: far above the
 // rounding of any input (1e-16 relative), far below any distance worth measuring, and the
 // half-width of a surface-roving camera, whose pixel is where GL decides the same question.
+//
+// Computed exactly: every decision of the rule (the sides of the edges, edge-on, within the
+// tolerance, within the view volume) by a sign that clears its rounding bound, in rationals where
+// none does; s within closest_point_error_bound (geometry.h) of the rule's exact value
+// (tests/exact_oracle_test.cpp).
 #pragma once
 
 #include <optional>
@@ -26,7 +31,7 @@ namespace roving {
 
 constexpr double kNormalLineTolerance = 1e-6;
 
-// The normal line of one sample, with the frame the crossings are decided in.
+// The normal line of one sample, with the frame that passes over triangles wholly to one side.
 class NormalLine {
  public:
   // `tolerance` in model units (kNormalLineTolerance times the test model's diagonal).
