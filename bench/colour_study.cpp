@@ -14,7 +14,7 @@
 #include "roving/core/colour.h"
 #include "roving/core/colour_statistics.h"
 #include "roving/core/stopwatch.h"
-#include "roving/formats/texture_io.h"
+#include "roving/formats/images_and_matlab/texture_io.h"
 #include "roving/gl_methods/image_based.h"
 #include "roving/registry/method_registry.h"
 

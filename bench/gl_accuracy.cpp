@@ -16,7 +16,7 @@
 #include "decimate.h"
 #include "roving/core/normalise.h"
 #include "roving/core/statistics.h"
-#include "roving/formats/mesh_io.h"
+#include "roving/formats/meshes/mesh_io.h"
 #include "roving/gl_methods/agreement.h"
 #include "roving/registry/method_registry.h"
 #include "roving/representations/bezier_surface.h"

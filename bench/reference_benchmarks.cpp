@@ -12,7 +12,7 @@
 #include "data_folder.h"
 #include "decimate.h"
 #include "roving/core/normalise.h"
-#include "roving/formats/mesh_io.h"
+#include "roving/formats/meshes/mesh_io.h"
 #include "roving/gl/depth_renderer.h"
 #include "roving/gl_methods/agreement.h"
 #include "roving/reference_cgal/cgal_reference.h"

@@ -2,7 +2,7 @@
 #pragma once
 
 #include "roving/core/triangle_mesh.h"
-#include "roving/formats/point_cloud_io.h"
+#include "roving/formats/points_voxels_patches/point_cloud_io.h"
 
 namespace roving {
 

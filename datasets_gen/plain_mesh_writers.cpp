@@ -7,7 +7,7 @@
 #include <cstring>
 
 #include "roving/core/error.h"
-#include "roving/formats/atomic_file.h"
+#include "roving/formats/files/atomic_file.h"
 
 namespace roving {
 

@@ -23,8 +23,8 @@
 #include "roving/cli/measure.h"
 #include "roving/core/colour_statistics.h"
 #include "roving/core/error.h"
-#include "roving/formats/atomic_file.h"
-#include "roving/formats/file_bytes.h"
+#include "roving/formats/files/atomic_file.h"
+#include "roving/formats/files/file_bytes.h"
 #include "roving/registry/method_registry.h"
 #include "roving/representations/model.h"
 

@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "roving/core/error.h"
-#include "roving/formats/mesh_io.h"
+#include "roving/formats/meshes/mesh_io.h"
 #include "test_support.h"
 
 namespace roving {

@@ -12,7 +12,7 @@
 #include <sstream>
 
 #include "cli_support.h"
-#include "roving/formats/heatmap.h"
+#include "roving/formats/outputs/heatmap.h"
 
 namespace {
 

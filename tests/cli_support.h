@@ -10,8 +10,10 @@
 #include <algorithm>
 #include <array>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <string>
 
 #include "test_support.h"
@@ -25,6 +27,20 @@ struct CliRun {
   std::string out, err;
 };
 
+// ROVING_CLI_RECORD=DIR: each run's command line, exit code, stdout and stderr kept in DIR, a file
+// per run named by its test, so that a refactoring's reports can be compared byte for byte with
+// the ones before it (tests/compare_reports.py).
+inline void record_run(const std::string& arguments, const CliRun& run) {
+  const char* folder = std::getenv("ROVING_CLI_RECORD");
+  const ::testing::TestInfo* test = ::testing::UnitTest::GetInstance()->current_test_info();
+  if (folder == nullptr || test == nullptr) return;
+  std::string name = fmt::format("{}.{}", test->test_suite_name(), test->name());
+  std::replace(name.begin(), name.end(), '/', '_');
+  static std::map<std::string, int> runs;
+  std::ofstream(fs::path(folder) / fmt::format("{}.{}", name, ++runs[name]), std::ios::binary)
+      << "$ roving " << arguments << "\n--- exit " << run.exit_code << "\n" << run.out << "\n--- stderr\n" << run.err;
+}
+
 inline CliRun run_cli(const std::string& arguments) {
   const fs::path err_file = fs::temp_directory_path() / ("roving-cli-err-" + std::to_string(::getpid()));
   const std::string command = std::string(ROVING_CLI) + " " + arguments + " 2>" + err_file.string();
@@ -37,6 +53,7 @@ inline CliRun run_cli(const std::string& arguments) {
   std::ifstream err(err_file);
   run.err.assign(std::istreambuf_iterator<char>(err), std::istreambuf_iterator<char>());
   fs::remove(err_file);
+  record_run(arguments, run);
   return run;
 }
 

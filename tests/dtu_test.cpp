@@ -18,7 +18,7 @@
 
 #include "cli_support.h"
 #include "sample_rows.h"
-#include "roving/formats/matlab_file.h"
+#include "roving/formats/images_and_matlab/matlab_file.h"
 #include "roving/reconstruction/dtu_protocol.h"
 #include "roving/reconstruction/reconstruction_figures.h"
 #include "roving/reconstruction/greedy_thinning.h"

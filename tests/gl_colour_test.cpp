@@ -20,7 +20,7 @@
 #include "roving/core/colour_statistics.h"
 #include "roving/core/error.h"
 #include "roving/core/normalise.h"
-#include "roving/formats/mesh_io.h"
+#include "roving/formats/meshes/mesh_io.h"
 #include "roving/gl_methods/gl_methods.h"
 #include "roving/gl_methods/image_based.h"
 #include "roving/registry/method_registry.h"

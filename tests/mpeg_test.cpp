@@ -19,7 +19,7 @@
 
 #include "cli_support.h"
 #include "roving/core/error.h"
-#include "roving/formats/point_cloud_io.h"
+#include "roving/formats/points_voxels_patches/point_cloud_io.h"
 #include "roving/mpeg/lattice_neighbours.h"
 #include "roving/mpeg/mpeg_points.h"
 #include "roving/mpeg/point_cloud_psnr.h"

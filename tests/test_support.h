@@ -11,7 +11,7 @@
 #include "data_folder.h"
 #include "roving/core/error.h"
 #include "roving/core/triangle_mesh.h"
-#include "roving/formats/mesh_io.h"
+#include "roving/formats/meshes/mesh_io.h"
 #include "roving/gl/depth_renderer.h"
 
 namespace roving::testing {

@@ -18,9 +18,9 @@
 #include "roving/core/colour_science.h"
 #include "roving/core/colour_statistics.h"
 #include "roving/core/error.h"
-#include "roving/formats/coloured_mesh_writer.h"
-#include "roving/formats/mesh_io.h"
-#include "roving/formats/texture_io.h"
+#include "roving/formats/outputs/coloured_mesh_writer.h"
+#include "roving/formats/meshes/mesh_io.h"
+#include "roving/formats/images_and_matlab/texture_io.h"
 #include "roving/registry/method_registry.h"
 #include "test_support.h"
 

@@ -24,8 +24,8 @@
 
 #include "cli_support.h"
 #include "roving/core/error.h"
-#include "roving/formats/distance_cloud_writer.h"
-#include "roving/formats/file_hash.h"
+#include "roving/formats/outputs/distance_cloud_writer.h"
+#include "roving/formats/files/file_hash.h"
 #include "roving/reconstruction/correspondence_ransac.h"
 #include "roving/reconstruction/crop_volume.h"
 #include "roving/core/geometry.h"

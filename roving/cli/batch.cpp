@@ -20,9 +20,9 @@
 #include "shard.h"
 #include "roving/core/error.h"
 #include "roving/core/stopwatch.h"
-#include "roving/formats/atomic_file.h"
-#include "roving/formats/file_bytes.h"
-#include "roving/formats/file_hash.h"
+#include "roving/formats/files/atomic_file.h"
+#include "roving/formats/files/file_bytes.h"
+#include "roving/formats/files/file_hash.h"
 #include "roving/gl/depth_renderer.h"
 #include "roving/html/html_index.h"
 

@@ -10,7 +10,7 @@
 
 #include "report.h"
 #include "roving/core/error.h"
-#include "roving/formats/file_bytes.h"
+#include "roving/formats/files/file_bytes.h"
 
 namespace roving {
 

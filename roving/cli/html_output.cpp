@@ -7,7 +7,7 @@
 
 #include "measure.h"
 #include "roving/core/colour_statistics.h"
-#include "roving/formats/heatmap.h"
+#include "roving/formats/outputs/heatmap.h"
 #include "roving/html/display_surface.h"
 #include "roving/html/distance_view.h"
 

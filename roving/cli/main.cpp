@@ -5,8 +5,8 @@
 #include "command_line.h"
 #include "provenance.h"
 #include "roving/core/memory_budget.h"
-#include "roving/formats/atomic_file.h"
-#include "roving/formats/file_bytes.h"
+#include "roving/formats/files/atomic_file.h"
+#include "roving/formats/files/file_bytes.h"
 
 int main(int argc, char** argv) {
   const std::unique_ptr<roving::CommandLine> made = roving::make_command_line();

@@ -15,6 +15,7 @@
 #include <memory>
 #include <tuple>
 
+#include "figure_families.h"
 #include "checks.h"
 #include "gates.h"
 #include "html_output.h"
@@ -23,15 +24,15 @@
 #include "provenance.h"
 #include "report.h"
 #include "roving/core/error.h"
-#include "roving/formats/atomic_file.h"
-#include "roving/formats/distance_cloud_writer.h"
-#include "roving/formats/file_bytes.h"
-#include "roving/formats/file_hash.h"
-#include "roving/formats/heatmap.h"
-#include "roving/formats/ply_reader.h"
-#include "roving/formats/point_cloud_io.h"
-#include "roving/formats/sample_output.h"
-#include "roving/formats/triangle_stream.h"
+#include "roving/formats/files/atomic_file.h"
+#include "roving/formats/outputs/distance_cloud_writer.h"
+#include "roving/formats/files/file_bytes.h"
+#include "roving/formats/files/file_hash.h"
+#include "roving/formats/outputs/heatmap.h"
+#include "roving/formats/meshes/ply_reader.h"
+#include "roving/formats/points_voxels_patches/point_cloud_io.h"
+#include "roving/formats/outputs/sample_output.h"
+#include "roving/formats/meshes/triangle_stream.h"
 #include "roving/mpeg/mmetric_sampling.h"
 #include "roving/mpeg/mpeg_points.h"
 #include "roving/mpeg/surface_psnr.h"
@@ -564,9 +565,8 @@ MpegPoints read_mpeg_points(const std::string& path, bool with_normals, bool ave
   return mpeg_points(read_point_cloud(path, false), path, with_normals, average_normals);
 }
 
-// MPEG's point-cloud figures: of two point clouds as pc_error computes them (its D2 takes A's
-// normals from its file; estimated ones are not pc_error's), or, where a model is a mesh, as
-// mmetric's compare --mode pcc does, each mesh sampled as mmetric samples it.
+}  // namespace
+
 MpegReport mpeg_report(const Model& a, const Model& b, std::optional<double> resolution,
                        const std::string& normals_path) {
   const Stopwatch watch;
@@ -610,6 +610,8 @@ MpegReport mpeg_report(const Model& a, const Model& b, std::optional<double> res
   report.seconds = watch.seconds() - std::max(report.read_seconds[0], report.read_seconds[1]);
   return report;
 }
+
+namespace {
 
 // A binary PLY mesh's vertices alone (open_triangle_stream reads them, checked, before any face);
 // nullopt for any other file.
@@ -725,7 +727,7 @@ void measure_streamed_direction(const Model& a, const TriangleMesh& test_mesh, T
 
 void measure_models(const Model& a, const Model& b, MeasurePlan& plan, MeasureReport& report,
                     Progress& progress, std::string& stage, const WarnFn& warn, const SampleSet* samples_of_a,
-                    Model* releasable_a, TriangleStream* streamed_a) {
+                    Model* releasable_a, TriangleStream* streamed_a, ProtocolInputs* protocol) {
   warn(alignment_warnings(a, b, plan.options.max_error));
   if (has_colour(a) != has_colour(b)) {
     const Model& coloured = has_colour(a) ? a : b;
@@ -865,37 +867,9 @@ void measure_models(const Model& a, const Model& b, MeasurePlan& plan, MeasureRe
     for (std::string& line : found) line = (d.label.empty() ? "" : d.label + ": ") + line;
     warn(found);
   }
-  if (plan.symmetric) {
-    const DirectionReport &ab = report.directions[0], &ba = report.directions[1];
-    report.reconstruction = reconstruction_figures({&ab.samples, &ab.result, &test_surface(b)},
-                                                   {&ba.samples, &ba.result, &test_surface(a)}, thresholds,
-                                                   ab.samples.kind.rfind("area:", 0) == 0);
-    certify_reconstruction(report);
-    if (plan.certify_thresholds && !plan.shard && report.reconstruction->precision_certified.empty()) {
-      warn({"--certify-thresholds: no certified bounds: they are shares of area, and a point cloud has none"});
-    }
-  }
-  if ((a.type == ModelType::Points && b.type == ModelType::Points) || plan.pcc_only) {
-    stage = fmt::format("computing MPEG's point-cloud figures of {} and {}", a.path(), b.path());
-    progress.stage("MPEG point-cloud figures");
-    report.mpeg = mpeg_report(a, b, plan.pcc_resolution, plan.pcc_normals);
-    // Two meshes measured both ways with closest semantics: D1 of the surfaces themselves.
-    if (plan.pcc_only && report.symmetric()) {
-      std::array<SurfaceFigures, 2> exact;
-      for (int i = 0; i < 2; ++i) {
-        const DirectionReport& d = report.directions[i];
-        std::optional<Interval> hausdorff;
-        if (d.hausdorff) hausdorff = Interval{d.hausdorff->lower, d.hausdorff->upper};
-        exact[i] = surface_figures(d.samples, d.result, *d.correspondences, test_surface(*d.test), d.statistics,
-                                   d.intervals ? &*d.intervals : nullptr, hausdorff, report.max_error);
-      }
-      report.mpeg->surface = exact;
-    }
-  }
-  if (plan.image_based) {
-    stage = fmt::format("comparing {} and {} image by image (IBSM)", a.path(), b.path());
-    progress.stage("image-based comparison");
-    report.image_based = image_based_comparison(test_surface(a), test_surface(b), *plan.image_based);
+  FamilyInputs inputs{a, b, plan, protocol, progress, stage, warn};
+  for (const FigureFamily& family : figure_families()) {
+    if (family.asked(plan, a, b)) family.compute(inputs, report);
   }
   progress.clear();
 }
@@ -961,12 +935,12 @@ MeasureRun measure_run(const MeasureArguments& args, std::string& stage, Progres
   const auto load = [&](const std::string& path, std::optional<ModelType> type, bool reference) {
     return load_for(plan, path, type, reference);
   };
-  std::optional<DtuFiles> dtu_files;  // the data set's files before the models: a wrong one fails at once
+  ProtocolInputs protocol;  // the data set's files before the models: a wrong one fails at once
   if (plan.dtu) {
     stage = fmt::format("reading the DTU data set's files {} and {}", plan.dtu->obs_mask, plan.dtu->plane);
-    dtu_files = read_dtu_files(*plan.dtu);
+    protocol.dtu = read_dtu_files(*plan.dtu);
   }
-  std::optional<TanksAndTemplesFiles> tnt_files;
+  std::optional<TanksAndTemplesFiles>& tnt_files = protocol.tnt;
   if (plan.tnt) {
     stage = fmt::format("reading the Tanks and Temples scene's files {}{}", plan.tnt->crop,
                         plan.tnt->alignment.empty() ? "" : " and " + plan.tnt->alignment);
@@ -1010,15 +984,13 @@ MeasureRun measure_run(const MeasureArguments& args, std::string& stage, Progres
     progress.stage("loading " + file_name(args.test_path));
     run.b = test_load.get();
   }
-  std::vector<TanksAndTemplesRegistrationRun> tnt_registrations;
-  double tnt_registration_seconds = 0;
   if (tnt_files && tnt_files->trajectories) {
     stage = fmt::format("registering the test {} to the reference {} as run.py does (its trajectory {})",
                         run.b->path(), run.a->path(), plan.tnt->trajectory);
     progress.stage("Tanks and Temples registration");
     const Stopwatch watch;
-    tnt_registrations = register_tanks_and_temples(*run.a, *run.b, *plan.tnt, *tnt_files, progress.callback());
-    tnt_registration_seconds = watch.seconds();
+    protocol.tnt_registrations = register_tanks_and_temples(*run.a, *run.b, *plan.tnt, *tnt_files, progress.callback());
+    protocol.tnt_registration_seconds = watch.seconds();
     progress.clear();
   }
   if (tnt_files) {
@@ -1057,53 +1029,22 @@ MeasureRun measure_run(const MeasureArguments& args, std::string& stage, Progres
     finish();
     return run;
   }
-  const auto run_protocol = [&] {
-    if (plan.tnt) {
-      stage = fmt::format("running the Tanks and Temples protocol on {} (ground truth) and {}", a.path(), b.path());
-      progress.stage("Tanks and Temples protocol");
-      report.tnt = tanks_and_temples_report(a, b, *plan.tnt, *tnt_files, progress.callback());
-      progress.clear();
-      if (!tnt_registrations.empty()) {
-        TanksAndTemplesRegistrationRun& first = tnt_registrations.front();
-        first.precision = report.tnt->figures.precision;
-        first.recall = report.tnt->figures.recall;
-        first.fscore = report.tnt->figures.fscore;
-        report.tnt->registrations = std::move(tnt_registrations);
-        report.tnt->registration_seconds = tnt_registration_seconds;
-      }
-      if (report.reconstruction) {
-        const DirectionReport &ab = report.directions[0], &ba = report.directions[1];
-        set_exact_within_crop(*report.tnt, *tnt_files, {&ab.samples, &ab.result, &test_surface(b)},
-                              {&ba.samples, &ba.result, &test_surface(a)}, report.reconstruction->thresholds,
-                              ab.samples.kind.rfind("area:", 0) == 0);
-      }
-      return;
-    }
-    stage = fmt::format("running the DTU protocol on {} (ground truth) and {}", a.path(), b.path());
-    progress.stage("DTU protocol");
-    report.dtu = dtu_report(a, b, *plan.dtu, *dtu_files, progress.callback());
-    progress.clear();
-    if (report.reconstruction) {
-      const DirectionReport &ab = report.directions[0], &ba = report.directions[1];
-      set_exact_within_region(*report.dtu, *plan.dtu, *dtu_files, {&ab.samples, &ab.result, &test_surface(b)},
-                              {&ba.samples, &ba.result, &test_surface(a)}, report.reconstruction->thresholds,
-                              ab.samples.kind.rfind("area:", 0) == 0);
-    }
-  };
   if (plan.protocol_only) {
     report.protocol_only = true;
     // The header is written now, before the protocol's figures exist: it names the protocol asked.
     report.protocol = plan.dtu ? "dtu" : "tanks-and-temples";
     if (on_described) on_described(run);
-    run_protocol();
+    FamilyInputs inputs{a, b, plan, &protocol, progress, stage, warn};
+    for (const FigureFamily& family : figure_families()) {
+      if (family.protocol && family.asked(plan, a, b)) family.compute(inputs, report);
+    }
     finish();
     return run;
   }
   describe_pair(a, b, plan, report);
   if (on_described) on_described(run);
   measure_models(a, b, plan, report, progress, stage, warn, nullptr,
-                 reference_only_sampled(args, plan) ? &a : nullptr, stream.get());
-  if (plan.dtu || plan.tnt) run_protocol();
+                 reference_only_sampled(args, plan) ? &a : nullptr, stream.get(), &protocol);
   finish();
   return run;
 }

@@ -10,16 +10,17 @@
 
 #include "gates.h"
 #include "progress.h"
-#include "protocols.h"
 #include "report.h"
 #include "shard.h"
 #include "roving/core/error.h"
-#include "roving/formats/heatmap.h"
+#include "roving/formats/outputs/heatmap.h"
 #include "roving/gl_methods/gl_methods.h"
 #include "roving/gl_methods/image_based.h"
 #include "roving/streaming/streamed_measurement.h"
 
 namespace roving {
+
+struct ProtocolInputs;  // figure_families.h
 
 struct MeasureArguments {
   std::string reference_path, test_path;
@@ -50,7 +51,7 @@ struct MeasureArguments {
   bool pcc = false;                     // MPEG's point-cloud figures alone (pc_error's)
   std::optional<double> pcc_resolution;  // their PSNR peak; unset: pc_error's default
   std::string pcc_normals;               // A's normals from this file (pc_error's --inputNorm)
-  std::string protocol;                  // "dtu", "tanks-and-temples": a benchmark's own evaluation (protocols.h)
+  std::string protocol;                  // "dtu", "tanks-and-temples": a benchmark's own evaluation (roving/protocols/)
   std::string dtu_obs_mask, dtu_plane;   // its data set's files
   double dtu_density = 0.2, dtu_patch = 60, dtu_max_dist = 20;
   std::string tnt_crop, tnt_alignment, tnt_scene, tnt_curves, tnt_plys;  // --protocol tanks-and-temples
@@ -138,6 +139,12 @@ using WarnFn = std::function<void(const std::vector<std::string>&)>;
 // (Model::mesh_vertices_only): a 10 M-triangle mesh's faces are 120 MB not read.
 Model load_for(const MeasurePlan& plan, const std::string& path, std::optional<ModelType> type, bool reference);
 
+// MPEG's point-cloud figures: of two point clouds as pc_error computes them (its D2 takes A's
+// normals from its file; estimated ones are not pc_error's), or, where a model is a mesh, as
+// mmetric's compare --mode pcc does, each mesh sampled as mmetric samples it. `normals_path`:
+// --pcc-normals (empty: A's own).
+MpegReport mpeg_report(const Model& a, const Model& b, std::optional<double> resolution, const std::string& normals_path);
+
 // --pcc where a model is a point cloud: MPEG's figures of a and b alone (report.pcc_only; a mesh
 // among them sampled as mmetric samples it); throws naming a model that is neither a point cloud
 // nor a mesh.
@@ -156,7 +163,8 @@ void describe_pair(const Model& a, const Model& b, MeasurePlan& plan, MeasureRep
 // faces at a time, `a` its summary (streamed_model).
 void measure_models(const Model& a, const Model& b, MeasurePlan& plan, MeasureReport& report,
                     Progress& progress, std::string& stage, const WarnFn& warn, const SampleSet* samples_of_a,
-                    Model* releasable_a = nullptr, TriangleStream* streamed_a = nullptr);
+                    Model* releasable_a = nullptr, TriangleStream* streamed_a = nullptr,
+                    ProtocolInputs* protocol = nullptr);
 
 // Every value a --fail-above gate can check: each direction's statistics, and the two-sided
 // summary.

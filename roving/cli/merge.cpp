@@ -10,15 +10,16 @@
 #include <fstream>
 
 #include "checks.h"
+#include "figure_families.h"
 #include "command_line.h"
 #include "gates.h"
 #include "provenance.h"
 #include "roving/core/confidence.h"
 #include "roving/core/error.h"
 #include "roving/core/stopwatch.h"
-#include "roving/formats/atomic_file.h"
-#include "roving/formats/heatmap.h"
-#include "roving/formats/shard_part.h"
+#include "roving/formats/files/atomic_file.h"
+#include "roving/formats/outputs/heatmap.h"
+#include "roving/formats/outputs/shard_part.h"
 
 namespace roving {
 namespace {
@@ -423,15 +424,11 @@ MergedReport merge_parts(const std::vector<std::string>& paths, const std::strin
       r.warnings.push_back((d.label.empty() ? "" : d.label + ": ") + line);
   }
   if (r.symmetric()) {
-    std::vector<double> thresholds;
-    for (const MaxErrorSpec& tau : plan.thresholds) thresholds.push_back(tau.resolve(r.diagonal));
     const auto arrays = [&](std::size_t i) {
       const DirectionReport& d = r.directions[i];
       return SampleFigures{&d.result.signed_distance, &d.result.hit, &d.samples.weights, &agreement[i]};
     };
-    r.reconstruction = reconstruction_figures(arrays(0), arrays(1), thresholds,
-                                              r.directions[0].samples.kind.rfind("area:", 0) == 0);
-    certify_reconstruction(r);
+    merge_reconstruction(r, plan, arrays(0), arrays(1));
   }
   r.total_seconds += watch.seconds();
   return merged;

@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <numeric>
 
+#include "figure_families.h"
 #include "roving/core/error.h"
 
 namespace roving {
@@ -361,26 +362,6 @@ std::string colour_lines(const DirectionReport& d) {
   return out;
 }
 
-// The image-based comparison (IBSM), as mmetric names its figures.
-std::string image_based_lines(const ImageBasedResult& ib) {
-  std::string out = fmt::format(
-      "\n  image-based (MPEG IBSM, as mmetric 1.1.7): {} views on a Fibonacci sphere, {} x {} px, back faces "
-      "culled\n"
-      "    {} pixels both models cover; unmatched (one only) {:.6g}% of them; box ratio {:.6g}%\n"
-      "    depth PSNR {:.6g} dB (mmetric's GEO: depth as a fraction of 3 x the view sphere's radius)\n",
-      ib.views, ib.resolution, ib.resolution, ib.matched_pixels, ib.unmatched_percent, ib.box_ratio,
-      ib.depth_psnr);
-  if (ib.colour) {
-    out += fmt::format(
-        "    colour PSNR (8-bit pixels, peak 255, 99.99 where they agree): R'G'B' {:.6g} dB (R {:.6g}, G "
-        "{:.6g}, "
-        "B {:.6g}),\n      Y'CbCr 6:1:1 {:.6g} dB (Y' {:.6g}, Cb {:.6g}, Cr {:.6g})\n",
-        ib.psnr_rgb, ib.psnr_rgb_channels[0], ib.psnr_rgb_channels[1], ib.psnr_rgb_channels[2],
-        ib.psnr_ycbcr_611, ib.psnr_ycbcr[0], ib.psnr_ycbcr[1], ib.psnr_ycbcr[2]);
-  }
-  return out + fmt::format("    {:.3f} s\n", ib.seconds);
-}
-
 // "[lower, upper]" of a certified interval, with its width.
 std::string interval_text(double lower, double upper, double diagonal) {
   return fmt::format("[{:.6g}, {:.6g}] (/ diagonal [{:.6g}, {:.6g}]; width {:.3g})", lower, upper,
@@ -537,618 +518,7 @@ std::string format_header(const Model& a, const Model& b, const MeasureReport& r
   return out;
 }
 
-void certify_reconstruction(MeasureReport& report) {
-  if (!report.reconstruction || !report.symmetric() || !report.directions[0].area_within ||
-      !report.directions[1].area_within) {
-    return;
-  }
-  const auto bounds = [](const AreaWithin& w) {
-    std::vector<ReconstructionFigures::Bounds> out;
-    for (std::size_t k = 0; k < w.thresholds.size(); ++k) out.push_back({w.lower(k), w.upper(k)});
-    return out;
-  };
-  set_certified_shares(*report.reconstruction, bounds(*report.directions[1].area_within),
-                       bounds(*report.directions[0].area_within));
-}
-
 namespace {
-
-// An estimate with its 95% interval where it has one.
-nlohmann::json estimate_json(const Estimate& e) {
-  if (std::isnan(e.lower)) return e.value;
-  return {{"estimate", e.value}, {"lower", e.lower}, {"upper", e.upper}};
-}
-
-nlohmann::json reconstruction_json(const ReconstructionFigures& f) {
-  const auto direction = [](const DirectionFigures& d) {
-    return nlohmann::json{{"mean", estimate_json(d.mean)},
-                          {"median", d.median},
-                          {"rms", estimate_json(d.rms)},
-                          {"normal_consistency", estimate_json(d.normal_consistency)},
-                          {"hits", d.hits},
-                          {"no_hits", d.no_hits}};
-  };
-  nlohmann::json json = {
-      {"definition",
-       "REF is the ground truth, TEST the reconstruction. accuracy: |d| of TEST's samples to REF (B -> A); "
-       "completeness: REF's to TEST (A -> B); means, medians and RMS over the hits weighted by the area each "
-       "sample stands for. chamfer_mean = (accuracy.mean + completeness.mean) / 2 (DTU's overall, Tanks and "
-       "Temples); chamfer_sum = accuracy.mean + completeness.mean; chamfer_squared_mean = (accuracy.rms^2 + "
-       "completeness.rms^2) / 2; chamfer_squared_sum = their sum. precision at tau: the share of TEST's area "
-       "within tau of REF; recall: REF's within tau of TEST (a no-hit is beyond); f_score = 2 P R / (P + R). "
-       "normal_consistency: mean |n . n'| of a sample's normal and the other surface's at the "
-       "correspondence, "
-       "each direction and their mean. Intervals (estimate, lower, upper): 95%, for area-uniform samples; "
-       "chamfer_*_interval and f_score_interval combine the two directions' (independent samples: the delta "
-       "method). "
-       "*_certified (closest semantics between surfaces): the shares of area surely and possibly within tau, "
-       "every point of the surfaces bounded, not sampled (docs/reconstruction.md); f_score_certified from them."},
-      {"accuracy", direction(f.accuracy)},
-      {"completeness", direction(f.completeness)},
-      {"chamfer_mean", f.chamfer_mean},
-      {"chamfer_sum", f.chamfer_sum},
-      {"chamfer_squared_mean", f.chamfer_squared_mean},
-      {"chamfer_squared_sum", f.chamfer_squared_sum},
-      {"normal_consistency", f.normal_consistency},
-      {"thresholds", nlohmann::json::array()}};
-  const auto interval = [](const Estimate& e) { return nlohmann::json{{"lower", e.lower}, {"upper", e.upper}}; };
-  if (!std::isnan(f.chamfer_mean_estimate.lower)) {
-    json["chamfer_mean_interval"] = interval(f.chamfer_mean_estimate);
-    json["chamfer_sum_interval"] = interval(f.chamfer_sum_estimate);
-  }
-  const auto bounds = [](const ReconstructionFigures::Bounds& b) {
-    return nlohmann::json{{"lower", b.lower}, {"upper", b.upper}};
-  };
-  for (std::size_t i = 0; i < f.thresholds.size(); ++i) {
-    nlohmann::json row = {{"tau", f.thresholds[i]},
-                          {"precision", estimate_json(f.accuracy.within[i])},
-                          {"recall", estimate_json(f.completeness.within[i])},
-                          {"f_score", f.f_score[i]}};
-    if (!std::isnan(f.f_score_estimate[i].lower)) row["f_score_interval"] = interval(f.f_score_estimate[i]);
-    if (!f.precision_certified.empty()) {
-      row["precision_certified"] = bounds(f.precision_certified[i]);
-      row["recall_certified"] = bounds(f.recall_certified[i]);
-      row["f_score_certified"] = bounds(f.f_score_certified[i]);
-    }
-    json["thresholds"].push_back(row);
-  }
-  return json;
-}
-
-std::string reconstruction_lines(const ReconstructionFigures& f, double diagonal) {
-  std::string out = fmt::format("\n  {:<40} {:>14} {:>12}\n", "reconstruction (REF the ground truth)",
-                                "model units", "/ diagonal");
-  const auto length = [&](const std::string& name, double value) {
-    out += fmt::format("  {:<40} {:>14.6g} {:>12.6g}\n", name, value, value / diagonal);
-  };
-  length("accuracy, mean (TEST to REF)", f.accuracy.mean.value);
-  length("accuracy, median", f.accuracy.median);
-  length("completeness, mean (REF to TEST)", f.completeness.mean.value);
-  length("completeness, median", f.completeness.median);
-  length("Chamfer, mean of the two", f.chamfer_mean);
-  if (!std::isnan(f.chamfer_mean_estimate.lower)) {
-    out += fmt::format("  {:<40} {:>14}\n", "  95% interval",
-                       fmt::format("[{:.6g}, {:.6g}]", f.chamfer_mean_estimate.lower, f.chamfer_mean_estimate.upper));
-  }
-  length("Chamfer, sum of the two", f.chamfer_sum);
-  out += fmt::format("  {:<40} {:>14.6g}\n", "Chamfer, squared, mean of the two", f.chamfer_squared_mean);
-  out += fmt::format("  {:<40} {:>14.6g}\n", "normal consistency", f.normal_consistency);
-  for (std::size_t i = 0; i < f.thresholds.size(); ++i) {
-    out += fmt::format(
-        "  {:<40} {:>14}\n",
-        fmt::format("at tau = {:.6g} ({:.3g}%)", f.thresholds[i], 100 * f.thresholds[i] / diagonal),
-        fmt::format("P {:.4f} R {:.4f} F {:.4f}", f.precision[i], f.recall[i], f.f_score[i]));
-    if (!std::isnan(f.f_score_estimate[i].lower)) {
-      const Estimate &p = f.accuracy.within[i], &r = f.completeness.within[i], &q = f.f_score_estimate[i];
-      out += fmt::format("  {:<40} {:>14}\n", "  95% intervals",
-                         fmt::format("P [{:.4f}, {:.4f}] R [{:.4f}, {:.4f}] F [{:.4f}, {:.4f}]", p.lower, p.upper,
-                                     r.lower, r.upper, q.lower, q.upper));
-    }
-    if (!f.precision_certified.empty()) {
-      const auto& p = f.precision_certified[i];
-      const auto& r = f.recall_certified[i];
-      out += fmt::format("  {:<40} {:>14}\n", "  certified (every point, not sampled)",
-                         fmt::format("P [{:.4f}, {:.4f}] R [{:.4f}, {:.4f}]", p.lower, p.upper, r.lower, r.upper));
-    }
-  }
-  return out;
-}
-
-// A PSNR as JSON: null where the MSE is 0 (+infinity).
-nlohmann::json psnr_json(double psnr) { return std::isfinite(psnr) ? nlohmann::json(psnr) : nlohmann::json(nullptr); }
-
-nlohmann::json mpeg_direction_json(const MpegDirection& d, const MpegFigures& f) {
-  nlohmann::json json = {{"points", d.points},
-                         {"d1_mse", d.d1_mse},
-                         {"d1_psnr", psnr_json(geometry_psnr(d.d1_mse, f.peak))},
-                         {"d1_hausdorff", d.d1_hausdorff},
-                         {"d1_hausdorff_psnr", psnr_json(geometry_psnr(d.d1_hausdorff, f.peak))}};
-  if (f.d2) {
-    json["d2_mse"] = d.d2_mse;
-    json["d2_psnr"] = psnr_json(geometry_psnr(d.d2_mse, f.peak));
-    json["d2_hausdorff"] = d.d2_hausdorff;
-    json["d2_hausdorff_psnr"] = psnr_json(geometry_psnr(d.d2_hausdorff, f.peak));
-  }
-  if (f.colour) {
-    const char* ycbcr[3] = {"y", "cb", "cr"};
-    const char* rgb[3] = {"r", "g", "b"};
-    for (int c = 0; c < 3; ++c) {
-      json[fmt::format("{}_mse", ycbcr[c])] = d.ycbcr_mse[c];
-      json[fmt::format("{}_psnr", ycbcr[c])] = psnr_json(colour_psnr(d.ycbcr_mse[c], 1));
-    }
-    for (int c = 0; c < 3; ++c) {
-      json[fmt::format("{}_mse", rgb[c])] = d.rgb_mse[c];
-      json[fmt::format("{}_psnr", rgb[c])] = psnr_json(colour_psnr(d.rgb_mse[c], 255));
-      json[fmt::format("{}_hausdorff", rgb[c])] = d.rgb_hausdorff[c];
-      json[fmt::format("{}_hausdorff_psnr", rgb[c])] = psnr_json(colour_psnr(d.rgb_hausdorff[c], 255));
-    }
-  }
-  return json;
-}
-
-// The surfaces' own D1 and D2 in one direction (or the worse), their PSNRs at `peak`; an interval
-// is [lower, upper], null where there is none.
-nlohmann::json surface_json(const SurfaceFigures& d, double peak) {
-  const auto interval = [](const std::optional<Interval>& i) {
-    return i ? nlohmann::json::array({i->lower, i->upper}) : nlohmann::json(nullptr);
-  };
-  const auto psnr_interval = [&](const std::optional<Interval>& i) {
-    return i ? nlohmann::json::array({psnr_json(geometry_psnr(i->upper, peak)), psnr_json(geometry_psnr(i->lower, peak))})
-             : nlohmann::json(nullptr);
-  };
-  return {{"samples", d.samples},
-          {"no_hits", d.no_hits},
-          {"d1_mse", d.d1_mse},
-          {"d1_mse_interval", interval(d.d1_mse_interval)},
-          {"d1_psnr", psnr_json(geometry_psnr(d.d1_mse, peak))},
-          {"d1_psnr_interval", psnr_interval(d.d1_mse_interval)},
-          {"d2_mse", std::isnan(d.d2_mse) ? nlohmann::json(nullptr) : nlohmann::json(d.d2_mse)},
-          {"d2_mse_interval", interval(d.d2_mse_interval)},
-          {"d2_psnr", psnr_json(geometry_psnr(d.d2_mse, peak))},
-          {"d2_psnr_interval", psnr_interval(d.d2_mse_interval)},
-          {"d1_hausdorff_certified", interval(d.hausdorff)},
-          {"d1_hausdorff_psnr_interval", psnr_interval(d.hausdorff)}};
-}
-
-nlohmann::json mpeg_json(const MpegReport& m) {
-  const MpegFigures& f = m.figures;
-  nlohmann::json json = {
-      {"definition",
-       "MPEG pc_error (mpeg-pcc-dmetric 0.14, default options): each point paired with the other cloud's "
-       "nearest; D1 = squared distance, D2 = squared distance along the normal (A's normals, carried onto B "
-       "for A -> B); MSE = mean over the points, hausdorff = largest; PSNR = 10 log10(3 peak^2 / MSE); colour "
-       "over BT.709 Y'CbCr on [0, 1] (peak 1) and RGB (peak 255); symmetric = the worse direction; points at "
-       "one position merged first. See docs/mpeg.md"},
-      {"computed_as", f.mmetric ? "mmetric 1.1.7 compare --mode pcc: meshes sampled as mmetric samples them"
-                                : "pc_error (mpeg-pcc-dmetric 0.14)"},
-      {"peak", f.peak},
-      {"peak_from", f.peak_given ? "--pcc-resolution"
-                    : f.mmetric  ? "the diagonal of A's box (mmetric's default)"
-                                 : "the largest nearest-neighbour spacing within A"},
-      {"points_read", {m.points_read[0], m.points_read[1]}},
-      {"points", {m.points[0], m.points[1]}},
-      {"d2", f.d2 ? nlohmann::json(true) : nlohmann::json("none: A has no normals in its file")},
-      {"normals_from", !f.d2                   ? nlohmann::json()
-                       : !m.normals_from.empty() ? nlohmann::json(m.normals_from)
-                       : m.a_sampled             ? nlohmann::json("A's samples (their faces' normals)")
-                                                 : nlohmann::json("A's file")},
-      {"colour", f.colour},
-      {"a_to_b", mpeg_direction_json(f.a_to_b, f)},
-      {"b_to_a", mpeg_direction_json(f.b_to_a, f)},
-      {"symmetric", mpeg_direction_json(f.symmetric(), f)},
-      {"seconds", m.seconds}};
-  if (m.surface) {
-    const auto& [ab, ba] = *m.surface;
-    json["exact_surface"] = {
-        {"definition",
-         "D1 and D2 of the surfaces themselves: every point of one surface against the other surface; D1 the "
-         "area-weighted mean squared closest distance (the directions' closest-point measurement; a no-hit "
-         "counts at h), D2 the same of its component along the other surface's normal at the closest point "
-         "(null where the method names no face), each with its 95% interval for area:N samples, and the "
-         "certified Hausdorff interval squared (bounding D2's largest value too); PSNRs at the same peak"},
-        {"a_to_b", surface_json(ab, f.peak)},
-        {"b_to_a", surface_json(ba, f.peak)},
-        {"symmetric", surface_json(worse(ab, ba), f.peak)}};
-  }
-  return json;
-}
-
-std::string mpeg_lines(const MpegReport& m) {
-  const MpegFigures& f = m.figures;
-  std::string out = fmt::format(
-      "\n  MPEG point-cloud figures ({}): peak {:.9g} ({}); {} and {} points ({} and {} {})\n",
-      f.mmetric ? "mmetric's compare --mode pcc" : "pc_error's", f.peak,
-      f.peak_given ? "--pcc-resolution"
-      : f.mmetric  ? "diagonal of A's box"
-                   : "largest nearest-neighbour spacing within A",
-      m.points[0], m.points[1], m.points_read[0], m.points_read[1], f.mmetric ? "sampled or read" : "read");
-  if (!m.normals_from.empty()) out += fmt::format("  D2 along A's normals from {}\n", m.normals_from);
-  out += fmt::format("  {:<28} {:>16} {:>16} {:>16}\n", "figure", "A -> B", "B -> A", "symmetric");
-  const MpegDirection both = f.symmetric();
-  const auto row = [&](const char* name, auto value) {
-    const auto text = [](double v) { return std::isfinite(v) ? fmt::format("{:.9g}", v) : std::string("inf"); };
-    out += fmt::format("  {:<28} {:>16} {:>16} {:>16}\n", name, text(value(f.a_to_b)), text(value(f.b_to_a)),
-                       text(value(both)));
-  };
-  row("D1 MSE (p2point)", [](const MpegDirection& d) { return d.d1_mse; });
-  row("D1 PSNR, dB", [&](const MpegDirection& d) { return geometry_psnr(d.d1_mse, f.peak); });
-  if (f.d2) {
-    row("D2 MSE (p2plane)", [](const MpegDirection& d) { return d.d2_mse; });
-    row("D2 PSNR, dB", [&](const MpegDirection& d) { return geometry_psnr(d.d2_mse, f.peak); });
-  }
-  row("D1 Hausdorff (squared)", [](const MpegDirection& d) { return d.d1_hausdorff; });
-  row("D1 Hausdorff PSNR, dB", [&](const MpegDirection& d) { return geometry_psnr(d.d1_hausdorff, f.peak); });
-  if (f.d2) {
-    row("D2 Hausdorff (squared)", [](const MpegDirection& d) { return d.d2_hausdorff; });
-    row("D2 Hausdorff PSNR, dB", [&](const MpegDirection& d) { return geometry_psnr(d.d2_hausdorff, f.peak); });
-  }
-  if (f.colour) {
-    const char* names[3] = {"Y PSNR, dB", "Cb PSNR, dB", "Cr PSNR, dB"};
-    for (int c = 0; c < 3; ++c)
-      row(names[c], [&](const MpegDirection& d) { return colour_psnr(d.ycbcr_mse[c], 1); });
-    const char* rgb[3] = {"R PSNR, dB", "G PSNR, dB", "B PSNR, dB"};
-    for (int c = 0; c < 3; ++c)
-      row(rgb[c], [&](const MpegDirection& d) { return colour_psnr(d.rgb_mse[c], 255); });
-  }
-  if (!f.d2) out += "  no D2: A has no normals in its file (pc_error takes D2's normals from A alone)\n";
-  if (m.surface) {
-    const auto& [ab, ba] = *m.surface;
-    const SurfaceFigures both = worse(ab, ba);
-    const auto psnr = [&](double mse) {
-      const double v = geometry_psnr(mse, f.peak);
-      return std::isfinite(v) ? fmt::format("{:.4f}", v) : std::string("inf");
-    };
-    const auto cell = [&](double mse, const std::optional<Interval>& interval) {
-      if (std::isnan(mse)) return std::string("-");
-      return psnr(mse) + (interval ? fmt::format(" [{}, {}]", psnr(interval->upper), psnr(interval->lower))
-                                   : std::string());
-    };
-    const auto certified = [&](const SurfaceFigures& d) {
-      return d.hausdorff ? fmt::format("[{}, {}]", psnr(d.hausdorff->upper), psnr(d.hausdorff->lower))
-                         : std::string("-");
-    };
-    out += fmt::format("  {:<28} {:>28} {:>28} {:>28}\n", "the surfaces themselves", "A -> B", "B -> A", "symmetric");
-    out += fmt::format("  {:<28} {:>28} {:>28} {:>28}\n", "D1 PSNR, dB (95% interval)",
-                       cell(ab.d1_mse, ab.d1_mse_interval), cell(ba.d1_mse, ba.d1_mse_interval),
-                       cell(both.d1_mse, both.d1_mse_interval));
-    out += fmt::format("  {:<28} {:>28} {:>28} {:>28}\n", "D2 PSNR, dB (95% interval)",
-                       cell(ab.d2_mse, ab.d2_mse_interval), cell(ba.d2_mse, ba.d2_mse_interval),
-                       cell(both.d2_mse, both.d2_mse_interval));
-    out += fmt::format("  {:<28} {:>28} {:>28} {:>28}\n", "D1 Hausdorff PSNR, certified", certified(ab),
-                       certified(ba), certified(both));
-    out += "  (every point of each surface against the other, closest point, area-weighted; the sampled figures "
-           "above\n   measure samples against samples)\n";
-  }
-  return out;
-}
-
-// The mean, sample standard deviation, least and largest of one figure over the protocol's runs.
-struct Spread {
-  double mean = 0, sd = 0, min = 0, max = 0;
-};
-
-template <class Run>
-Spread spread_of(const std::vector<Run>& runs, double Run::*figure) {
-  Spread s{0, 0, runs.front().*figure, runs.front().*figure};
-  for (const Run& run : runs) {
-    s.mean += run.*figure / runs.size();
-    s.min = std::min(s.min, run.*figure);
-    s.max = std::max(s.max, run.*figure);
-  }
-  for (const Run& run : runs) s.sd += (run.*figure - s.mean) * (run.*figure - s.mean);
-  s.sd = runs.size() > 1 ? std::sqrt(s.sd / (runs.size() - 1)) : 0;
-  return s;
-}
-
-// Each figure's spread over the runs as JSON (null for one run).
-template <class Run, std::size_t N>
-nlohmann::json spread_json(const std::vector<Run>& runs,
-                           const std::array<std::pair<const char*, double Run::*>, N>& figures) {
-  if (runs.size() < 2) return nullptr;
-  nlohmann::json spread = nlohmann::json::object();
-  for (const auto& [name, figure] : figures) {
-    const Spread s = spread_of(runs, figure);
-    spread[name] = {{"mean", s.mean}, {"sd", s.sd}, {"min", s.min}, {"max", s.max}};
-  }
-  return spread;
-}
-
-constexpr std::array<std::pair<const char*, double DtuRun::*>, 3> kDtuFigures = {
-    {{"accuracy", &DtuRun::accuracy}, {"completeness", &DtuRun::completeness}, {"overall", &DtuRun::overall}}};
-
-std::string dtu_order(const DtuFigures& f) {
-  if (!f.options.first_seed) return "the points' own order (eval.py with its shuffle left out)";
-  const std::uint64_t first = *f.options.first_seed;
-  return f.runs.size() == 1 ? fmt::format("shuffled with seed {}", first)
-                            : fmt::format("shuffled with seeds {} to {}", first, first + f.runs.size() - 1);
-}
-
-// The exact figures where the protocol measures (null without --symmetric).
-nlohmann::json dtu_exact_json(const DtuReport& d) {
-  if (!d.exact) return nullptr;
-  return {{"definition",
-           "The exact figures (as under 'reconstruction') over the part of each surface the protocol measures: "
-           "accuracy over TEST's samples inside BB - patch .. BB + 2 patch whose ObsMask voxel is observed, "
-           "completeness over REF's samples above the plane P, measured against the whole other surface. figures: "
-           "every distance counted; figures_below_max_dist: only the distances below max_dist, as the protocol "
-           "counts them (what the cap hides is the difference)"},
-          {"test_samples_counted", d.exact_test_counted},
-          {"test_samples", d.exact_test_samples},
-          {"reference_samples_counted", d.exact_reference_counted},
-          {"reference_samples", d.exact_reference_samples},
-          {"figures", reconstruction_json(*d.exact)},
-          {"figures_below_max_dist", reconstruction_json(*d.exact_below_cap)}};
-}
-
-nlohmann::json dtu_json(const DtuReport& d) {
-  const DtuFigures& f = d.figures;
-  const DtuRun& first = f.runs.front();
-  nlohmann::json runs = nlohmann::json::array();
-  for (const DtuRun& r : f.runs) {
-    runs.push_back({{"seed", r.seed ? nlohmann::json(*r.seed) : nlohmann::json(nullptr)},
-                    {"accuracy", r.accuracy},
-                    {"completeness", r.completeness},
-                    {"overall", r.overall},
-                    {"thinned", r.thinned},
-                    {"in_box", r.in_box},
-                    {"observed", r.observed},
-                    {"accuracy_counted", r.accuracy_counted},
-                    {"completeness_counted", r.completeness_counted}});
-  }
-  return {{"definition",
-           "DTU MVS evaluation as DTUeval-python's eval.py computes it: TEST sampled (a mesh: its vertices, then "
-           "per face a grid of step density scaled to its shape) or read (points), shuffled, thinned to no two "
-           "points within density, kept inside BB - patch .. BB + 2 patch; accuracy = mean distance from the "
-           "kept points inside ObsMask to REF's nearest point, completeness = mean distance from REF's points "
-           "above the plane P to the kept points' nearest, each over the distances below max_dist; overall = "
-           "(accuracy + completeness) / 2. See docs/reconstruction.md"},
-          {"computed_as", "DTUeval-python eval.py (github.com/jzhangbs/DTUeval-python, 45b4fec), step by step"},
-          {"obs_mask", d.obs_mask},
-          {"plane", d.plane},
-          {"density", f.options.density},
-          {"patch", f.options.patch},
-          {"max_dist", f.options.max_dist},
-          {"order", dtu_order(f)},
-          {"reconstruction_points", f.reconstruction_points},
-          {"samples", f.samples},
-          {"ground_truth_points", f.ground_truth_points},
-          {"ground_truth_above", f.ground_truth_above},
-          {"seed", first.seed ? nlohmann::json(*first.seed) : nlohmann::json(nullptr)},
-          {"accuracy", first.accuracy},
-          {"completeness", first.completeness},
-          {"overall", first.overall},
-          {"runs", runs},
-          {"spread", spread_json(f.runs, kDtuFigures)},
-          {"exact_within_region", dtu_exact_json(d)},
-          {"seconds", d.seconds}};
-}
-
-std::string dtu_lines(const DtuReport& d) {
-  const DtuFigures& f = d.figures;
-  const DtuRun& first = f.runs.front();
-  std::string out = fmt::format(
-      "\n  DTU protocol (DTUeval-python's eval.py): density {:.6g}, patch {:.6g}, max_dist {:.6g}; {}\n", f.options.density,
-      f.options.patch, f.options.max_dist, dtu_order(f));
-  out += fmt::format("  reconstruction {} points ({} sampled from faces); ground truth {} points, {} above the plane\n",
-                     f.reconstruction_points, f.samples, f.ground_truth_points, f.ground_truth_above);
-  const std::string first_label = first.seed ? fmt::format("seed {}", *first.seed) : std::string("own order");
-  out += fmt::format("  {:<14} {:>14}", "figure", first_label);
-  if (f.runs.size() > 1) out += fmt::format(" {:>30} {:>28}", fmt::format("mean +- sd over {} runs", f.runs.size()), "[min, max]");
-  out += "\n";
-  for (const auto& [name, figure] : kDtuFigures) {
-    out += fmt::format("  {:<14} {:>14.8g}", name, first.*figure);
-    if (f.runs.size() > 1) {
-      const Spread s = spread_of(f.runs, figure);
-      out += fmt::format(" {:>30} {:>28}", fmt::format("{:.8g} +- {:.2g}", s.mean, s.sd),
-                         fmt::format("[{:.8g}, {:.8g}]", s.min, s.max));
-    }
-    out += "\n";
-  }
-  out += fmt::format(
-      "  ({}: {} points after thinning, {} in the box, {} observed; below max_dist: {} of the observed, {} of the "
-      "ground truth above the plane)\n",
-      first_label, first.thinned, first.in_box, first.observed, first.accuracy_counted, first.completeness_counted);
-  if (d.exact) {
-    const ReconstructionFigures &e = *d.exact, &capped = *d.exact_below_cap;
-    out += fmt::format(
-        "  exact, where the protocol measures (TEST's samples observed: {} of {}; REF's above the plane: {} of {}):\n",
-        d.exact_test_counted, d.exact_test_samples, d.exact_reference_counted, d.exact_reference_samples);
-    out += fmt::format("  {:<14} {:>40} {:>40}\n", "figure", "every distance [95%]", "below max_dist [95%]");
-    const auto cell = [](const Estimate& value) {
-      return std::isnan(value.lower) ? fmt::format("{:.8g}", value.value)
-                                     : fmt::format("{:.8g} [{:.6g}, {:.6g}]", value.value, value.lower, value.upper);
-    };
-    out += fmt::format("  {:<14} {:>40} {:>40}\n", "accuracy", cell(e.accuracy.mean), cell(capped.accuracy.mean));
-    out += fmt::format("  {:<14} {:>40} {:>40}\n", "completeness", cell(e.completeness.mean),
-                       cell(capped.completeness.mean));
-    out += fmt::format("  {:<14} {:>40} {:>40}\n", "overall", cell(e.chamfer_mean_estimate),
-                       cell(capped.chamfer_mean_estimate));
-    out += fmt::format("  (below max_dist: {} of TEST's observed samples, {} of REF's above the plane)\n",
-                       capped.accuracy.hits, capped.completeness.hits);
-  }
-  return out;
-}
-
-std::string tnt_tau_source(const TanksAndTemplesReport& t) {
-  return t.scene.empty() ? std::string("as given by --tnt-tau") : fmt::format("{}'s, as the toolbox's config.py sets it", t.scene);
-}
-
-nlohmann::json matrix_json(const Eigen::Matrix4d& m) {
-  nlohmann::json rows = nlohmann::json::array();
-  for (int r = 0; r < 4; ++r) rows.push_back({m(r, 0), m(r, 1), m(r, 2), m(r, 3)});
-  return rows;
-}
-
-constexpr std::array<std::pair<const char*, double TanksAndTemplesRegistrationRun::*>, 3> kTntFigures = {
-    {{"precision", &TanksAndTemplesRegistrationRun::precision},
-     {"recall", &TanksAndTemplesRegistrationRun::recall},
-     {"fscore", &TanksAndTemplesRegistrationRun::fscore}}};
-
-// run.py's registration, per run (null where the alignment was given).
-nlohmann::json tnt_registration_json(const TanksAndTemplesReport& t) {
-  if (t.registrations.empty()) return nullptr;
-  nlohmann::json runs = nlohmann::json::array();
-  for (const TanksAndTemplesRegistrationRun& run : t.registrations) {
-    const TanksAndTemplesRegistration& r = run.registration;
-    nlohmann::json rounds = nlohmann::json::array();
-    for (const TanksAndTemplesRegistration::Round& round : r.rounds) {
-      rounds.push_back({{"voxel_size", round.voxel_size > 0 ? nlohmann::json(round.voxel_size) : nlohmann::json(nullptr)},
-                        {"max_distance", round.max_distance},
-                        {"source_points", round.source_points},
-                        {"target_points", round.target_points},
-                        {"fitness", round.icp.fitness},
-                        {"inlier_rmse", round.icp.inlier_rmse},
-                        {"iterations", round.icp.iterations},
-                        {"transformation", matrix_json(round.transformation)}});
-    }
-    runs.push_back({{"seed", r.seed},
-                    {"cameras", {{"fitness", r.trajectory.fitness},
-                                 {"inlier_rmse", r.trajectory.inlier_rmse},
-                                 {"transformation", matrix_json(r.trajectory.transformation)}}},
-                    {"rounds", rounds},
-                    {"transformation", matrix_json(r.transformation)},
-                    {"precision", run.precision},
-                    {"recall", run.recall},
-                    {"fscore", run.fscore}});
-  }
-  return {{"definition",
-           "run.py's registration before EvaluateHisto: the reconstruction's camera centres (those the mapping "
-           "names where there are more than 1,600) aligned to the scene's (COLMAP's, moved by alignment_file) by "
-           "RANSAC (6 pairs a draw, pairs closer than 0.2, confidence 0.999, draws from the seed), then ICP "
-           "point to point with scale in three rounds on both clouds cropped: voxels of tau and pairs within 80 "
-           "tau, voxels of tau / 2 and 20 tau, uniform (every k-th point above 4 M) and 2 tau, each round stopping "
-           "once its fitness changes by less than 1e-6 (ICPConvergenceCriteria(1e-6, 20): the RMSE's criterion "
-           "is 20) or after 30 updates. Each run's transformation is the product of the rounds' and RANSAC's; "
-           "the first run's is 'alignment' and gives the figures above; spread: over the runs' seeds"},
-          {"trajectory", t.trajectory},
-          {"reference_trajectory", t.reference_trajectory},
-          {"mapping", t.mapping.empty() ? nlohmann::json(nullptr) : nlohmann::json(t.mapping)},
-          {"cameras", t.registrations.front().registration.cameras},
-          {"runs", runs},
-          {"spread", spread_json(t.registrations, kTntFigures)},
-          {"seconds", t.registration_seconds}};
-}
-
-nlohmann::json tnt_json(const TanksAndTemplesReport& t) {
-  const TanksAndTemplesFigures& f = t.figures;
-  nlohmann::json exact = nullptr;
-  if (t.exact) {
-    exact = {{"definition",
-              "The exact figures (as under 'reconstruction', the first threshold tau) over the part of each surface "
-              "inside the crop volume: precision's side (accuracy) over TEST's aligned samples inside it, recall's "
-              "(completeness) over REF's, each measured against the whole other surface, neither thinned"},
-             {"test_samples_counted", t.exact_test_counted},
-             {"test_samples", t.exact_test_samples},
-             {"reference_samples_counted", t.exact_reference_counted},
-             {"reference_samples", t.exact_reference_samples},
-             {"figures", reconstruction_json(*t.exact)}};
-  }
-  return {{"definition",
-           "Tanks and Temples evaluation as its toolbox's EvaluateHisto computes it: TEST (its points, or a mesh's "
-           "vertices) moved by the alignment, both clouds cropped to the crop volume and voxel down-sampled at "
-           "voxel_size (each occupied cube's mean point); precision = share of TEST's points whose nearest REF "
-           "point is closer than tau, recall = share of REF's points closer than tau to TEST's nearest, fscore = "
-           "2 precision recall / (precision + recall); cumulative_precision[i] and cumulative_recall[i] = share of "
-           "the distances below edges[i + 1] (at or below, for the last), edges = np.arange(0, tau * plot_stretch, "
-           "tau / 100). See docs/reconstruction.md"},
-          {"computed_as",
-           t.registrations.empty()
-               ? "TanksAndTemples python_toolbox/evaluation (github.com/isl-org/TanksAndTemples, 3c2c212), "
-                 "EvaluateHisto step by step on Open3D 0.16's operations; run.py's registration (RANSAC and ICP) not "
-                 "run: the alignment is the one given"
-               : "TanksAndTemples python_toolbox/evaluation (github.com/isl-org/TanksAndTemples, 3c2c212), run.py "
-                 "step by step on Open3D 0.16's operations: its registration (RANSAC from the seed, as Open3D on "
-                 "one thread after utility.random.seed) and EvaluateHisto"},
-          {"scene", t.scene.empty() ? nlohmann::json(nullptr) : nlohmann::json(t.scene)},
-          {"tau", f.options.tau},
-          {"tau_source", tnt_tau_source(t)},
-          {"voxel_size", f.options.voxel_size},
-          {"plot_stretch", f.options.plot_stretch},
-          {"crop", t.crop},
-          {"alignment_file", t.alignment.empty() ? nlohmann::json(nullptr) : nlohmann::json(t.alignment)},
-          {"alignment", matrix_json(t.alignment_matrix)},
-          {"registration", tnt_registration_json(t)},
-          {"reconstruction_points", f.reconstruction_points},
-          {"reconstruction_cropped", f.reconstruction_cropped},
-          {"reconstruction_thinned", f.reconstruction_thinned},
-          {"ground_truth_points", f.ground_truth_points},
-          {"ground_truth_cropped", f.ground_truth_cropped},
-          {"ground_truth_thinned", f.ground_truth_thinned},
-          {"precision_counted", f.precision_counted},
-          {"recall_counted", f.recall_counted},
-          {"precision", f.precision},
-          {"recall", f.recall},
-          {"fscore", f.fscore},
-          {"edges", f.edges},
-          {"cumulative_precision", f.cumulative_precision},
-          {"cumulative_recall", f.cumulative_recall},
-          {"curves_png", t.curves_png.empty() ? nlohmann::json(nullptr) : nlohmann::json(t.curves_png)},
-          {"plys", t.plys.empty() ? nlohmann::json(nullptr)
-                                  : nlohmann::json({t.plys + ".precision.ply", t.plys + ".recall.ply"})},
-          {"exact_within_crop", exact},
-          {"seconds", t.seconds}};
-}
-
-std::string tnt_lines(const TanksAndTemplesReport& t) {
-  const TanksAndTemplesFigures& f = t.figures;
-  std::string out = fmt::format(
-      "\n  Tanks and Temples protocol (the toolbox's EvaluateHisto): tau {:.6g} ({}), voxel size {:.6g}, crop {}, "
-      "alignment {}\n",
-      f.options.tau, tnt_tau_source(t), f.options.voxel_size, t.crop,
-      t.registrations.empty() ? (t.alignment.empty() ? "none" : t.alignment)
-                              : fmt::format("run.py's registration from {}", t.alignment));
-  if (!t.registrations.empty()) {
-    const TanksAndTemplesRegistration& r = t.registrations.front().registration;
-    out += fmt::format("  registration ({:.3g} s): RANSAC on {} cameras of {} (seed {}): fitness {:.6g}, RMSE {:.6g}\n",
-                       t.registration_seconds, r.cameras, t.trajectory, r.seed, r.trajectory.fitness,
-                       r.trajectory.inlier_rmse);
-    for (std::size_t k = 0; k < r.rounds.size(); ++k) {
-      const TanksAndTemplesRegistration::Round& round = r.rounds[k];
-      out += fmt::format("    ICP round {} ({}, pairs within {:.6g}): {} TEST and {} REF points, fitness {:.6g}, "
-                         "RMSE {:.6g} after {} update{}\n",
-                         k + 1, round.voxel_size > 0 ? fmt::format("voxels of {:.6g}", round.voxel_size) : "uniform",
-                         round.max_distance, round.source_points, round.target_points, round.icp.fitness,
-                         round.icp.inlier_rmse, round.icp.iterations, round.icp.iterations == 1 ? "" : "s");
-    }
-  }
-  out += fmt::format("  reconstruction {} points, {} in the crop, {} after down-sampling; ground truth {}, {}, {}\n",
-                     f.reconstruction_points, f.reconstruction_cropped, f.reconstruction_thinned, f.ground_truth_points,
-                     f.ground_truth_cropped, f.ground_truth_thinned);
-  out += fmt::format("  {:<14} {:>14} {:>28}\n", "figure", "protocol", "points below tau");
-  out += fmt::format("  {:<14} {:>14.8g} {:>28}\n", "precision", f.precision,
-                     fmt::format("{} of {}", f.precision_counted, f.reconstruction_thinned));
-  out += fmt::format("  {:<14} {:>14.8g} {:>28}\n", "recall", f.recall,
-                     fmt::format("{} of {}", f.recall_counted, f.ground_truth_thinned));
-  out += fmt::format("  {:<14} {:>14.8g}\n", "F-score", f.fscore);
-  if (t.registrations.size() > 1) {
-    out += fmt::format("  {:<14} {:>47} {:>28}\n",
-                       fmt::format("seeds {} to {}", t.registrations.front().registration.seed,
-                                   t.registrations.back().registration.seed),
-                       fmt::format("mean +- sd over {} registrations", t.registrations.size()), "[min, max]");
-    for (const auto& [name, figure] : kTntFigures) {
-      const Spread s = spread_of(t.registrations, figure);
-      out += fmt::format("  {:<14} {:>47} {:>28}\n", std::string(name) == "fscore" ? "F-score" : name,
-                         fmt::format("{:.8g} +- {:.2g}", s.mean, s.sd), fmt::format("[{:.8g}, {:.8g}]", s.min, s.max));
-    }
-  }
-  if (!t.curves_png.empty()) out += fmt::format("  curves: {}\n", t.curves_png);
-  if (!t.plys.empty()) {
-    out += fmt::format("  coloured by distance (hot_r up to 3 tau): {0}.precision.ply, {0}.recall.ply\n", t.plys);
-  }
-  if (t.exact) {
-    const ReconstructionFigures& e = *t.exact;
-    out += fmt::format("  exact, within the crop (TEST's samples: {} of {}; REF's: {} of {}), at tau [95%]:\n",
-                       t.exact_test_counted, t.exact_test_samples, t.exact_reference_counted, t.exact_reference_samples);
-    const auto cell = [](const Estimate& value) {
-      return std::isnan(value.lower) ? fmt::format("{:.8g}", value.value)
-                                     : fmt::format("{:.8g} [{:.6g}, {:.6g}]", value.value, value.lower, value.upper);
-    };
-    out += fmt::format("  {:<14} {:>40}\n", "precision", cell(e.accuracy.within.front()));
-    out += fmt::format("  {:<14} {:>40}\n", "recall", cell(e.completeness.within.front()));
-    out += fmt::format("  {:<14} {:>40}\n", "F-score", cell(e.f_score_estimate.front()));
-  }
-  return out;
-}
 
 // The models load at once (measure_run), so loading takes the longer of the two times.
 double loading_seconds(const MeasureReport& r) { return std::max(r.load_seconds[0], r.load_seconds[1]); }
@@ -1157,14 +527,14 @@ double loading_seconds(const MeasureReport& r) { return std::max(r.load_seconds[
 
 std::string format_body(const MeasureReport& r) {
   if (r.protocol_only) {
-    std::string out = r.dtu ? dtu_lines(*r.dtu) : tnt_lines(*r.tnt);
+    std::string out = family_sections(r);
     out += fmt::format("  time: load {:.3f} s, protocol {:.3f} s, total {:.3f} s\n", loading_seconds(r),
                        r.dtu ? r.dtu->seconds : r.tnt->seconds, r.total_seconds);
     for (const std::string& line : r.warnings) out += fmt::format("  warning: {}\n", line);
     return out;
   }
   if (r.pcc_only) {
-    std::string out = mpeg_lines(*r.mpeg);
+    std::string out = family_sections(r);
     out += fmt::format("  time: load {:.3f} s, figures {:.3f} s, total {:.3f} s\n",
                        loading_seconds(r), r.mpeg->seconds, r.total_seconds);
     for (const std::string& line : r.warnings) out += fmt::format("  warning: {}\n", line);
@@ -1221,11 +591,7 @@ std::string format_body(const MeasureReport& r) {
                          interval_text(t.hausdorff_lower, t.hausdorff_upper, r.diagonal));
     }
   }
-  if (r.reconstruction) out += reconstruction_lines(*r.reconstruction, r.diagonal);
-  if (r.mpeg) out += mpeg_lines(*r.mpeg);
-  if (r.dtu) out += dtu_lines(*r.dtu);
-  if (r.tnt) out += tnt_lines(*r.tnt);
-  if (r.image_based) out += image_based_lines(*r.image_based);
+  out += family_sections(r);
   for (const DirectionReport& d : r.directions) {
     if (!d.result.gl) continue;
     if (!d.label.empty()) out += fmt::format("  {}:\n", d.label);
@@ -1292,8 +658,7 @@ nlohmann::json to_json(const MeasureReport& r) {
   if (r.protocol_only) {
     json["method"] = "protocol";
     json["warnings"] = r.warnings;
-    if (r.dtu) json["dtu_protocol"] = dtu_json(*r.dtu);
-    if (r.tnt) json["tanks_and_temples_protocol"] = tnt_json(*r.tnt);
+    add_family_json(r, json);
     json["seconds"] = {
         {"load_reference", r.load_seconds[0]}, {"load_test", r.load_seconds[1]}, {"total", r.total_seconds}};
     return json;
@@ -1301,7 +666,7 @@ nlohmann::json to_json(const MeasureReport& r) {
   if (r.pcc_only) {
     json["method"] = "pcc";
     json["warnings"] = r.warnings;
-    json["mpeg_pcc"] = mpeg_json(*r.mpeg);
+    add_family_json(r, json);
     json["seconds"] = {
         {"load_reference", r.load_seconds[0]}, {"load_test", r.load_seconds[1]}, {"total", r.total_seconds}};
     return json;
@@ -1341,7 +706,6 @@ nlohmann::json to_json(const MeasureReport& r) {
     }
     json["two_sided_relative_to_diagonal"] =
         relative_json({{"max_abs", t.max_abs}, {"mean_both", t.mean_abs}, {"rms_both", t.rms}}, r.diagonal);
-    if (r.reconstruction) json["reconstruction"] = reconstruction_json(*r.reconstruction);
   } else {
     json.update(direction_json(r.directions.front(), r));
   }
@@ -1356,34 +720,7 @@ nlohmann::json to_json(const MeasureReport& r) {
                      {"samples", slices},
                      {"note", "this run's slice of the samples alone; roving merge gives the pair's figures"}};
   }
-  if (r.mpeg) json["mpeg_pcc"] = mpeg_json(*r.mpeg);
-  if (r.dtu) json["dtu_protocol"] = dtu_json(*r.dtu);
-  if (r.tnt) json["tanks_and_temples_protocol"] = tnt_json(*r.tnt);
-  if (r.image_based) {
-    const ImageBasedResult& ib = *r.image_based;
-    json["image_based"] = {{"definition", "MPEG IBSM (mmetric 1.1.7 compare --mode ibsm)"},
-                           {"views", ib.views},
-                           {"resolution", ib.resolution},
-                           {"back_faces_culled", true},
-                           {"matched_pixels", ib.matched_pixels},
-                           {"unmatched_pixels", ib.unmatched_pixels},
-                           {"unmatched_percent", ib.unmatched_percent},
-                           {"box_ratio", ib.box_ratio},
-                           {"depth_psnr", ib.depth_psnr},
-                           {"seconds", ib.seconds}};
-    if (ib.colour) {
-      json["image_based"]["colour"] = {{"psnr_rgb", ib.psnr_rgb},
-                                       {"psnr_r", ib.psnr_rgb_channels[0]},
-                                       {"psnr_g", ib.psnr_rgb_channels[1]},
-                                       {"psnr_b", ib.psnr_rgb_channels[2]},
-                                       {"psnr_ycbcr_611", ib.psnr_ycbcr_611},
-                                       {"psnr_y", ib.psnr_ycbcr[0]},
-                                       {"psnr_cb", ib.psnr_ycbcr[1]},
-                                       {"psnr_cr", ib.psnr_ycbcr[2]},
-                                       {"mse_rgb", ib.rgb_mse},
-                                       {"mse_ycbcr", ib.ycbcr_mse}};
-    }
-  }
+  add_family_json(r, json);
   json["seconds"]["load_reference"] = r.load_seconds[0];
   json["seconds"]["load_test"] = r.load_seconds[1];
   json["seconds"]["total"] = r.total_seconds;

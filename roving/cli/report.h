@@ -8,7 +8,6 @@
 #include <string>
 #include <vector>
 
-#include "protocols.h"
 #include "shard.h"
 #include "roving/core/colour_statistics.h"
 #include "roving/core/confidence.h"
@@ -16,8 +15,9 @@
 #include "roving/core/distance_method.h"
 #include "roving/core/statistics.h"
 #include "roving/gl_methods/image_based.h"
-#include "roving/mpeg/point_cloud_psnr.h"
-#include "roving/mpeg/surface_psnr.h"
+#include "roving/mpeg/mpeg_report.h"
+#include "roving/protocols/dtu_evaluation.h"
+#include "roving/protocols/tanks_and_temples_evaluation.h"
 #include "roving/reconstruction/reconstruction_figures.h"
 #include "roving/reference_embree/certified_area_within.h"
 #include "roving/reference_embree/certified_hausdorff.h"
@@ -89,21 +89,6 @@ struct TwoSided {
   double hausdorff_lower = 0, hausdorff_upper = 0;
 };
 
-// MPEG's point-cloud figures (pc_error's) of two point clouds, A the original and B the processed.
-struct MpegReport {
-  MpegFigures figures;
-  std::size_t points_read[2] = {0, 0};  // A, B as read
-  std::size_t points[2] = {0, 0};       // after pc_error's merging of points at one position
-  bool coloured[2] = {false, false};    // A, B have colour
-  bool normals[2] = {false, false};     // A, B have normals as measured (B's: mmetric's rules alone)
-  double seconds = 0;                   // the figures, from the points as pc_error holds them
-  double read_seconds[2] = {0, 0};      // A, B read here, straight into those (Model::points_in_file)
-  std::string normals_from;  // D2's normals: from this file (--pcc-normals); empty: A's own
-  bool a_sampled = false;    // A is a mesh, sampled as mmetric samples it (its normals its faces')
-  // Two meshes under --pcc: D1 of the surfaces themselves, A -> B and B -> A (surface_psnr.h).
-  std::optional<std::array<SurfaceFigures, 2>> surface;
-};
-
 struct MeasureReport {
   std::vector<DirectionReport> directions;  // 1, or 2 with --symmetric
   std::string method;
@@ -137,10 +122,6 @@ struct MeasureReport {
 
 // A model as the report's JSON describes it (paths, counts, area, box, colour, representation).
 nlohmann::json model_json(const Model& model);
-
-// The reconstruction figures' certified precision and recall, from the directions' area_within
-// where both have it (TEST -> REF's is precision, REF -> TEST's recall).
-void certify_reconstruction(MeasureReport& report);
 
 // The models, the sampling and the method: known before the long work, printed at once.
 std::string format_header(const Model& a, const Model& b, const MeasureReport& report);

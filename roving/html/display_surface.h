@@ -9,7 +9,7 @@
 
 #include "roving/core/sample_set.h"
 #include "roving/core/triangle_mesh.h"
-#include "roving/formats/heatmap.h"
+#include "roving/formats/outputs/heatmap.h"
 
 namespace roving {
 

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "roving/core/sample_set.h"
-#include "roving/formats/heatmap.h"
+#include "roving/formats/outputs/heatmap.h"
 #include "roving/gl/shaded_renderer.h"
 
 namespace roving {

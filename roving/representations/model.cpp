@@ -8,9 +8,9 @@
 #include <numeric>
 
 #include "roving/core/error.h"
-#include "roving/formats/binvox.h"
-#include "roving/formats/bpt.h"
-#include "roving/formats/point_cloud_io.h"
+#include "roving/formats/points_voxels_patches/binvox.h"
+#include "roving/formats/points_voxels_patches/bpt.h"
+#include "roving/formats/points_voxels_patches/point_cloud_io.h"
 #include "roving/representations/bezier_surface.h"
 #include "roving/representations/point_normals.h"
 #include "roving/representations/voxel_surface.h"

@@ -9,7 +9,7 @@
 #include "roving/core/point_cloud.h"
 #include "roving/core/sample_set.h"
 #include "roving/core/voxel_grid.h"
-#include "roving/formats/mesh_io.h"
+#include "roving/formats/meshes/mesh_io.h"
 #include "roving/representations/surfels.h"
 
 namespace roving {

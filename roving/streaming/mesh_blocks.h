@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "roving/core/triangle_mesh.h"
-#include "roving/formats/triangle_stream.h"
+#include "roving/formats/meshes/triangle_stream.h"
 
 namespace roving {
 

@@ -9,7 +9,7 @@
 #include <cmath>
 
 #include "roving/core/error.h"
-#include "roving/formats/heatmap.h"
+#include "roving/formats/outputs/heatmap.h"
 
 namespace roving {
 namespace {

@@ -13,7 +13,7 @@
 #include "roving/core/sample_set.h"
 #include "roving/core/statistics.h"
 #include "roving/core/triangle_mesh.h"
-#include "roving/formats/triangle_stream.h"
+#include "roving/formats/meshes/triangle_stream.h"
 
 namespace roving {
 

@@ -3,7 +3,7 @@
 #include <cstdio>
 
 #include "roving/core/statistics.h"
-#include "roving/formats/mesh_io.h"
+#include "roving/formats/meshes/mesh_io.h"
 #include "roving/registry/method_registry.h"
 
 int main(int argc, char** argv) {

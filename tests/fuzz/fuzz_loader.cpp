@@ -13,8 +13,8 @@
 #include <optional>
 
 #include "roving/core/error.h"
-#include "roving/formats/texture_io.h"
-#include "roving/formats/triangle_stream.h"
+#include "roving/formats/images_and_matlab/texture_io.h"
+#include "roving/formats/meshes/triangle_stream.h"
 #include "roving/representations/model.h"
 #include "roving/streaming/streamed_measurement.h"
 

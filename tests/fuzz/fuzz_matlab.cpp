@@ -10,7 +10,7 @@
 #include <string>
 
 #include "roving/core/error.h"
-#include "roving/formats/matlab_file.h"
+#include "roving/formats/images_and_matlab/matlab_file.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   static const std::string path = "/tmp/roving-fuzz-" + std::to_string(::getpid()) + ".mat";

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "roving/core/error.h"
-#include "roving/formats/shard_part.h"
+#include "roving/formats/outputs/shard_part.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   static const std::string path = "/tmp/roving-fuzz-" + std::to_string(::getpid()) + ".part";

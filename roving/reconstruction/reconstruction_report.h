@@ -1,0 +1,21 @@
+// The reconstruction figures as reports show them: their JSON section (docs/report-json.md's
+// `reconstruction`; a protocol's exact figures in the same form) and their text table.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "roving/reconstruction/reconstruction_figures.h"
+
+namespace roving {
+
+// An estimate with its 95% interval where it has one: the value alone, or {estimate, lower, upper}.
+nlohmann::json estimate_json(const Estimate& estimate);
+
+nlohmann::json reconstruction_json(const ReconstructionFigures& figures);
+
+// The table: each length in model units and over `diagonal`, then precision, recall and F-score at
+// each threshold with their intervals and certified bounds where they exist.
+std::string reconstruction_lines(const ReconstructionFigures& figures, double diagonal);
+
+}  // namespace roving
