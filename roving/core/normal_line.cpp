@@ -8,6 +8,7 @@
 
 #include "roving/core/geometry.h"
 #include "roving/core/rational.h"
+#include "roving/core/unreduced_rational.h"
 
 namespace roving {
 namespace {
@@ -64,7 +65,7 @@ Bounded operator/(Bounded a, Bounded b) {
 }
 // Orders by value: where two ends are within their bounds of each other, either is as good.
 bool below(const Bounded& a, const Bounded& b) { return a.value < b.value; }
-bool below(const mpq_class& a, const mpq_class& b) { return a < b; }
+bool below(const UnreducedRational& a, const UnreducedRational& b) { return sgn(a - b) < 0; }
 
 // Signs, decided exactly or not at all: a Bounded sign is taken where the value clears its bound
 // (widened for the rounding of the bound's own arithmetic); elsewhere `undecided` is set, the
@@ -79,11 +80,11 @@ struct BoundedSigns {
   }
 };
 struct ExactSigns {
-  int operator()(const mpq_class& q) const { return sgn(q); }
+  int operator()(const UnreducedRational& q) const { return sgn(q); }
 };
 
 Bounded number(double v, Bounded*) { return {v, 0}; }
-mpq_class number(double v, mpq_class*) { return mpq_class(v); }
+UnreducedRational number(double v, UnreducedRational*) { return UnreducedRational(v); }
 
 template <class N>
 struct Point {
@@ -283,9 +284,9 @@ std::optional<NormalLine::Interval> NormalLine::crossing(const Vec3& a, const Ve
     return Interval{careful->first.value, careful->second.value};
   }
   ExactSigns exact;
-  const auto slow = crossing_rule<mpq_class>(x_, n_, p, h_, tolerance_, window, exact);
+  const auto slow = crossing_rule<UnreducedRational>(x_, n_, p, h_, tolerance_, window, exact);
   if (!slow) return std::nullopt;
-  return Interval{nearest_double(slow->first), nearest_double(slow->second)};
+  return Interval{nearest_double(to_mpq(slow->first)), nearest_double(to_mpq(slow->second))};
 }
 
 void CrossingChoice::keep(double d, std::uint32_t face) {
