@@ -16,6 +16,16 @@
 
 namespace roving::testing {
 
+// Under AddressSanitizer (scripts/test-sanitizers.sh: every allocation checked, 10-20x slower where
+// the exact fallbacks and the GL methods allocate) the slowest tests run a lighter variant of the
+// same checks, on fewer models, cases or samples, each saying what it leaves to the Release suite,
+// which runs them whole.
+#ifdef __SANITIZE_ADDRESS__
+constexpr bool kUnderSanitizers = true;
+#else
+constexpr bool kUnderSanitizers = false;
+#endif
+
 // Path of a real model in $ROVING_DATA or the checkout's data/. A test that needs one fails
 // (never skips) when the folder lacks it: CI must not pass without the data.
 inline std::string data_file(const std::string& name) {
