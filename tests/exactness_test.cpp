@@ -125,10 +125,11 @@ TEST_P(EveryModel, AgainstItselfHasNoNoHitAndOneAnswer) {
   cgal->build(surface);
   roving->build(surface);
   const double h = 0.05 * model.bounding_box().diagonal();
-  // Under the sanitizers a tenth of the area samples (the Release suite draws them all).
-  for (const char* kind : {"faces", "vertices", testing::kUnderSanitizers ? "area:2000" : "area:20000"}) {
+  // Under the sanitizers 2,000 of each kind's samples, spread over the model (the Release suite
+  // takes them all).
+  for (const char* kind : {"faces", "vertices", "area:20000"}) {
     if (model.type == ModelType::Voxels && std::string(kind) == "vertices") continue;
-    const SampleSet samples = reference_samples(model, parse_sample_spec(kind));
+    const SampleSet samples = testing::lighter_under_sanitizers(reference_samples(model, parse_sample_spec(kind)), 2000);
     for (Semantics semantics : {Semantics::FirstHit, Semantics::Nearest, Semantics::Closest}) {
       const DistanceOptions options{semantics, h};
       const DistanceResult e = embree->measure(samples, options), g = cgal->measure(samples, options);
@@ -174,19 +175,13 @@ TEST(Exactness, LinesThroughTestVerticesGetOneHitFlag) {
   const auto embree = make_method("embree"), cgal = make_method("cgal");
   REQUIRE_GL_CONTEXT(default_gl_backend());
   const auto roving = make_method("roving");
-  // Under the sanitizers two models at one amplitude; the Release suite runs three at two.
-  std::vector<const char*> files = {"fandisk.obj", "stanford-bunny.obj"};
-  std::vector<double> amplitudes = {0.01};
-  if (!testing::kUnderSanitizers) {
-    files.push_back("rocker-arm.obj");
-    amplitudes.push_back(0.002);
-  }
-  for (const char* file : files) {
+  for (const char* file : {"fandisk.obj", "stanford-bunny.obj", "rocker-arm.obj"}) {
     const TriangleMesh reference = load_mesh(testing::data_file(file)).mesh;
     const double diagonal = reference.bounding_box().diagonal();
-    for (double amplitude : amplitudes) {
+    for (double amplitude : {0.01, 0.002}) {
       const TriangleMesh test = smoothly_perturbed(reference, amplitude * diagonal, 0.2 * diagonal);
-      const SampleSet samples = make_samples(reference, parse_sample_spec("vertices"));
+      // Under the sanitizers 4,000 of them, spread over the model (the Release suite takes all).
+      const SampleSet samples = testing::lighter_under_sanitizers(make_samples(reference, parse_sample_spec("vertices")), 4000);
       const DistanceOptions options{Semantics::FirstHit, 0.02 * diagonal};
       embree->build(test);
       cgal->build(test);

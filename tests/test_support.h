@@ -10,6 +10,7 @@
 
 #include "data_folder.h"
 #include "roving/core/error.h"
+#include "roving/core/sample_set.h"
 #include "roving/core/triangle_mesh.h"
 #include "roving/formats/meshes/mesh_io.h"
 #include "roving/gl/depth_renderer.h"
@@ -25,6 +26,24 @@ constexpr bool kUnderSanitizers = true;
 #else
 constexpr bool kUnderSanitizers = false;
 #endif
+
+// Under the sanitizers at most `at_most` of the samples, evenly spread over the set (their weights
+// scaled to keep the total area); all of them otherwise. The code paths are the same; the
+// per-sample checks over the whole set are the Release suite's.
+inline SampleSet lighter_under_sanitizers(SampleSet samples, std::size_t at_most) {
+  if (!kUnderSanitizers || samples.size() <= at_most) return samples;
+  SampleSet kept;
+  kept.kind = samples.kind;
+  const double scale = static_cast<double>(samples.size()) / static_cast<double>(at_most);
+  for (std::size_t k = 0; k < at_most; ++k) {
+    const std::size_t from = k * samples.size() / at_most;
+    kept.positions.push_back(samples.positions[from]);
+    kept.normals.push_back(samples.normals[from]);
+    if (!samples.weights.empty()) kept.weights.push_back(samples.weights[from] * scale);
+    if (!samples.elements.empty()) kept.elements.push_back(samples.elements[from]);
+  }
+  return kept;
+}
 
 // Path of a real model in $ROVING_DATA or the checkout's data/. A test that needs one fails
 // (never skips) when the folder lacks it: CI must not pass without the data.
