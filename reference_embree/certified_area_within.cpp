@@ -1,8 +1,6 @@
 // The certified share of A's area within tau of B, piece by piece (see the header).
 #include "roving/reference_embree/certified_area_within.h"
 
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/squared_distance_3.h>
 #include <fmt/format.h>
 #include <tbb/parallel_for.h>
 
@@ -15,25 +13,6 @@
 
 namespace roving {
 namespace {
-
-using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
-
-// The distance between triangle `a` and triangle pqr (CGAL's, which gives 0 where it cannot show
-// them apart: still a lower bound); for a degenerate or thin pqr, where CGAL's inexact
-// constructions lose their digits, the distance from a's centre less a's reach (1-Lipschitz, by
-// the exact-deciding kernel), a lower bound too.
-double triangle_distance(const std::array<Vec3, 3>& a, const Vec3& p, const Vec3& q, const Vec3& r) {
-  const double longest_squared = std::max({(q - p).squaredNorm(), (r - q).squaredNorm(), (p - r).squaredNorm()});
-  if (!((q - p).cross(r - p).squaredNorm() > 1e-6 * longest_squared * longest_squared)) {
-    const Vec3 centre = (a[0] + a[1] + a[2]) / 3;
-    double reach = 0;
-    for (const Vec3& corner : a) reach = std::max(reach, (corner - centre).norm());
-    return std::max(0.0, (closest_point_on_triangle(centre, p, q, r) - centre).norm() - reach);
-  }
-  const auto point = [](const Vec3& x) { return Kernel::Point_3(x.x(), x.y(), x.z()); };
-  return std::sqrt(CGAL::squared_distance(Kernel::Triangle_3(point(a[0]), point(a[1]), point(a[2])),
-                                          Kernel::Triangle_3(point(p), point(q), point(r))));
-}
 
 // What one piece adds: per tau, its area in units rounded down where it is surely within, rounded
 // up where it may be; and whether it is to be split.
@@ -75,12 +54,12 @@ AreaWithin certified_area_within(const TriangleMesh& a, const TriangleMesh& b, c
   const double error = closest_point_error_bound(largest_coordinate);
   const double units_per_area = 1 / (AreaWithin::kUnit * a.total_area());
 
-  // A piece's verdict; `exact` asks for the piece's own distance to B where the bounds at hand do
-  // not decide it (one more query).
-  const auto judge = [&](const Piece& piece, bool exact, std::size_t& queries) {
+  // A piece's verdict from its corners' distances; with its centre's distance to B too where that
+  // is known (NaN where not), a tighter lower bound.
+  const auto judge = [&](const Piece& piece, double centre_distance) {
     Verdict v{std::vector<std::uint64_t>(n, 0), std::vector<std::uint64_t>(n, 0), false};
     const auto& c = piece.corner;
-    const double area = 0.5 * (c[1] - c[0]).cross(c[2] - c[0]).norm() * units_per_area;
+    const double area = piece.area;
     if (!(area > 0)) return v;  // a degenerate piece has no area
     const double longest = std::max({(c[1] - c[0]).norm(), (c[2] - c[1]).norm(), (c[0] - c[2]).norm()});
     const auto [least, most] = std::minmax({piece.distance[0], piece.distance[1], piece.distance[2]});
@@ -88,13 +67,12 @@ AreaWithin certified_area_within(const TriangleMesh& a, const TriangleMesh& b, c
     // at most, for the largest angle is >= 60 degrees), and within the longest edge of each.
     const double upper = std::min(piece.upper, most + longest / std::sqrt(3.0)) + error;
     double lower = std::max({0.0, most - longest, least - longest / std::sqrt(3.0)}) - error;
-    double open_tau = -1;  // the largest tau neither bound decides
-    for (const double tau : thresholds) {
-      if (upper > tau && lower <= tau) open_tau = std::max(open_tau, tau);
-    }
-    if (exact && open_tau >= 0) {
-      lower = std::max(lower, closest.distance_from(c, open_tau, triangle_distance) - error);
-      ++queries;
+    if (!std::isnan(centre_distance)) {
+      // No point of the piece is farther from its centre than its farthest corner (1-Lipschitz).
+      const Vec3 centre = (c[0] + c[1] + c[2]) / 3;
+      double reach = 0;
+      for (const Vec3& corner : c) reach = std::max(reach, (corner - centre).norm());
+      lower = std::max(lower, centre_distance - reach - error);
     }
     const bool may_split = longest > min_length && piece.depth < kMaxDepth;
     for (std::size_t k = 0; k < n; ++k) {
@@ -136,6 +114,10 @@ AreaWithin certified_area_within(const TriangleMesh& a, const TriangleMesh& b, c
     std::vector<Piece> stack;
     for (std::size_t t = first + block * kBlock; t < std::min(last, first + (block + 1) * kBlock); ++t) {
       Piece piece;
+      piece.area = 0.5 * (positions[triangles[t][1]] - positions[triangles[t][0]])
+                             .cross(positions[triangles[t][2]] - positions[triangles[t][0]])
+                             .norm() *
+                   units_per_area;
       for (int i = 0; i < 3; ++i) {
         const int v = triangles[t][i];
         piece.corner[i] = positions[v];
@@ -147,13 +129,14 @@ AreaWithin certified_area_within(const TriangleMesh& a, const TriangleMesh& b, c
       while (!stack.empty()) {
         Piece p = stack.back();
         stack.pop_back();
-        Verdict v = judge(p, false, block_queries[block]);
+        Verdict v = judge(p, std::nan(""));
         if (v.split) {  // before splitting: the triangle of B closest to the piece's centre as a candidate, and
-                        // the piece's own distance to B
-          add_candidate(p, closest.query((p.corner[0] + p.corner[1] + p.corner[2]) / 3).triangle);
+                        // the centre's distance to B
+          const ClosestPoints::Found at_centre = closest.query((p.corner[0] + p.corner[1] + p.corner[2]) / 3);
+          add_candidate(p, at_centre.triangle);
           bound(p, closest);
           ++block_queries[block];
-          v = judge(p, true, block_queries[block]);
+          v = judge(p, at_centre.distance);
         }
         if (v.split) {
           std::array<std::pair<Vec3, ClosestPoints::Found>, 3> midpoints;

@@ -58,21 +58,6 @@ class ClosestPoints {
     return state.found;
   }
 
-  // The least distance from the triangle `piece` to the mesh's triangles within `limit` of it, by
-  // `between` (a triangle-to-triangle distance, in double); +infinity where none is that near.
-  using TriangleDistance = double (*)(const std::array<Vec3, 3>&, const Vec3&, const Vec3&, const Vec3&);
-  double distance_from(const std::array<Vec3, 3>& piece, double limit, TriangleDistance between) const {
-    const Vec3 centre = (piece[0] + piece[1] + piece[2]) / 3;
-    double reach = 0;  // no point of the piece is farther from its centre
-    for (const Vec3& corner : piece) reach = std::max(reach, (corner - centre).norm());
-    State state{this, centre, {}, &piece, between, reach};
-    RTCPointQuery query = point_query(centre - origin_, static_cast<float>((reach + limit) * (1 + 1e-6) + pad_));
-    RTCPointQueryContext context;
-    rtcInitPointQueryContext(&context);
-    rtcPointQuery(scene_, &query, &context, nullptr, &state);
-    return state.found.distance <= limit ? state.found.distance : std::numeric_limits<double>::infinity();
-  }
-
   // The distance from x to triangle `t` of the mesh, in double.
   double distance_to(const Vec3& x, std::uint32_t t) const {
     const Triangle& tri = mesh_.triangles()[t];
@@ -85,9 +70,6 @@ class ClosestPoints {
     const ClosestPoints* self;
     Vec3 query;
     Found found;
-    const std::array<Vec3, 3>* piece = nullptr;  // set: the distance from this triangle (distance_from)
-    TriangleDistance between = nullptr;
-    double reach = 0;  // the piece's farthest point from `query`, its centre
   };
 
   static void bounds(const RTCBoundsFunctionArguments* args) {
@@ -103,15 +85,6 @@ class ClosestPoints {
     auto* state = static_cast<State*>(args->userPtr);
     const Triangle& t = state->self->mesh_.triangles()[args->primID];
     const auto& p = state->self->mesh_.positions();
-    if (state->piece) {
-      const double distance = state->between(*state->piece, p[t[0]], p[t[1]], p[t[2]]);
-      if (distance >= state->found.distance) return false;
-      state->found = {distance, Vec3::Zero(), args->primID};
-      // A nearer triangle is within that distance of the piece, so within it and the reach of the centre.
-      args->query->radius = std::min(args->query->radius, static_cast<float>((distance + state->reach) * (1 + 1e-6) +
-                                                                             state->self->pad_));
-      return true;
-    }
     const double distance = state->self->distance_to(state->query, args->primID);
     if (distance >= state->found.distance) return false;
     state->found = {distance, closest_point_on_triangle(state->query, p[t[0]], p[t[1]], p[t[2]]), args->primID};

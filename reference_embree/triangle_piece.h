@@ -20,6 +20,10 @@ struct Piece {
   std::array<std::uint32_t, 6> candidates;
   int candidate_count = 0;
   int depth = 0;  // splits from A's triangle
+  // Its area: a fourth of its parent's, exactly (midpoints split a triangle in four equal parts),
+  // never recomputed from its corners, which the midpoints' rounding moves (a sliver's area is
+  // all rounding).
+  double area = 0;
   double upper = 0;
   bool operator<(const Piece& other) const { return upper < other.upper; }  // a max-heap by upper bound
 };
@@ -59,6 +63,7 @@ inline std::array<Piece, 4> split(const Piece& parent, const ClosestPoints& b,
   for (int c = 0; c < 4; ++c) {
     Piece& child = children[c];
     child.depth = parent.depth + 1;
+    child.area = parent.area / 4;
     for (int i = 0; i < 3; ++i) {
       const int at = shape[c][i];
       child.corner[i] = at < 3 ? parent.corner[at] : m[at - 3];

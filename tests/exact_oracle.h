@@ -9,6 +9,7 @@
 
 #include <array>
 #include <cmath>
+#include <functional>
 #include <optional>
 #include <vector>
 
@@ -28,10 +29,8 @@ inline Q3 cross(const Q3& a, const Q3& b) {
   return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
 
-// The exact squared distance from p to the closed triangle (a, b, c), whatever its shape.
-inline mpq_class squared_distance(const Vec3& p_, const Vec3& a_, const Vec3& b_, const Vec3& c_) {
-  const Q3 p = q3(p_);
-  const std::array<Q3, 3> v = {q3(a_), q3(b_), q3(c_)};
+// The exact squared distance from p to the closed triangle (v[0], v[1], v[2]), whatever its shape.
+inline mpq_class squared_distance(const Q3& p, const std::array<Q3, 3>& v) {
   mpq_class best = dot(p - v[0], p - v[0]);
   const auto consider = [&best, &p](const Q3& candidate) {
     const mpq_class d = dot(candidate - p, candidate - p);
@@ -56,6 +55,9 @@ inline mpq_class squared_distance(const Vec3& p_, const Vec3& a_, const Vec3& b_
   }
   return best;
 }
+inline mpq_class squared_distance(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+  return squared_distance(q3(p), {q3(a), q3(b), q3(c)});
+}
 
 // The exact squared distance from p to a mesh's triangles.
 inline mpq_class squared_distance(const Vec3& p, const TriangleMesh& mesh) {
@@ -67,6 +69,74 @@ inline mpq_class squared_distance(const Vec3& p, const TriangleMesh& mesh) {
     if (first || d < best) best = d, first = false;
   }
   return best;
+}
+
+// Bounds on the share of A's area within each tau of B, exactly decided: a piece of A's triangle is
+// within tau where its three corners are within tau of one triangle of B (the distance to a convex
+// set is convex), beyond where, for every triangle of B, its centre's distance exceeds tau plus the
+// piece's reach (the distance is 1-Lipschitz). Pieces neither decides are split in four, midpoints
+// exact, to `depth`. The truth lies in [within, 1 - beyond]; only the pieces' areas (a triangle's
+// area / 4^depth, in doubles) round.
+struct ShareBounds {
+  std::vector<double> lower, upper;
+};
+inline ShareBounds share_bounds(const TriangleMesh& a, const TriangleMesh& b, const std::vector<double>& taus,
+                                int depth) {
+  const std::size_t n = taus.size();
+  std::vector<mpq_class> squared_tau;
+  for (double tau : taus) squared_tau.push_back(mpq_class(tau) * mpq_class(tau));
+  std::vector<std::array<Q3, 3>> b_triangles;
+  for (const Triangle& t : b.triangles())
+    b_triangles.push_back({q3(b.positions()[t[0]]), q3(b.positions()[t[1]]), q3(b.positions()[t[2]])});
+  std::vector<double> within(n, 0), beyond(n, 0);
+  // Decides what it can of one piece of `area`, and splits what it cannot.
+  std::function<void(const std::array<Q3, 3>&, double, int, std::vector<bool>)> classify =
+      [&](const std::array<Q3, 3>& piece, double area, int level, std::vector<bool> open) {
+        const Q3 centre = mpq_class(1, 3) * (piece[0] + piece[1] + piece[2]);
+        mpq_class reach2 = 0;  // the squared reach from the centre
+        for (const Q3& corner : piece) reach2 = std::max(reach2, dot(corner - centre, corner - centre));
+        std::vector<bool> is_within(n, false), is_beyond(n, true);
+        for (const auto& t : b_triangles) {
+          mpq_class corners2 = 0;
+          for (const Q3& corner : piece) corners2 = std::max(corners2, squared_distance(corner, t));
+          const mpq_class centre2 = squared_distance(centre, t);
+          for (std::size_t k = 0; k < n; ++k) {
+            if (!open[k]) continue;
+            if (corners2 <= squared_tau[k]) is_within[k] = true;
+            // centre's distance > tau + reach: d^2 - tau^2 - reach^2 > 0 and its square > 4 tau^2 reach^2.
+            const mpq_class gap = centre2 - squared_tau[k] - reach2;
+            if (!(gap > 0 && gap * gap > 4 * squared_tau[k] * reach2)) is_beyond[k] = false;
+          }
+        }
+        bool split = false;
+        for (std::size_t k = 0; k < n; ++k) {
+          if (!open[k]) continue;
+          if (is_within[k]) {
+            within[k] += area, open[k] = false;
+          } else if (is_beyond[k]) {
+            beyond[k] += area, open[k] = false;
+          } else {
+            split = true;
+          }
+        }
+        if (!split || level == depth) return;
+        const Q3 m01 = mpq_class(1, 2) * (piece[0] + piece[1]), m12 = mpq_class(1, 2) * (piece[1] + piece[2]),
+                 m20 = mpq_class(1, 2) * (piece[2] + piece[0]);
+        for (const auto& child : {std::array<Q3, 3>{piece[0], m01, m20}, std::array<Q3, 3>{m01, piece[1], m12},
+                                  std::array<Q3, 3>{m20, m12, piece[2]}, std::array<Q3, 3>{m01, m12, m20}})
+          classify(child, area / 4, level + 1, open);
+      };
+  const auto& x = a.positions();
+  for (const Triangle& t : a.triangles()) {
+    const double area = 0.5 * (x[t[1]] - x[t[0]]).cross(x[t[2]] - x[t[0]]).norm();
+    if (area > 0) classify({q3(x[t[0]]), q3(x[t[1]]), q3(x[t[2]])}, area, 0, std::vector<bool>(n, true));
+  }
+  ShareBounds bounds;
+  for (std::size_t k = 0; k < n; ++k) {
+    bounds.lower.push_back(within[k] / a.total_area());
+    bounds.upper.push_back(1 - beyond[k] / a.total_area());
+  }
+  return bounds;
 }
 
 // The normal line's rule (roving/core/normal_line.h) on one triangle, exactly, by a formulation

@@ -1,7 +1,7 @@
 // Every figure called exact or certified against an exact rational oracle (exact_oracle.h) on
 // adversarial pairs (adversarial_pairs.h): the closest-point kernel, every closest-point method
 // (Embree, CGAL, both vertex-to-plane searches) on vertex, face, area and scattered samples, and
-// the certified Hausdorff interval; every normal-line method (Embree, CGAL) first-hit and nearest. The bound is the kernel's stated one,
+// the certified Hausdorff interval and the certified shares within tau; every normal-line method (Embree, CGAL) first-hit and nearest. The bound is the kernel's stated one,
 // closest_point_error_bound(M) with M the largest coordinate involved: 1024 ulps of it (1.1e-13 M), far below any
 // distance a user measures, and far above what a correct computation rounds to. Zero
 // discrepancies beyond it. A longer run by hand: ROVING_ORACLE_PAIRS=N (docs/reliability.md).
@@ -18,6 +18,7 @@
 #include "roving/core/geometry.h"
 #include "roving/core/normal_line.h"
 #include "roving/core/rational.h"
+#include "roving/reference_embree/certified_area_within.h"
 #include "roving/reference_embree/certified_hausdorff.h"
 #include "roving/registry/method_registry.h"
 
@@ -205,6 +206,44 @@ TEST(ExactOracle, CertifiedHausdorffHoldsTheExactValue) {
   std::printf("certified Hausdorff: %zu pairs, %zu upper ends and %zu lower ends beyond the bound\n",
               at_vertices.compared, at_vertices.wrong, attained.wrong);
   EXPECT_EQ(at_vertices.wrong + attained.wrong, 0u);
+}
+
+// The certified shares of A's area within tau of B (precision and recall's bounds) hold the exact
+// share: their upper end no less than the area exact_oracle.h's share_bounds proves within, their
+// lower end no more than the area it does not prove beyond. B is A itself (every share 1 for
+// tau > 0, and at tau = 0) or A with each vertex moved by up to 5% of its diagonal. The slack,
+// 1e-12 of the area, is the rounding of the pieces' areas: at most 4^6 pieces a triangle, each
+// rounded to 2^-60 of the area, and a double's rounding of each area (1e-16 of it).
+TEST(ExactOracle, CertifiedSharesWithinTauHoldTheExactShare) {
+  adversarial::Choices choose(5);
+  Tally upper_ends, lower_ends;
+  double decided = 0;  // the share of the area the oracle decides, summed over pairs and taus
+  for (int k = 0; k < pair_count(40); ++k) {
+    const adversarial::Pair a = adversarial::pair(choose, 0);
+    if (!(a.test.total_area() > 0)) continue;  // no area to share
+    const double diagonal = a.test.bounding_box().diagonal();
+    std::vector<Vec3> moved = a.test.positions().to_vector();
+    const bool same = k % 2 == 0;
+    if (!same) {
+      for (Vec3& p : moved) p += 0.05 * diagonal * choose.vector();
+    }
+    const TriangleMesh b(moved, a.test.triangles());
+    const std::vector<double> taus = {0, 1e-3 * diagonal, 1e-2 * diagonal, 0.05 * diagonal, 0.2 * diagonal};
+    const AreaWithin w = certified_area_within(a.test, b, taus, 1e-3 * diagonal, 0, a.test.triangle_count());
+    const oracle::ShareBounds exact = oracle::share_bounds(a.test, b, taus, 2);
+    const std::string what = a.what + (same ? " against itself" : " against itself moved");
+    for (std::size_t t = 0; t < taus.size(); ++t) {
+      const std::string at = what + ", tau " + std::to_string(taus[t] / diagonal) + " of the diagonal";
+      upper_ends.check(std::max(w.upper(t), exact.lower[t]), w.upper(t), 1e-12, "upper end below the exact share: " + at);
+      lower_ends.check(std::min(w.lower(t), exact.upper[t]), w.lower(t), 1e-12, "lower end above the exact share: " + at);
+      if (same && taus[t] > 0) EXPECT_EQ(exact.lower[t], 1.0) << "the oracle decides A within tau of itself: " << at;
+      decided += 1 - (exact.upper[t] - exact.lower[t]);
+    }
+  }
+  std::printf("certified shares: %zu shares, %zu upper and %zu lower ends beyond the exact share; the oracle decided "
+              "%.1f%% of the area\n",
+              upper_ends.compared, upper_ends.wrong, lower_ends.wrong, 100 * decided / upper_ends.compared);
+  EXPECT_EQ(upper_ends.wrong + lower_ends.wrong, 0u);
 }
 
 }  // namespace

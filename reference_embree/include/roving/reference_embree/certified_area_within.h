@@ -32,8 +32,11 @@ struct AreaWithin {
 // Over A's triangles [first, last), the distance to B's triangles bounded piece by piece: above by
 // the convexity bound of certified_hausdorff.h over the triangles of B closest to the piece's
 // corners and centre (or by a corner's distance plus the piece's reach, 1-Lipschitz); below by a
-// corner's distance less the reach, and, where that does not decide, by the piece's own distance
-// to B (CGAL's triangle-to-triangle distance over B's triangles near it, by Embree's BVH). A piece
+// corner's distance less the reach, and, where that does not decide, by its centre's distance less
+// the centre's reach. Every distance is the robust kernel's (core/geometry.h), each bound widened
+// by its stated error, which also covers the rounding of the midpoints the splits place; a piece's
+// area is a fourth of its parent's, exactly (tests/exact_oracle_test.cpp holds the shares to an
+// exact oracle on degenerate and thin triangles). A piece
 // is within tau where its upper bound is <= tau, beyond where its lower bound is > tau, and split
 // in four otherwise while it is longer than `min_length` (> 0) and fewer than kMaxDepth splits
 // from its triangle: the work per triangle is bounded, and the same whatever the range. What is
