@@ -13,6 +13,8 @@ Progress = Callable[[str, str, int, int], None]
 
 class Error(ValueError): ...
 
+__version__: str  # the version the module was built from, as the reports' tool.version
+commit: str  # the commit it was built from, as the reports' tool.commit
 methods: List[str]
 resolved_by: Dict[str, int]
 

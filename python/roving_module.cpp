@@ -21,6 +21,7 @@
 #include "roving/cli/batch.h"
 #include "roving/cli/command_line.h"
 #include "roving/cli/measure.h"
+#include "roving/cli/provenance.h"
 #include "roving/core/colour_statistics.h"
 #include "roving/core/error.h"
 #include "roving/formats/files/atomic_file.h"
@@ -450,6 +451,9 @@ PYBIND11_MODULE(roving, m) {
   m.doc() =
       "Shape dissimilarity between 3D models: Z-buffer surface roving, Embree and CGAL references, baselines";
   py::register_exception<Error>(m, "Error", PyExc_ValueError);
+  // The version and commit the module was built from: the reports' "tool" says the same.
+  m.attr("__version__") = tool_json()["version"].get<std::string>();
+  m.attr("commit") = tool_json()["commit"].get<std::string>();
   m.attr("methods") = method_names();
   m.attr("resolved_by") = py::dict(py::arg("no-hit") = static_cast<int>(Resolution::Unresolved),
                                    py::arg("view") = static_cast<int>(Resolution::View),

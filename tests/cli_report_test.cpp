@@ -253,6 +253,14 @@ TEST(CliReport, WarningsForMisalignedAndInsideOutModels) {
       << disjoint.err;
   EXPECT_EQ(nlohmann::json::parse(disjoint.out)["warnings"].size(), 2u);
 
+  // An OBJ whose material library is missing: measured, with a warning naming the library.
+  const std::string unlit = cubes.folder.file("unlit.obj", "mtllib beetle.mtl\nusemtl shell\n" + cube_obj(0.5, 0));
+  const CliRun without = run_cli("measure " + cubes.small + " " + unlit + " --json -");
+  ASSERT_EQ(without.exit_code, 0) << without.err;
+  EXPECT_NE(without.err.find("roving: warning: " + unlit + ":1: mtllib 'beetle.mtl': no such file"), std::string::npos)
+      << without.err;
+  EXPECT_EQ(nlohmann::json::parse(without.out)["warnings"].size(), 1u);
+
   const std::string shifted = cubes.folder.file("shifted.obj", cube_obj(0.5, 0.2));
   const CliRun offset = run_cli("measure " + cubes.small + " " + shifted + " --max-error 0.1");
   EXPECT_NE(offset.err.find("small.obj reaches 0.2 beyond that of"), std::string::npos) << offset.err;

@@ -138,5 +138,24 @@ TEST(HtmlPage, EmbedsItsScriptsAndEscapesWhatTheInputsSay) {
   EXPECT_EQ(text.find("<link"), std::string::npos);
 }
 
+// The report's provenance (top-level tool, command line, inputs) as a table, escaped; an input not
+// hashed (a stream) shows null rather than failing.
+TEST(HtmlPage, ShowsTheReportsProvenance) {
+  HtmlPage page;
+  page.report = {{"tool", {{"name", "roving"}, {"version", "1.2.3"}, {"commit", "abc"}}},
+                 {"command_line", "roving measure a.obj 'b <c>.obj'"},
+                 {"inputs",
+                  {{{"role", "reference"}, {"path", "a.obj"}, {"bytes", 12}, {"sha256", "0f1e"}},
+                   {{"role", "test"}, {"path", "b <c>.obj"}, {"bytes", nullptr}, {"sha256", nullptr}}}}};
+  const std::string text = page_text(page);
+  EXPECT_NE(text.find("<summary>Provenance</summary>"), std::string::npos);
+  EXPECT_NE(text.find("<td>roving 1.2.3 (commit abc)</td>"), std::string::npos);
+  EXPECT_NE(text.find("<td>roving measure a.obj &#39;b &lt;c&gt;.obj&#39;</td>"), std::string::npos);
+  EXPECT_NE(text.find("<th>reference</th><td>a.obj (12 bytes, sha256 0f1e)</td>"), std::string::npos);
+  EXPECT_NE(text.find("<th>test</th><td>b &lt;c&gt;.obj (null bytes, sha256 null)</td>"), std::string::npos);
+  // No provenance in the report: no empty section.
+  EXPECT_EQ(page_text(HtmlPage{}).find("Provenance"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace roving

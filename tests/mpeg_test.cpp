@@ -557,7 +557,8 @@ TEST(PcErrorFigures, EveryFileFormGivesTheFiguresOfTheBinaryOne) {
 
 TEST(PcErrorFigures, BadInputIsOneLine) {
   const std::string a = kData + "sphere10_a.ply", b = kData + "sphere10_b.ply";
-  for (const char* peak : {"0", "-1", "nan", "1e40"}) {
+  // 1e-300 and 1e-46 are positive doubles that single precision (pc_error's) rounds to 0.
+  for (const char* peak : {"0", "-1", "nan", "1e40", "1e-300", "1e-46", "1e-39"}) {
     SCOPED_TRACE(peak);
     const CliRun run = run_cli("measure " + a + " " + b + " --pcc --pcc-resolution " + peak);
     EXPECT_EQ(run.exit_code, 2) << run.err;

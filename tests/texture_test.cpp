@@ -243,7 +243,15 @@ TEST_F(TextureFiles, BadObjColourIsAnError) {
   obj_error("vt-nan.obj", "vt nan 0\n", {":1:", "2 finite numbers after 'vt'"});
   obj_error("no-mtl.obj", "mtllib c.mtl\n" + square + "usemtl nothing\nf 1 2 3\n",
             {":6:", "'nothing'", "no such material"});
-  obj_error("missing.obj", "mtllib absent.mtl\n" + square, {":1:", "absent.mtl", "cannot open"});
+  // A material library that is not there: the geometry, without materials, and a warning naming
+  // it (as MeshLab and Open3D read it); faces naming its materials are then plain faces.
+  const std::string missing = write("missing.obj", "mtllib absent.mtl\n" + square + "usemtl a\nf 1/1 2/1 3/1\n");
+  const LoadedMesh without = load_mesh(missing);
+  EXPECT_EQ(without.mesh.triangle_count(), 1u);
+  EXPECT_FALSE(without.mesh.has_colour());
+  ASSERT_EQ(without.warnings.size(), 1u);
+  for (const std::string& fragment : {missing + ":1:", std::string("absent.mtl"), std::string("without its materials")})
+    EXPECT_NE(without.warnings[0].find(fragment), std::string::npos) << without.warnings[0];
   obj_error("outside.obj", "mtllib ../c.mtl\n" + square, {"leads out of the folder"});
   obj_error("uv-missing.obj", "mtllib c.mtl\n" + square + "usemtl c\nf 1/1 2 3/1\n",
             {":7:", "without a texture coordinate"});

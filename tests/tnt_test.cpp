@@ -479,6 +479,8 @@ TEST(TanksAndTemplesProtocol, BadInputGetsOneLine) {
   const std::string pair = kTruth + " " + kData + "Bench_points.ply";
   const std::string run = "measure " + pair + " --protocol tanks-and-temples ";
   expect_error(run + "--tnt-tau 0.01", {"--tnt-crop", "<scene>.json"});
+  const std::string folder = std::filesystem::temp_directory_path().string();
+  expect_error(run + "--tnt-tau 0.01 --tnt-crop " + folder, {"--tnt-crop", "directory", folder.c_str()});
   expect_error(run + kScene, {"--tnt-scene", "--tnt-tau"});
   expect_error(run + kScene + " --tnt-tau 0.01 --tnt-scene Barn", {"--tnt-scene", "--tnt-tau"});
   expect_error(run + kScene + " --tnt-scene Bench", {"--tnt-scene", "'Bench'", "Barn"});

@@ -88,6 +88,16 @@ void require_writable_paths(const MeasureArguments& args) {
   }
 }
 
+// A protocol's input file: one that opens, and not a folder (which opens, then fails to read with
+// a message naming nothing).
+void require_readable_file(const std::string& option, const std::string& path) {
+  std::error_code error;
+  if (std::filesystem::is_directory(path, error)) {
+    throw Error(fmt::format("{}: expected a file to read, found the directory '{}'", option, path));
+  }
+  if (!std::ifstream(path)) throw Error(fmt::format("{}: cannot read '{}'", option, path));
+}
+
 }  // namespace
 
 // Every value a gate can check: each direction's statistics, and the two-sided summary.
@@ -175,7 +185,7 @@ TanksAndTemplesPlan plan_tanks_and_temples(const MeasureArguments& args) {
   TanksAndTemplesPlan tnt;
   if (args.tnt_crop.empty()) throw Error("--protocol tanks-and-temples: needs --tnt-crop (the data set's <scene>.json)");
   for (const auto& [option, path] : {std::pair{"--tnt-crop", args.tnt_crop}, {"--tnt-alignment", args.tnt_alignment}}) {
-    if (!path.empty() && !std::ifstream(path)) throw Error(fmt::format("{}: cannot read '{}'", option, path));
+    if (!path.empty()) require_readable_file(option, path);
   }
   tnt.crop = args.tnt_crop;
   tnt.alignment = args.tnt_alignment;
@@ -265,7 +275,7 @@ void plan_protocol(const MeasureArguments& args, MeasurePlan& plan) {
       throw Error(fmt::format("--protocol dtu: needs {} (the data set's ObsMask/{}.mat)", option,
                               std::string(option) == "--dtu-plane" ? "Plane<scan>" : "ObsMask<scan>_10"));
     }
-    if (!std::ifstream(path)) throw Error(fmt::format("{}: cannot read '{}'", option, path));
+    require_readable_file(option, path);
     *target = path;
   }
   for (const auto& [option, value, positive] :
@@ -435,9 +445,13 @@ MeasurePlan plan_measurement(const MeasureArguments& args) {
   // Python's per_sample and --samples-out show them; --pcc's surface D2 is computed from them.
   plan.correspondences = args.correspondences || !args.samples_csv_path.empty() || args.pcc;
   plan.options.faces = plan.symmetric || plan.correspondences;
-  if (args.pcc_resolution &&
-      !(*args.pcc_resolution > 0 && *args.pcc_resolution <= std::numeric_limits<float>::max())) {
-    throw Error(fmt::format("--pcc-resolution: expected a peak > 0 (e.g. 1023 for 10-bit voxels), found {}",
+  // Read in single precision, as pc_error reads --resolution: a peak below the least normal float
+  // would become 0 or lose its digits, and every geometry PSNR infinite.
+  if (args.pcc_resolution && !(*args.pcc_resolution >= std::numeric_limits<float>::min() &&
+                               *args.pcc_resolution <= std::numeric_limits<float>::max())) {
+    throw Error(fmt::format("--pcc-resolution: expected a peak > 0 that single precision holds, from {:g} to {:g} "
+                            "(e.g. 1023 for 10-bit voxels), found {}",
+                            std::numeric_limits<float>::min(), std::numeric_limits<float>::max(),
                             *args.pcc_resolution));
   }
   plan.pcc_resolution = args.pcc_resolution;
@@ -728,6 +742,8 @@ void measure_streamed_direction(const Model& a, const TriangleMesh& test_mesh, T
 void measure_models(const Model& a, const Model& b, MeasurePlan& plan, MeasureReport& report,
                     Progress& progress, std::string& stage, const WarnFn& warn, const SampleSet* samples_of_a,
                     Model* releasable_a, TriangleStream* streamed_a, ProtocolInputs* protocol) {
+  warn(a.mesh.warnings);
+  if (&b != &a) warn(b.mesh.warnings);
   warn(alignment_warnings(a, b, plan.options.max_error));
   if (has_colour(a) != has_colour(b)) {
     const Model& coloured = has_colour(a) ? a : b;

@@ -185,19 +185,29 @@ nlohmann::json view_json(const HtmlView& view, int shared) {
       {"colours_of", colours_json(view)}};
 }
 
+// The report's provenance (its top-level tool, command_line and inputs; docs/report-json.md).
 std::string provenance_html(const nlohmann::json& report) {
-  if (!report.contains("provenance")) return "";
-  const nlohmann::json& p = report["provenance"];
+  // A field as text: strings as they are, anything else (numbers, null) as JSON writes it.
+  const auto text = [](const nlohmann::json& field, const char* key) {
+    if (!field.contains(key)) return std::string("?");
+    return field[key].is_string() ? field[key].get<std::string>() : field[key].dump();
+  };
   std::string rows;
   const auto row = [&](const std::string& name, const std::string& value) {
     rows += fmt::format("<tr><th>{}</th><td>{}</td></tr>", escape_html(name), escape_html(value));
   };
-  if (p.contains("tool")) row("tool", p["tool"].dump());
-  if (p.contains("command_line")) row("command line", p["command_line"].get<std::string>());
-  for (const nlohmann::json& input : p.value("inputs", nlohmann::json::array())) {
-    row(input.value("role", "input"), fmt::format("{} ({} bytes, sha256 {})", input.value("path", ""),
-                                                  input.value("bytes", 0), input.value("sha256", "")));
+  if (report.contains("tool") && report["tool"].is_object()) {
+    const nlohmann::json& tool = report["tool"];
+    row("tool", fmt::format("{} {} (commit {})", text(tool, "name"), text(tool, "version"), text(tool, "commit")));
   }
+  if (report.contains("command_line")) row("command line", text(report, "command_line"));
+  if (report.contains("inputs") && report["inputs"].is_array()) {
+    for (const nlohmann::json& input : report["inputs"]) {
+      row(text(input, "role"), fmt::format("{} ({} bytes, sha256 {})", text(input, "path"), text(input, "bytes"),
+                                           text(input, "sha256")));
+    }
+  }
+  if (rows.empty()) return "";
   return "<details><summary>Provenance</summary><table>" + rows + "</table></details>";
 }
 

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <mutex>
 #include <nanoflann.hpp>
@@ -417,8 +418,9 @@ double box_diagonal(const MpegPoints& a) {
 MpegFigures mpeg_point_cloud_figures(const MpegPoints& a, const MpegPoints& b, const MpegRules& rules,
                                      const std::string& a_name) {
   const std::optional<double>& resolution = rules.resolution;
-  if (resolution && !(std::isfinite(*resolution) && *resolution > 0)) {
-    throw Error(fmt::format("--pcc-resolution: expected a finite peak > 0, found {}", *resolution));
+  if (resolution && !(*resolution >= std::numeric_limits<float>::min() &&
+                      *resolution <= std::numeric_limits<float>::max())) {
+    throw Error(fmt::format("--pcc-resolution: expected a peak > 0 that single precision holds, found {}", *resolution));
   }
   NearestPoints a_nearest(a), b_nearest(b);
   std::unique_ptr<LatticeNeighbours> a_lattice, b_lattice;

@@ -123,17 +123,12 @@ std::string dtu_lines(const DtuReport& d) {
         "of {}):\n",
         d.exact_test_counted, d.exact_test_samples, d.exact_reference_counted, d.exact_reference_samples);
     out += fmt::format("  {:<14} {:>40} {:>40}\n", "figure", "every distance [95%]", "below max_dist [95%]");
-    const auto cell = [](const Estimate& value) {
-      return std::isnan(value.lower)
-                 ? fmt::format("{:.8g}", value.value)
-                 : fmt::format("{:.8g} [{:.6g}, {:.6g}]", value.value, value.lower, value.upper);
-    };
-    out += fmt::format("  {:<14} {:>40} {:>40}\n", "accuracy", cell(e.accuracy.mean),
-                       cell(capped.accuracy.mean));
-    out += fmt::format("  {:<14} {:>40} {:>40}\n", "completeness", cell(e.completeness.mean),
-                       cell(capped.completeness.mean));
-    out += fmt::format("  {:<14} {:>40} {:>40}\n", "overall", cell(e.chamfer_mean_estimate),
-                       cell(capped.chamfer_mean_estimate));
+    out += fmt::format("  {:<14} {:>40} {:>40}\n", "accuracy", estimate_text(e.accuracy.mean),
+                       estimate_text(capped.accuracy.mean));
+    out += fmt::format("  {:<14} {:>40} {:>40}\n", "completeness", estimate_text(e.completeness.mean),
+                       estimate_text(capped.completeness.mean));
+    out += fmt::format("  {:<14} {:>40} {:>40}\n", "overall", estimate_text(e.chamfer_mean_estimate),
+                       estimate_text(capped.chamfer_mean_estimate));
     out += fmt::format("  (below max_dist: {} of TEST's observed samples, {} of REF's above the plane)\n",
                        capped.accuracy.hits, capped.completeness.hits);
   }

@@ -203,14 +203,9 @@ std::string tnt_lines(const TanksAndTemplesReport& t) {
     out += fmt::format(
         "  exact, within the crop (TEST's samples: {} of {}; REF's: {} of {}), at tau [95%]:\n",
         t.exact_test_counted, t.exact_test_samples, t.exact_reference_counted, t.exact_reference_samples);
-    const auto cell = [](const Estimate& value) {
-      return std::isnan(value.lower)
-                 ? fmt::format("{:.8g}", value.value)
-                 : fmt::format("{:.8g} [{:.6g}, {:.6g}]", value.value, value.lower, value.upper);
-    };
-    out += fmt::format("  {:<14} {:>40}\n", "precision", cell(e.accuracy.within.front()));
-    out += fmt::format("  {:<14} {:>40}\n", "recall", cell(e.completeness.within.front()));
-    out += fmt::format("  {:<14} {:>40}\n", "F-score", cell(e.f_score_estimate.front()));
+    out += fmt::format("  {:<14} {:>40}\n", "precision", estimate_text(e.accuracy.within.front()));
+    out += fmt::format("  {:<14} {:>40}\n", "recall", estimate_text(e.completeness.within.front()));
+    out += fmt::format("  {:<14} {:>40}\n", "F-score", estimate_text(e.f_score_estimate.front()));
   }
   return out;
 }

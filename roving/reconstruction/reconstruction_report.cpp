@@ -12,6 +12,11 @@ nlohmann::json estimate_json(const Estimate& e) {
   return {{"estimate", e.value}, {"lower", e.lower}, {"upper", e.upper}};
 }
 
+std::string estimate_text(const Estimate& e) {
+  return std::isnan(e.lower) ? fmt::format("{:.8g}", e.value)
+                             : fmt::format("{:.8g} [{:.6g}, {:.6g}]", e.value, e.lower, e.upper);
+}
+
 nlohmann::json reconstruction_json(const ReconstructionFigures& f) {
   const auto direction = [](const DirectionFigures& d) {
     return nlohmann::json{{"mean", estimate_json(d.mean)},

@@ -11,6 +11,8 @@ namespace roving {
 
 // An estimate with its 95% interval where it has one: the value alone, or {estimate, lower, upper}.
 nlohmann::json estimate_json(const Estimate& estimate);
+// The same as text: "value" or "value [lower, upper]" (8 and 6 significant digits).
+std::string estimate_text(const Estimate& estimate);
 
 nlohmann::json reconstruction_json(const ReconstructionFigures& figures);
 

@@ -135,6 +135,13 @@ with chromium.Browser() as browser:
     check_view(browser, data["views"][1], report["directions"][1], {"red": 2 / 3, "blue": 1 / 3, "grey": 0}, "B -> A")
     check(browser.evaluate("document.querySelectorAll('section.direction')[1].hidden") is False,
           "the toggle shows B -> A's figures")
+    # The provenance as rendered once opened: the tool, the command line and each input's sha256.
+    shown = browser.evaluate("(() => { const d = [...document.querySelectorAll('details')].find("
+                             "e => e.querySelector('summary').textContent === 'Provenance');"
+                             " if (!d) return ''; d.querySelector('summary').click();"
+                             " return d.querySelector('table').innerText; })()")
+    check(report["command_line"] in shown and all(i["sha256"] in shown for i in report["inputs"])
+          and report["tool"]["version"] in shown, f"the Provenance section shows the report's: '{shown[:300]}'")
     check(not browser.errors, f"no console error or exception: {browser.errors}")
     outside = [u for u in browser.requests if not u.startswith(("file://", "data:", "about:"))]
     check(browser.requests and not outside, f"the page loads nothing but itself ({len(browser.requests)} requests): {outside}")

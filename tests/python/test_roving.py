@@ -111,6 +111,12 @@ def test_report_equals_the_clis(pair, options):
     assert bool(result["breached_gates"]) == ("fail_above" in options)
 
 
+def test_version_is_the_reports_tool():
+    tool = roving.measure(BUNNY, BUNNY, samples="area:100")["tool"]
+    assert roving.__version__ == tool["version"] and roving.commit == tool["commit"]
+    assert roving.__version__.count(".") == 2
+
+
 def test_per_sample_arrays_without_a_copy(tmp_path):
     samples_csv = tmp_path / "samples.csv"
     result = roving.measure(BUNNY, FANDISK, samples="area:500", samples_out=str(samples_csv))

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "roving/core/triangle_mesh.h"
 
@@ -14,6 +15,8 @@ struct LoadedMesh {
   std::size_t dropped_repeated_vertex_faces = 0;
   // Polygons with more than three corners, fan-triangulated.
   std::size_t triangulated_polygons = 0;
+  // What the reader measured without, each a line naming the file (an OBJ's missing .mtl).
+  std::vector<std::string> warnings;
 };
 
 // Reads `path`, choosing the format by its extension (.obj .ply .off .stl, any case).

@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include <filesystem>
 #include <map>
 #include <string_view>
 
@@ -30,6 +31,9 @@ LoadedMesh read_obj(const std::string& path) {
   std::vector<Material> used;  // the materials faces name, in order of first use
   std::map<std::string, int> used_index;
   int material = -1;
+  // A material library that is not there: the geometry is read without materials, with a warning
+  // (as MeshLab and Open3D read it); a library that is there but malformed is still an error.
+  bool materials_dropped = false;
   std::size_t first_unmaterialled_line = 0, first_textured_without_uv_line = 0;
 
   LoadedMesh loaded;
@@ -86,17 +90,26 @@ LoadedMesh read_obj(const std::string& path) {
     } else if (keyword == "mtllib") {
       for (std::string_view name = next_token(rest); !name.empty(); name = next_token(rest)) {
         try {
-          read_mtl(resolve_reference(path, std::string(name), "mtllib"), library, textures);
+          const std::string library_path = resolve_reference(path, std::string(name), "mtllib");
+          std::error_code error;
+          if (!std::filesystem::exists(library_path, error)) {
+            loaded.warnings.push_back(fmt::format("{}:{}: mtllib {}: no such file '{}'; measured without its "
+                                                  "materials (no colour from them)",
+                                                  path, lines.line_number(), roving::quoted(name), library_path));
+            materials_dropped = true;
+            continue;
+          }
+          read_mtl(library_path, library, textures);
         } catch (const Error& e) {
           throw fail(e.what());  // names the OBJ and its line, then the library's own file and line
         }
       }
-    } else if (keyword == "usemtl") {
+    } else if (keyword == "usemtl" && !materials_dropped) {
       const std::string name(next_token(rest));
       const auto found = library.find(name);
       if (found == library.end()) {
         throw fail(fmt::format("usemtl {}: no such material in the libraries 'mtllib' named before it",
-                               quoted(name)));
+                               roving::quoted(name)));
       }
       const auto [at, inserted] = used_index.emplace(name, static_cast<int>(used.size()));
       if (inserted) used.push_back(found->second);
@@ -113,7 +126,7 @@ LoadedMesh read_obj(const std::string& path) {
     }
     loaded.mesh.set_vertex_colours(std::move(colours), path);
   }
-  if (used.empty()) return loaded;
+  if (used.empty() || materials_dropped) return loaded;
   if (first_unmaterialled_line) {
     throw Error(
         fmt::format("{}:{}: face has no material ('usemtl') while others have one; expected a material "
