@@ -52,17 +52,33 @@ std::string option_of(const std::string& keyword) {
   return option;
 }
 
-// The keyword arguments as command-line arguments of `subcommand`: True a flag (False leaves it
-// off), None left out, a list or tuple the option repeated, anything else its str(). A keyword
-// that names no option of the command is an error naming the nearest one.
+// A flag's value as Python code writes it: True or False, NumPy's bool_ (a mask's element), or
+// the integers 1 and 0; anything else is an error naming the keyword.
+bool flag_value(const std::string& keyword, const py::handle& value) {
+  if (py::isinstance<py::bool_>(value)) return value.cast<bool>();
+  const std::string type = py::str(py::type::of(value).attr("__name__"));
+  if (type == "bool_") return value.attr("__bool__")().cast<bool>();
+  if (py::isinstance<py::int_>(value)) {
+    const long long number = value.cast<long long>();
+    if (number == 0 || number == 1) return number == 1;
+  }
+  throw Error(keyword + ": expected True or False, found " + std::string(py::repr(value)));
+}
+
+// The keyword arguments as command-line arguments of `subcommand`: a flag's True the flag (False
+// leaves it off), None left out, a list or tuple the option repeated, anything else its str(). A
+// keyword that names no option of the command is an error naming the nearest one; a bool given to
+// an option that takes a value is an error naming the keyword.
 std::vector<std::string> arguments_of(const CLI::App& subcommand, const py::kwargs& options,
                                       const std::string& function) {
-  std::vector<std::string> keywords;
+  std::vector<std::string> keywords, flags;
   for (const CLI::Option* option : subcommand.get_options()) {
     for (const std::string& name : option->get_lnames()) {
       std::string keyword = name;
       for (char& c : keyword) c = c == '-' ? '_' : c;
-      if (keyword != "help") keywords.push_back(keyword);
+      if (keyword == "help") continue;
+      keywords.push_back(keyword);
+      if (option->get_expected_max() == 0) flags.push_back(keyword);
     }
   }
   std::vector<std::string> arguments;
@@ -74,9 +90,13 @@ std::vector<std::string> arguments_of(const CLI::App& subcommand, const py::kwar
                   (nearest.empty() ? "" : " (did you mean '" + nearest + "'?)"));
     }
     if (value.is_none()) continue;
-    if (py::isinstance<py::bool_>(value)) {
-      if (value.cast<bool>()) arguments.push_back(option_of(keyword));
+    if (std::find(flags.begin(), flags.end(), keyword) != flags.end()) {
+      if (flag_value(keyword, value)) arguments.push_back(option_of(keyword));
       continue;
+    }
+    if (py::isinstance<py::bool_>(value)) {
+      throw Error(keyword + ": expected a value (as the command's " + option_of(keyword) + " takes), found " +
+                  std::string(py::repr(value)));
     }
     if (py::isinstance<py::list>(value) || py::isinstance<py::tuple>(value)) {
       for (const py::handle item : value)
@@ -155,6 +175,19 @@ TriangleMesh mesh_from_arrays(const py::handle& vertices, const py::handle& face
   if (!positions) positions = vectors_of(vertices, name + " vertices");
   std::optional<SharedArray<Triangle>> triangles = lent_rows<Triangle, int>(faces);
   if (!triangles) {
+    // Indices given as floats must be whole numbers: NumPy's cast would truncate 1.7 to 1 silently.
+    if (py::isinstance<py::array>(faces) && py::reinterpret_borrow<py::array>(faces).dtype().kind() == 'f') {
+      const auto values = rows_of<double>(faces, name + " faces");
+      for (py::ssize_t i = 0; i < values.shape(0); ++i) {
+        for (int c = 0; c < 3; ++c) {
+          const double v = values.at(i, c);
+          if (!(std::floor(v) == v)) {
+            throw Error(name + " faces: face " + std::to_string(i) + " refers to vertex " + std::string(py::repr(py::float_(v))) +
+                        "; expected whole-number indices");
+          }
+        }
+      }
+    }
     const auto f = rows_of<long long>(faces, name + " faces");
     std::vector<Triangle> converted(f.shape(0));
     for (py::ssize_t i = 0; i < f.shape(0); ++i) {

@@ -274,6 +274,10 @@ def test_open3d_meshes_and_point_clouds():
     (lambda: roving.measure((np.array([[0, 0, np.nan], [1, 0, 0], [0, 1, 0]]), np.array([[0, 1, 2]])), BUNNY),
      "finite"),
     (lambda: roving.measure(object(), BUNNY), "reference: expected a path"),
+    (lambda: roving.measure((cube(1)[0], np.array([[0, 1, 2.5]])), BUNNY), "refers to vertex 2.5; expected whole-number"),
+    (lambda: roving.measure(BUNNY, BUNNY, symmetric="yes"), "symmetric: expected True or False, found 'yes'"),
+    (lambda: roving.measure(BUNNY, BUNNY, symmetric=2), "symmetric: expected True or False, found 2"),
+    (lambda: roving.measure(BUNNY, BUNNY, max_error=True), "max_error: expected a value (as the command's --max-error"),
     (lambda: roving.measure((1, 2, 3), BUNNY), "a sequence of 3"),
     (lambda: roving.batch("/nonexistent/pairs.csv", out="/nonexistent/out"), "/nonexistent"),
 ])
@@ -281,6 +285,14 @@ def test_bad_input_raises_the_commands_error(call, message):
     with pytest.raises(roving.Error, match=message.replace("-", r"\-").replace("(", r"\(").replace(")", r"\)")
                        .replace("?", r"\?")):
         call()
+
+
+def test_flags_take_what_python_code_passes():
+    # NumPy's bool_ (an element of a mask) and 1 / 0 are True and False, as Python treats them.
+    for yes in (True, np.True_, 1):
+        assert "directions" in roving.measure(BUNNY, BUNNY, samples="area:100", symmetric=yes, per_sample=False)
+    for no in (False, np.False_, 0):
+        assert "directions" not in roving.measure(BUNNY, BUNNY, samples="area:100", symmetric=no, per_sample=False)
 
 
 def test_an_option_error_is_the_clis_message():
