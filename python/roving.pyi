@@ -12,6 +12,7 @@ Model = Union[str, "PathLike[str]", npt.ArrayLike, Tuple[npt.ArrayLike, npt.Arra
 Progress = Callable[[str, str, int, int], None]
 
 class Error(ValueError): ...
+class Warning(UserWarning): ...  # each of a report's warnings, through Python's warnings (not with quiet=True)
 
 __version__: str  # the version the module was built from, as the reports' tool.version
 commit: str  # the commit it was built from, as the reports' tool.commit

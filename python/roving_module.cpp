@@ -359,6 +359,14 @@ py::object parse_json(const std::string& text) {
   return py::module_::import("json").attr("loads")(text);
 }
 
+// roving.Warning, a UserWarning: what the command prints as "roving: warning: ...".
+py::handle warning_category() {
+  static PyObject* const category = PyErr_NewExceptionWithDoc(
+      "roving.Warning", "A warning about the models or the measurement (the command's 'roving: warning:' lines)",
+      PyExc_UserWarning, nullptr);
+  return category;
+}
+
 py::dict measure(const py::object& reference, const py::object& test, const py::kwargs& all_options) {
   py::object callback = py::none();
   const py::kwargs options = without_progress(all_options, callback);
@@ -392,6 +400,7 @@ py::dict measure(const py::object& reference, const py::object& test, const py::
   if (!error.empty()) throw Error(error);
   MeasureArguments& args = line->args;
   args.correspondences = keep_per_sample;  // per_sample's test_point and barycentric
+  args.warnings_to_stderr = false;         // through Python's warnings, below
   args.command_line = "roving.measure(" + reference_path + ", " + test_path;
   for (std::size_t i = 3; i < arguments.size(); ++i) args.command_line += " " + arguments[i];
   args.command_line += ")";
@@ -419,6 +428,13 @@ py::dict measure(const py::object& reference, const py::object& test, const py::
   if (!printed.empty()) py::print(printed);
   py::dict result = parse_json(json);
   result["breached_gates"] = breached;
+  // Each warning through Python's warnings, where a notebook shows it and filters apply: a
+  // roving.Warning at the caller's line (a C function adds no frame: stacklevel 1). quiet=True says
+  // nothing, as the command; all are in result["warnings"] either way.
+  if (!args.quiet) {
+    const py::object warn = py::module_::import("warnings").attr("warn");
+    for (const std::string& line : run.report.warnings) warn(line, warning_category(), 1);
+  }
   if (!keep_per_sample) return result;
   if (run.report.symmetric()) {
     py::list directions = result["directions"];
@@ -484,6 +500,7 @@ PYBIND11_MODULE(roving, m) {
   m.doc() =
       "Shape dissimilarity between 3D models: Z-buffer surface roving, Embree and CGAL references, baselines";
   py::register_exception<Error>(m, "Error", PyExc_ValueError);
+  m.attr("Warning") = warning_category();
   // The version and commit the module was built from: the reports' "tool" says the same.
   m.attr("__version__") = tool_json()["version"].get<std::string>();
   m.attr("commit") = tool_json()["commit"].get<std::string>();

@@ -1032,7 +1032,7 @@ MeasureRun measure_run(const MeasureArguments& args, std::string& stage, Progres
     if (lines.empty()) return;
     progress.clear();
     for (const std::string& line : lines) {
-      if (!args.quiet) std::fprintf(stderr, "roving: warning: %s\n", line.c_str());
+      if (!args.quiet && args.warnings_to_stderr) std::fprintf(stderr, "roving: warning: %s\n", line.c_str());
       report.warnings.push_back(line);
     }
   };

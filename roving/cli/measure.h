@@ -44,6 +44,7 @@ struct MeasureArguments {
   int ibsm_views = 16, ibsm_resolution = 2048;
   bool symmetric = false;
   bool quiet = false;
+  bool warnings_to_stderr = true;  // false: the caller hands them on (the Python module, to `warnings`)
   std::vector<std::string> gates;       // --fail-above METRIC=LIMIT
   std::vector<std::string> floors;      // --fail-below METRIC=FLOOR
   std::vector<std::string> thresholds;  // --threshold TAU: precision, recall, F-score at TAU

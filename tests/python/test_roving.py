@@ -10,6 +10,7 @@ import signal
 import subprocess
 import sys
 import time
+import warnings
 
 import numpy as np
 import pytest
@@ -285,6 +286,20 @@ def test_bad_input_raises_the_commands_error(call, message):
     with pytest.raises(roving.Error, match=message.replace("-", r"\-").replace("(", r"\(").replace(")", r"\)")
                        .replace("?", r"\?")):
         call()
+
+
+def test_warnings_are_pythons(capfd):
+    # Two boxes apart: the command's two warnings (boxes apart, every sample a no-hit) come as
+    # roving.Warning through Python's warnings, at the caller's line, and not on the C-level stderr.
+    near, far = cube(1), (cube(1)[0] + 10, cube(1)[1])
+    with pytest.warns(roving.Warning) as caught:
+        result = roving.measure(near, far, per_sample=False)
+    assert [str(w.message) for w in caught] == result["warnings"] and len(caught) == 2
+    assert "do not overlap" in result["warnings"][0] and caught[0].filename == __file__
+    assert "roving: warning" not in capfd.readouterr().err
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # quiet=True: none, as the command prints none
+        assert len(roving.measure(near, far, per_sample=False, quiet=True)["warnings"]) == 2
 
 
 def test_flags_take_what_python_code_passes():
