@@ -4,7 +4,8 @@
 #   cli -> registry -> {gl_methods, reference_cgal, reference_embree} -> representations -> formats -> core
 #   gl_methods -> gl -> core;  cli -> pictures -> {gl, formats};  cli -> html -> formats;
 #   cli -> reconstruction -> core;  cli -> mpeg -> core;  cli -> streaming -> formats;
-#   cli -> protocols -> {reconstruction, representations}
+#   cli -> measurement -> {protocols, mpeg, streaming, gl_methods, reference_embree};
+#   protocols -> {reconstruction, representations}
 cmake_minimum_required(VERSION 3.22)
 
 # The parts of roving/ each part may include (itself included).
@@ -21,7 +22,8 @@ set(allowed_reconstruction core reconstruction)
 set(allowed_mpeg core mpeg)
 set(allowed_protocols core formats representations reconstruction protocols)
 set(allowed_streaming core formats streaming)
-set(allowed_cli core formats representations gl gl_methods registry pictures html reconstruction mpeg protocols streaming cli reference_cgal reference_embree)
+set(allowed_measurement core formats representations gl gl_methods reconstruction mpeg protocols streaming measurement reference_embree)
+set(allowed_cli core formats representations gl gl_methods registry pictures html reconstruction mpeg protocols streaming measurement cli reference_cgal reference_embree)
 set(allowed_reference_cgal core formats representations reference_cgal)
 set(allowed_reference_embree core formats representations reference_embree)
 

@@ -1,6 +1,6 @@
 // Progress in a log (stderr not a terminal, as under ctest): one line per tenth of a count, with
 // its rate once it has one; nothing with --quiet or for the Python module (its callback hears it).
-#include "roving/cli/progress.h"
+#include "roving/measurement/progress.h"
 
 #include <gtest/gtest.h>
 

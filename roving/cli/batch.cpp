@@ -17,7 +17,7 @@
 
 #include "html_output.h"
 #include "provenance.h"
-#include "shard.h"
+#include "roving/measurement/shard.h"
 #include "roving/core/error.h"
 #include "roving/core/stopwatch.h"
 #include "roving/formats/files/atomic_file.h"

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "measure.h"
-#include "progress.h"
+#include "roving/measurement/progress.h"
 
 namespace roving {
 

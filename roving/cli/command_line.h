@@ -11,7 +11,6 @@
 #include "batch.h"
 #include "measure.h"
 #include "merge.h"
-#include "merge.h"
 
 namespace roving {
 

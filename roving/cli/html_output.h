@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "report.h"
+#include "roving/measurement/measure_report.h"
 #include "roving/html/html_page.h"
 
 namespace roving {

@@ -1,4 +1,5 @@
-// `roving measure`: load, sample, measure (one direction or both), report, gate.
+// `roving measure`: its options planned, the models loaded and measured (measure_models.h), the
+// report and the files it asks for written, the gates applied.
 #pragma once
 
 #include <cstdint>
@@ -8,19 +9,10 @@
 #include <string>
 #include <vector>
 
-#include "gates.h"
-#include "progress.h"
-#include "report.h"
-#include "shard.h"
 #include "roving/core/error.h"
-#include "roving/formats/outputs/heatmap.h"
-#include "roving/gl_methods/gl_methods.h"
-#include "roving/gl_methods/image_based.h"
-#include "roving/streaming/streamed_measurement.h"
+#include "roving/measurement/measure_models.h"
 
 namespace roving {
-
-struct ProtocolInputs;  // figure_families.h
 
 struct MeasureArguments {
   std::string reference_path, test_path;
@@ -75,47 +67,11 @@ struct MeasureArguments {
   std::string command_line;
 };
 
-// Everything the options decide, parsed and checked before any file is read.
-struct MeasurePlan {
-  GlMethodOptions gl;
-  std::unique_ptr<DistanceMethod> method;
-  SampleSpec sample_spec;
-  MaxErrorSpec max_error;
-  std::string max_error_text;  // as given, for messages
-  DistanceOptions options;     // max_error resolved per pair
-  std::vector<Gate> gates;
-  std::optional<ModelType> reference_type, test_type;
-  bool symmetric = false;
-  std::size_t histogram_bins = 64;
-  std::optional<MaxErrorSpec> hausdorff_bound;  // set where the certified Hausdorff interval is computed
-  GateOn gate_on = GateOn::Estimate;
-  std::optional<MaxErrorSpec> precision;      // area:auto only; P% is of USiAD itself
-  std::optional<MaxErrorSpec> heatmap_range;  // --heatmap-range; unset: the 99th percentile of |d|
-  HeatmapQuantity heatmap_of = HeatmapQuantity::Distance;
-  std::optional<double> heatmap_delta_e_range;   // --heatmap-range with --heatmap-of delta-e
-  std::optional<ImageBasedOptions> image_based;  // --ibsm
-  std::vector<MaxErrorSpec> thresholds;          // --threshold, resolved per pair
-  bool certify_thresholds = false;               // --certify-thresholds
-  bool pcc_only = false;                         // --pcc: MPEG's point-cloud figures, nothing else
-  std::optional<double> pcc_resolution;          // --pcc-resolution
-  std::string pcc_normals;                       // --pcc-normals
-  std::optional<DtuPlan> dtu;                    // --protocol dtu
-  std::optional<TanksAndTemplesPlan> tnt;        // --protocol tanks-and-temples
-  bool protocol_only = false;                    // --protocol without --symmetric: its figures alone
-  bool correspondences = false;                  // each direction's Correspondences kept
-  std::optional<Shard> shard;                    // --shard: one slice of the samples
-  std::size_t chunk_faces = kDefaultChunkFaces;  // --chunk
-};
-
 // A bad option value or combination on the command line: the tool exits 2, as for a parse error.
 class UsageError : public Error {
  public:
   using Error::Error;
 };
-
-// --samples area:auto: the first round's samples, and the most it may take.
-constexpr std::size_t kAutoFirstSamples = 10000;
-constexpr std::size_t kAutoMaxSamples = 20000000;
 
 // Throws roving::Error naming the option on any bad value.
 MeasurePlan plan_measurement(const MeasureArguments& args);
@@ -130,46 +86,6 @@ std::vector<std::string> heatmap_paths(const std::string& path, bool symmetric);
 
 // Which element of the reference's surface carries each sample's value in the heat maps.
 HeatmapLayout heatmap_layout(const Model& reference, const SampleSet& samples);
-
-using WarnFn = std::function<void(const std::vector<std::string>&)>;
-
-// A model read for `plan`: as load_model reads it, or, with --pcc, a point cloud as its file has it
-// (no surfels, no normals estimated). With a protocol alone, a point cloud as its file has it too,
-// and a binary PLY mesh whose points the protocol takes as its vertices (Tanks and Temples' both
-// models, DTU's reference: `reference` says which this is) read as its vertices alone
-// (Model::mesh_vertices_only): a 10 M-triangle mesh's faces are 120 MB not read.
-Model load_for(const MeasurePlan& plan, const std::string& path, std::optional<ModelType> type, bool reference);
-
-// MPEG's point-cloud figures: of two point clouds as pc_error computes them (its D2 takes A's
-// normals from its file; estimated ones are not pc_error's), or, where a model is a mesh, as
-// mmetric's compare --mode pcc does, each mesh sampled as mmetric samples it. `normals_path`:
-// --pcc-normals (empty: A's own).
-MpegReport mpeg_report(const Model& a, const Model& b, std::optional<double> resolution, const std::string& normals_path);
-
-// --pcc where a model is a point cloud: MPEG's figures of a and b alone (report.pcc_only; a mesh
-// among them sampled as mmetric samples it); throws naming a model that is neither a point cloud
-// nor a mesh.
-void measure_point_clouds(const Model& a, const Model& b, const MeasurePlan& plan, MeasureReport& report,
-                          Progress& progress, std::string& stage, const WarnFn& warn);
-
-// Fills the report's method, semantics, diagonal and h for the loaded pair; throws on a pair the
-// plan cannot measure (a point-cloud test, h beyond both models).
-void describe_pair(const Model& a, const Model& b, MeasurePlan& plan, MeasureReport& report);
-
-// After describe_pair, measures: a's samples against b (and b's against a when symmetric), filling
-// `report` but for its provenance and load times; warnings go to `warn` as found. `samples_of_a`,
-// when given, are a's samples already made (a batch reuses them across pairs). `releasable_a`,
-// when given, is `a` itself, whose geometry nothing reads once it is sampled: it gives it up
-// then, so that the query runs without it. `streamed_a`, when given, is a's file read a block of
-// faces at a time, `a` its summary (streamed_model).
-void measure_models(const Model& a, const Model& b, MeasurePlan& plan, MeasureReport& report,
-                    Progress& progress, std::string& stage, const WarnFn& warn, const SampleSet* samples_of_a,
-                    Model* releasable_a = nullptr, TriangleStream* streamed_a = nullptr,
-                    ProtocolInputs* protocol = nullptr);
-
-// Every value a --fail-above gate can check: each direction's statistics, and the two-sided
-// summary.
-std::vector<MetricValue> gate_values(const MeasureReport& report);
 
 // An entry of the report's `inputs`; with no `sha256`, a model given in memory (no file: bytes
 // and hash null).

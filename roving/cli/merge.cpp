@@ -9,10 +9,10 @@
 #include <filesystem>
 #include <fstream>
 
-#include "checks.h"
-#include "figure_families.h"
+#include "roving/measurement/checks.h"
+#include "roving/measurement/figure_families.h"
 #include "command_line.h"
-#include "gates.h"
+#include "roving/measurement/gates.h"
 #include "provenance.h"
 #include "roving/core/confidence.h"
 #include "roving/core/error.h"

@@ -8,7 +8,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "report.h"
+#include "measure_report.h"
 #include "roving/core/error.h"
 #include "roving/formats/files/file_bytes.h"
 
@@ -170,6 +170,69 @@ int apply_gates(const std::vector<Gate>& gates, const std::vector<MetricValue>& 
   const std::vector<std::string> breached = breached_gates(gates, values, on);
   for (const std::string& line : breached) std::fprintf(stderr, "roving: %s\n", line.c_str());
   return breached.empty() ? 0 : kGateExitCode;
+}
+
+// Every value a gate can check: each direction's statistics, and the two-sided summary.
+std::vector<MetricValue> gate_values(const MeasureReport& report) {
+  std::vector<MetricValue> values;
+  // The range of |mean| an interval [lower, upper] of a signed mean allows.
+  const auto magnitudes = [](MetricValue& v, const MeanInterval& m) {
+    v.low = m.lower <= 0 && 0 <= m.upper ? 0.0 : std::min(std::abs(m.lower), std::abs(m.upper));
+    v.high = std::max(std::abs(m.lower), std::abs(m.upper));
+  };
+  for (const DirectionReport& d : report.directions) {
+    const Statistics& s = d.statistics;
+    const nlohmann::json statistics = statistics_json(s);
+    for (const auto& [name, value] : statistics.items()) {
+      MetricValue v{name, d.label, value.get<double>(), report.diagonal};
+      if (d.intervals) {  // area:N samples: the plain and area-weighted means are the same estimate
+        if (name == "siad" || name == "siad_area") magnitudes(v, d.intervals->siad);
+        if (name == "usiad" || name == "usiad_area") magnitudes(v, d.intervals->usiad);
+        if (name == "rms" || name == "rms_area") magnitudes(v, d.intervals->rms);
+      }
+      values.push_back(v);
+    }
+    values.push_back(
+        {"no_hits", d.label, static_cast<double>(s.no_hit_count), static_cast<double>(s.sample_count)});
+    if (d.colour) {
+      // P% of a colour limit: of the peak (255) for an RMS, of L*'s range (100) for a delta E.
+      const nlohmann::json colour = colour_json(*d.colour);
+      for (const auto& [name, value] : colour.items()) {
+        if (name.rfind("delta_e_", 0) == 0) values.push_back({name, d.label, value.get<double>(), 100.0});
+        if (name == "colour_rms_y") values.push_back({name, d.label, value.get<double>(), kColourPeak});
+      }
+    }
+  }
+  if (report.mpeg) {  // MPEG's PSNRs, the worse direction's (--fail-below)
+    const MpegFigures& f = report.mpeg->figures;
+    const MpegDirection worse_direction = f.symmetric();
+    values.push_back({"mpeg_d1_psnr", "", geometry_psnr(worse_direction.d1_mse, f.peak), 0});
+    if (f.d2) values.push_back({"mpeg_d2_psnr", "", geometry_psnr(worse_direction.d2_mse, f.peak), 0});
+    if (f.colour) values.push_back({"mpeg_y_psnr", "", colour_psnr(worse_direction.ycbcr_mse[0], 1), 0});
+    if (report.mpeg->surface) {
+      const SurfaceFigures both = worse((*report.mpeg->surface)[0], (*report.mpeg->surface)[1]);
+      const auto psnr = [&](const char* name, double mse, const std::optional<Interval>& interval) {
+        if (std::isnan(mse)) return;  // D2 without faces (a nearest-vertex method)
+        MetricValue v{name, "", geometry_psnr(mse, f.peak), 0};
+        if (interval) {
+          v.low = geometry_psnr(interval->upper, f.peak);
+          v.high = geometry_psnr(interval->lower, f.peak);
+        }
+        values.push_back(v);
+      };
+      psnr("mpeg_surface_d1_psnr", both.d1_mse, both.d1_mse_interval);
+      psnr("mpeg_surface_d2_psnr", both.d2_mse, both.d2_mse_interval);
+    }
+  }
+  if (report.symmetric()) {
+    const TwoSided t = report.two_sided();
+    MetricValue hausdorff{"hausdorff", "", t.max_abs, report.diagonal};
+    if (t.certified) hausdorff.low = t.hausdorff_lower, hausdorff.high = t.hausdorff_upper;
+    values.push_back(hausdorff);
+    values.push_back({"mean_both", "", t.mean_abs, report.diagonal});
+    values.push_back({"rms_both", "", t.rms, report.diagonal});
+  }
+  return values;
 }
 
 }  // namespace roving

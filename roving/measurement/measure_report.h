@@ -1,5 +1,6 @@
 // The `roving measure` report: what was measured, every statistic, timings, provenance and
-// warnings; as text or JSON. One direction (REF -> TEST), or both with --symmetric.
+// warnings; as text (report_text.cpp) or JSON (measure_report.cpp). One direction (REF -> TEST),
+// or both with --symmetric.
 #pragma once
 
 #include <array>
@@ -119,6 +120,12 @@ struct MeasureReport {
   bool symmetric() const { return directions.size() == 2; }
   TwoSided two_sided() const;
 };
+
+// What a semantics' d and no-hit mean, as the text report explains them and the JSON carries them.
+const char* semantics_note(Semantics semantics);
+
+// The textures a mesh's materials use, each once (the JSON's and the text's model descriptions).
+std::vector<const Texture*> textures_of(const TriangleMesh& m);
 
 // A model as the report's JSON describes it (paths, counts, area, box, colour, representation).
 nlohmann::json model_json(const Model& model);

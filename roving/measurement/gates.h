@@ -73,4 +73,10 @@ std::vector<std::string> undecided_gates(const std::vector<Gate>& gates, const s
 // estimate) and the breached ones on stderr; returns 0, or kGateExitCode when one is breached.
 int apply_gates(const std::vector<Gate>& gates, const std::vector<MetricValue>& values, GateOn on);
 
+struct MeasureReport;  // measure_report.h
+
+// Every value a --fail-above gate can check: each direction's statistics, and the two-sided
+// summary.
+std::vector<MetricValue> gate_values(const MeasureReport& report);
+
 }  // namespace roving
