@@ -7,6 +7,8 @@
 
 #include <array>
 #include <cmath>
+#include <fstream>
+#include <iterator>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
@@ -45,6 +47,30 @@ std::string csv_field(const std::string& header, const std::string& row, const s
 
 // Embree's closest point is computed in float: 0.05 to about 1e-7.
 constexpr double kFloatTolerance = 1e-6;
+
+// The web page's tables of the pair's figures: both directions together (Metro's summary), and each
+// family of figures the report holds (here the reconstruction figures: every face sample of either
+// cube lies 0.05 from the other, so both shares within tau = 0.06 are whole).
+TEST(CliReport, PageShowsThePairsFiguresByFamily) {
+  const Cubes cubes;
+  const std::string page = (cubes.folder.path / "pair.html").string();
+  const CliRun run = run_cli("measure " + cubes.pair + " --symmetric --threshold 0.06 --html " + page + " --quiet");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  std::ifstream in(page);
+  const std::string html((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  for (const char* row :
+       {"<section class=\"pair\">\n<h2>Both directions</h2>", "<tr><th>Hausdorff (max |d| of both)</th><td class=\"number\">0.05 (",
+        "<section class=\"pair\">\n<h2>Reconstruction figures</h2>",
+        "<tr><th>precision at tau = 0.06 (", "<tr><th>F-score at tau = 0.06 (3.149%)</th><td class=\"number\">100%</td></tr>"}) {
+    EXPECT_NE(html.find(row), std::string::npos) << row;
+  }
+  // One direction: no pair's tables.
+  const CliRun one = run_cli("measure " + cubes.pair + " --html " + page + " --quiet");
+  ASSERT_EQ(one.exit_code, 0) << one.err;
+  std::ifstream again(page);
+  const std::string single((std::istreambuf_iterator<char>(again)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(single.find("<section class=\"pair\">"), std::string::npos);
+}
 
 // Cubes of half-sides 0.5 and 0.55: every point of the small one is 0.05 from the large one; the
 // large one's corners are 0.05 sqrt(3) from the small one. The certified interval holds both.

@@ -17,7 +17,6 @@
 
 #include "html_output.h"
 #include "provenance.h"
-#include "roving/measurement/shard.h"
 #include "roving/core/error.h"
 #include "roving/core/stopwatch.h"
 #include "roving/formats/files/atomic_file.h"
@@ -25,6 +24,8 @@
 #include "roving/formats/files/file_hash.h"
 #include "roving/gl/depth_renderer.h"
 #include "roving/html/html_index.h"
+#include "roving/measurement/figure_families.h"
+#include "roving/measurement/shard.h"
 
 namespace roving {
 namespace {
@@ -269,11 +270,12 @@ void write_json(const fs::path& path, const nlohmann::json& json) {
 }
 
 // A pair's web page, written before its report: a pair with a report has its page.
-void write_page(const fs::path& path, const MeasureReport& report, const Model& reference, const Model& test,
-                const nlohmann::json& json, std::string& stage) {
+void write_page(const fs::path& path, const MeasureReport& report, const MeasurePlan& plan, const Model& reference,
+                const Model& test, const nlohmann::json& json, std::string& stage) {
   stage = "writing the web page";
   AtomicFile page(path.string());
-  write_html_page(page.stream(), measurement_page(report, format_header(reference, test, report) + format_body(report), json));
+  write_html_page(page.stream(), measurement_page(report, format_header(reference, test, report) + format_body(report), json,
+                                                  plan.heatmap_of));
   page.close_stream();
   page.commit();
 }
@@ -304,35 +306,10 @@ std::vector<std::string> summary_row(const nlohmann::json& report) {
   for (const char* key : {"hausdorff", "mean_both", "rms_both"}) {
     row.push_back(surface && report.contains("two_sided") ? number(report["two_sided"][key]) : "");
   }
-  // IBSM's figures (--ibsm), empty where it was not asked for or a model has no colour.
-  const auto field = [&](const nlohmann::json& object, const char* key) {
-    return object.is_object() && object.contains(key) ? number(object[key]) : std::string();
-  };
-  const nlohmann::json ibsm = ok && report.contains("image_based") ? report["image_based"] : nlohmann::json();
-  const nlohmann::json ibsm_colour =
-      ibsm.is_object() && ibsm.contains("colour") ? ibsm["colour"] : nlohmann::json();
-  for (const char* key : {"psnr_rgb", "psnr_ycbcr_611"}) row.push_back(field(ibsm_colour, key));
-  for (const char* key : {"depth_psnr", "unmatched_percent"}) row.push_back(field(ibsm, key));
-  // MPEG's point-cloud figures (two point clouds, or --pcc): the symmetric (worse) direction's.
-  const nlohmann::json mpeg =
-      ok && report.contains("mpeg_pcc") ? report["mpeg_pcc"]["symmetric"] : nlohmann::json();
-  for (const char* key : {"d1_psnr", "d2_psnr", "y_psnr"}) row.push_back(field(mpeg, key));
-  // The reconstruction figures (--symmetric): Chamfer, normal consistency, and at the first
-  // --threshold tau, precision / recall / F (an area-sample figure's estimate).
-  const nlohmann::json recon = ok && report.contains("reconstruction") ? report["reconstruction"] : nlohmann::json();
-  for (const char* key : {"chamfer_mean", "normal_consistency"}) row.push_back(field(recon, key));
-  const nlohmann::json at_tau =
-      recon.is_object() && !recon["thresholds"].empty() ? recon["thresholds"][0] : nlohmann::json();
-  for (const char* key : {"tau", "precision", "recall", "f_score"}) {
-    const bool interval = at_tau.is_object() && at_tau.contains(key) && at_tau[key].is_object();
-    row.push_back(interval ? number(at_tau[key]["estimate"]) : field(at_tau, key));
+  // The families' figures (IBSM, MPEG's, reconstruction, a protocol's), empty where not measured.
+  for (const FigureFamily* family : summary_families()) {
+    for (const SummaryColumn& column : family->summary) row.push_back(ok ? summary_cell(report, column) : "");
   }
-  // A benchmark's protocol (--protocol or the manifest's protocol column): its own figures.
-  const nlohmann::json dtu = ok && report.contains("dtu_protocol") ? report["dtu_protocol"] : nlohmann::json();
-  for (const char* key : {"accuracy", "completeness", "overall"}) row.push_back(field(dtu, key));
-  const nlohmann::json tnt =
-      ok && report.contains("tanks_and_temples_protocol") ? report["tanks_and_temples_protocol"] : nlohmann::json();
-  for (const char* key : {"tau", "precision", "recall", "fscore"}) row.push_back(field(tnt, key));
   row.push_back(ok ? number(report["seconds"]["total"]) : "");
   std::string warnings;
   if (ok) {
@@ -358,20 +335,13 @@ void write_index(const std::string& folder, const std::vector<std::string>& head
   std::vector<std::string> shown = {"index",     "reference", "test",    "status",   "method",
                                     "semantics", "samples",   "no_hits", "usiad",    "siad",
                                     "rms",       "max_abs",   "p95",     "hausdorff"};
-  if (std::any_of(reports.begin(), reports.end(),
-                  [](const nlohmann::json& r) { return r.contains("image_based"); })) {
-    shown.insert(shown.end(),
-                 {"ibsm_psnr_rgb", "ibsm_psnr_ycbcr_611", "ibsm_depth_psnr", "ibsm_unmatched_percent"});
+  for (const FigureFamily* family : summary_families()) {  // those some pair has figures of
+    if (std::none_of(reports.begin(), reports.end(),
+                     [&](const nlohmann::json& r) { return r.contains(family->section); })) {
+      continue;
+    }
+    for (const SummaryColumn& column : family->summary) shown.push_back(column.name);
   }
-  if (std::any_of(reports.begin(), reports.end(), [](const nlohmann::json& r) { return r.contains("mpeg_pcc"); }))
-    shown.insert(shown.end(), {"mpeg_d1_psnr", "mpeg_d2_psnr", "mpeg_y_psnr"});
-  if (std::any_of(reports.begin(), reports.end(), [](const nlohmann::json& r) { return r.contains("reconstruction"); }))
-    shown.insert(shown.end(), {"chamfer_mean", "normal_consistency", "tau", "precision", "recall", "f_score"});
-  if (std::any_of(reports.begin(), reports.end(), [](const nlohmann::json& r) { return r.contains("dtu_protocol"); }))
-    shown.insert(shown.end(), {"dtu_accuracy", "dtu_completeness", "dtu_overall"});
-  if (std::any_of(reports.begin(), reports.end(),
-                  [](const nlohmann::json& r) { return r.contains("tanks_and_temples_protocol"); }))
-    shown.insert(shown.end(), {"tnt_tau", "tnt_precision", "tnt_recall", "tnt_f_score"});
   shown.insert(shown.end(), {"seconds", "warnings"});
   HtmlIndex page;
   page.title = fmt::format("surface roving batch: {} pairs", reports.size());
@@ -437,11 +407,11 @@ std::pair<std::size_t, std::size_t> merge(const std::string& folder, bool html) 
                                      "samples", "no_hits", "diagonal", "max_error"};
   const nlohmann::json statistics = statistics_json(Statistics());
   for (const auto& item : statistics.items()) header.push_back(item.key());
-  header.insert(header.end(), {"hausdorff", "mean_both", "rms_both", "ibsm_psnr_rgb", "ibsm_psnr_ycbcr_611",
-                               "ibsm_depth_psnr", "ibsm_unmatched_percent", "mpeg_d1_psnr", "mpeg_d2_psnr",
-                               "mpeg_y_psnr", "chamfer_mean", "normal_consistency", "tau", "precision", "recall",
-                               "f_score", "dtu_accuracy", "dtu_completeness", "dtu_overall", "tnt_tau",
-                               "tnt_precision", "tnt_recall", "tnt_f_score", "seconds", "warnings"});
+  header.insert(header.end(), {"hausdorff", "mean_both", "rms_both"});
+  for (const FigureFamily* family : summary_families()) {
+    for (const SummaryColumn& column : family->summary) header.push_back(column.name);
+  }
+  header.insert(header.end(), {"seconds", "warnings"});
   AtomicFile summary((fs::path(folder) / "summary.csv").string());
   fmt::print(summary.stream(), "{}\n", fmt::join(header, ","));
   std::size_t ok = 0;
@@ -581,7 +551,7 @@ int run_batch(const BatchArguments& args, std::string& stage, const Progress::Li
         json["batch"] = batch;
         // The protocol alone has no page (as `measure --protocol --html` needs --symmetric): a row in the index.
         if (args.html && !run.report.protocol_only) {
-          write_page(fs::path(args.out) / (name + ".html"), run.report, *run.a, *run.b, json, stage);
+          write_page(fs::path(args.out) / (name + ".html"), run.report, run.plan, *run.a, *run.b, json, stage);
         }
         write_json(done_path, json);
         fs::remove(failed_path);
@@ -629,7 +599,7 @@ int run_batch(const BatchArguments& args, std::string& stage, const Progress::Li
       nlohmann::json json = to_json(report);
       batch["status"] = "ok";
       json["batch"] = batch;
-      if (args.html) write_page(fs::path(args.out) / (name + ".html"), report, reference, test, json, stage);
+      if (args.html) write_page(fs::path(args.out) / (name + ".html"), report, plan, reference, test, json, stage);
       write_json(done_path, json);
       fs::remove(failed_path);
       ++measured;

@@ -10,6 +10,7 @@
 #include "roving/formats/outputs/heatmap.h"
 #include "roving/html/display_surface.h"
 #include "roving/html/distance_view.h"
+#include "roving/measurement/figure_families.h"
 
 namespace roving {
 namespace {
@@ -78,14 +79,34 @@ HtmlView direction_view(const DirectionReport& d, const MeasureReport& report) {
   return view;
 }
 
+// Metro's two-sided summary over both directions' samples.
+HtmlFigures two_sided_figures(const MeasureReport& report) {
+  const TwoSided t = report.two_sided();
+  const auto length = [&](double x) { return fmt::format("{:.6g} ({:.4g}%)", x, 100 * x / report.diagonal); };
+  HtmlFigures figures{"Both directions", {{"Hausdorff (max |d| of both)", length(t.max_abs)}}};
+  if (t.certified) {
+    figures.rows.push_back(
+        {"Hausdorff, certified", fmt::format("[{:.6g}, {:.6g}]", t.hausdorff_lower, t.hausdorff_upper)});
+  }
+  figures.rows.push_back({"mean |d| of both", length(t.mean_abs)});
+  figures.rows.push_back({"RMS of both", length(t.rms)});
+  return figures;
+}
+
 }  // namespace
 
-HtmlPage measurement_page(const MeasureReport& report, const std::string& text, const nlohmann::json& json) {
+HtmlPage measurement_page(const MeasureReport& report, const std::string& text, const nlohmann::json& json,
+                          HeatmapQuantity shown) {
   HtmlPage page;
+  page.shown_first = shown == HeatmapQuantity::DeltaE ? "delta_e" : "d";
   const DirectionReport& first = report.directions.front();
   page.title = fmt::format("{} {} {}: surface roving report", file_name(first.reference->path()),
                            report.symmetric() ? "and" : "against", file_name(first.test->path()));
   for (const DirectionReport& d : report.directions) page.views.push_back(direction_view(d, report));
+  if (report.symmetric()) page.pair_figures.push_back(two_sided_figures(report));
+  for (const FigureFamily& family : figure_families()) {
+    if (json.contains(family.section)) page.pair_figures.push_back({family.title, family.page_figures(json)});
+  }
   page.warnings = report.warnings;
   page.report_text = text;
   page.report = json;

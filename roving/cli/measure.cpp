@@ -347,7 +347,7 @@ void write_measure_outputs(const MeasureArguments& args, const MeasureRun& run, 
     outputs.push_back(std::make_unique<AtomicFile>(args.html_path));
     write_html_page(outputs.back()->stream(),
                     measurement_page(report, format_header(*run.a, *run.b, report) + format_body(report),
-                                     to_json(report)));
+                                     to_json(report), run.plan.heatmap_of));
     outputs.back()->close_stream();
   }
   for (const auto& output : outputs) output->commit();

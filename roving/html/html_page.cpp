@@ -53,7 +53,8 @@ std::string thousands(std::size_t n) {
   return digits;
 }
 
-// The histogram of signed d over the hits, each bar in the colour map's colour at its centre.
+// The histogram of signed d over the hits, each bar in the colour map's colour at its centre and
+// outlined in grey: bars near d = 0 are near white, the page's background.
 std::string histogram_svg(const Histogram& h, double range) {
   if (h.counts.empty() || !(h.high > h.low)) return "";
   const double width = 360, height = 120, left = 8, bottom = height + 4;
@@ -65,7 +66,8 @@ std::string histogram_svg(const Histogram& h, double range) {
     const double centre = h.low + (i + 0.5) * (h.high - h.low) / h.counts.size();
     const double tall = height * h.counts[i] / tallest;
     svg += fmt::format(
-        R"(<rect x="{:.2f}" y="{:.2f}" width="{:.2f}" height="{:.2f}" fill="{}"><title>{}</title></rect>)",
+        R"(<rect x="{:.2f}" y="{:.2f}" width="{:.2f}" height="{:.2f}" fill="{}" stroke="#777" stroke-width="0.5">)"
+        R"(<title>{}</title></rect>)",
         left + i * bar, bottom - tall, std::max(bar - 0.5, 0.5), tall,
         css_colour(diverging_colour(range > 0 ? centre / range : 0)),
         fmt::format("d near {:.4g}: {} samples", centre, h.counts[i]));
@@ -274,6 +276,13 @@ void write_html_page(std::FILE* out, const HtmlPage& page) {
     }
     fmt::print(out, "</table>\n{}\n</section>\n", histogram_svg(view.histogram, view.range));
   }
+  for (const HtmlFigures& figures : page.pair_figures) {
+    fmt::print(out, "<section class=\"pair\">\n<h2>{}</h2>\n<table class=\"figures\">", escape_html(figures.title));
+    for (const auto& [name, value] : figures.rows) {
+      fmt::print(out, "<tr><th>{}</th><td class=\"number\">{}</td></tr>", escape_html(name), escape_html(value));
+    }
+    fmt::print(out, "</table>\n</section>\n");
+  }
   if (!page.warnings.empty()) {
     fmt::print(out, "<h2>Warnings</h2>\n<ul class=\"warnings\">");
     for (const std::string& line : page.warnings) fmt::print(out, "<li>{}</li>", escape_html(line));
@@ -281,7 +290,7 @@ void write_html_page(std::FILE* out, const HtmlPage& page) {
   }
   fmt::print(out, "<details open><summary>Report</summary><pre>{}</pre></details>\n{}\n</aside>\n</div>\n",
              escape_html(page.report_text), provenance_html(page.report));
-  nlohmann::json data = {{"views", nlohmann::json::array()}};
+  nlohmann::json data = {{"views", nlohmann::json::array()}, {"shown_first", page.shown_first}};
   for (std::size_t i = 0; i < page.views.size(); ++i) {
     const DisplaySurface& s = page.views[i].surface;
     int shared = -1;

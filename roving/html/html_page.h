@@ -43,9 +43,18 @@ struct HtmlView {
   std::optional<Colours> colours;
 };
 
+// A table of the pair's figures (both directions together, a family of figures'): its heading and
+// rows of name and value.
+struct HtmlFigures {
+  std::string title;
+  std::vector<std::pair<std::string, std::string>> rows;
+};
+
 struct HtmlPage {
   std::string title;
   std::vector<HtmlView> views;
+  std::vector<HtmlFigures> pair_figures;  // beneath the directions', whichever is shown
+  std::string shown_first = "d";          // the layer the page opens on: "d", or "delta_e" where there is colour
   std::vector<std::string> warnings;
   std::string report_text;  // the report as the terminal shows it
   nlohmann::json report;    // the JSON report (embedded whole; its provenance is shown)

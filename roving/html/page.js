@@ -38,8 +38,9 @@
   controls.screenSpacePanning = true;
   const views = data.views.map(function (view) { return { data: view, object: null }; });
   let current = null;
-  // What the surface shows: d, or where both models have colour, delta E or either model's colour.
-  let shown = 'd';
+  // What the surface shows: d, or where both models have colour, delta E or either model's colour;
+  // first the layer the command asked for (--heatmap-of).
+  let shown = data.shown_first || 'd';
 
   function build(view) {
     const v = view.data;

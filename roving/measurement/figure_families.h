@@ -37,8 +37,21 @@ struct FamilyInputs {
   const WarnFn& warn;
 };
 
+// One of a family's figures as the batch's summary.csv holds it (and its index page shows it):
+// its column, and where a JSON report holds it (a JSON pointer; an interval's object gives its
+// estimate).
+struct SummaryColumn {
+  const char* name;
+  const char* pointer;
+};
+
+// The web page's rows of a family's figures: label and value as text.
+using FigureRows = std::vector<std::pair<std::string, std::string>>;
+
 struct FigureFamily {
   const char* name;
+  const char* title;    // its heading on the web page
+  const char* section;  // its key in the JSON report
   // A benchmark's protocol: with --protocol alone (no --symmetric), the only family run.
   bool protocol;
   bool (*asked)(const MeasurePlan& plan, const Model& a, const Model& b);
@@ -47,9 +60,21 @@ struct FigureFamily {
   // the JSON report's (added to `json`).
   std::string (*text)(const MeasureReport& report);
   void (*json)(const MeasureReport& report, nlohmann::json& json);
+  // Its columns in the batch's summary.csv, and its figures on the web page, both from a JSON
+  // report holding its section.
+  std::vector<SummaryColumn> summary;
+  FigureRows (*page_figures)(const nlohmann::json& report);
 };
 
 const std::vector<FigureFamily>& figure_families();
+
+// The families in summary.csv's column order: the order its columns have always had (IBSM, MPEG's,
+// the reconstruction figures, DTU's, Tanks and Temples'); a new family's columns come last.
+std::vector<const FigureFamily*> summary_families();
+
+// A summary.csv cell: the number at `column.pointer` in a report's JSON ("{}", the shortest
+// text that reads back the same double), an interval's estimate; empty where there is none.
+std::string summary_cell(const nlohmann::json& report, const SummaryColumn& column);
 
 // The families' text sections, in order, of those whose figures the report holds.
 std::string family_sections(const MeasureReport& report);

@@ -113,8 +113,8 @@ def run(*args):
 
 
 page = work / "pair.html"
-run("measure", work / "ref.obj", work / "test.obj", "--symmetric", "--semantics", "first-hit", "--html", page,
-    "--json", work / "pair.json", "--quiet")
+run("measure", work / "ref.obj", work / "test.obj", "--symmetric", "--semantics", "first-hit", "--threshold", "1%",
+    "--html", page, "--json", work / "pair.json", "--quiet")
 report = json.loads((work / "pair.json").read_text())
 embedded = re.search(r'<script id="roving-report" type="application/json">(.*?)</script>', page.read_text(), re.S)
 check(embedded and json.loads(embedded.group(1))["directions"][0]["statistics"] == report["directions"][0]["statistics"],
@@ -142,6 +142,16 @@ with chromium.Browser() as browser:
                              " return d.querySelector('table').innerText; })()")
     check(report["command_line"] in shown and all(i["sha256"] in shown for i in report["inputs"])
           and report["tool"]["version"] in shown, f"the Provenance section shows the report's: '{shown[:300]}'")
+    # The pair's figures by family, as rendered: both directions' mean |d|, and the reconstruction
+    # figures' F-score at the threshold.
+    tables = browser.evaluate("[...document.querySelectorAll('section.pair')].map(s => s.innerText)")
+    both = next((t for t in tables if t.startswith("Both directions")), "")
+    check(f"{report['two_sided']['mean_both']:.6g} (" in both, f"the pair's section shows mean |d| of both: '{both}'")
+    f_score = report["reconstruction"]["thresholds"][0]["f_score"]
+    f_score = f_score["estimate"] if isinstance(f_score, dict) else f_score
+    reconstruction = next((t for t in tables if t.startswith("Reconstruction figures")), "")
+    check(f"{100 * f_score:.4g}%" in reconstruction and "F-score at tau" in reconstruction,
+          f"the reconstruction section shows F at tau ({100 * f_score:.4g}%): '{reconstruction}'")
     check(not browser.errors, f"no console error or exception: {browser.errors}")
     outside = [u for u in browser.requests if not u.startswith(("file://", "data:", "about:"))]
     check(browser.requests and not outside, f"the page loads nothing but itself ({len(browser.requests)} requests): {outside}")
@@ -209,6 +219,16 @@ with chromium.Browser() as browser:
     labels = browser.evaluate("[document.getElementById('bar-low').textContent, document.getElementById('bar-units').textContent]")
     check(labels[0].startswith("\u2212") and labels[1].startswith("d in model units"), f"colour: back to d, its legend: {labels}")
     check(not browser.errors, f"colour: no console error or exception: {browser.errors}")
+
+# --heatmap-of delta-e: the page opens on delta E, the layer asked for, with its legend.
+run("measure", work / "ref-coloured.obj", work / "test-coloured.obj", "--heatmap-of", "delta-e", "--html",
+    work / "delta-e.html", "--quiet")
+with chromium.Browser() as browser:
+    browser.open(work / "delta-e.html")
+    on = browser.evaluate("[...document.querySelectorAll('#shown button.on')].map(b => b.dataset.show)")
+    units = browser.evaluate("document.getElementById('bar-units').textContent")
+    check(on == ["delta_e"] and "CIEDE2000" in units, f"--heatmap-of delta-e opens on delta E: {on}, '{units}'")
+    check(not browser.errors, f"delta E first: no console error or exception: {browser.errors}")
 
 # A batch of two pairs, one of which fails: the index lists both, sorts, and links to the page.
 manifest = work / "pairs.csv"
