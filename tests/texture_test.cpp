@@ -275,7 +275,17 @@ TEST_F(TextureFiles, BadObjColourIsAnError) {
   mtl_error("Kd 1 1 1\n", {":1:", "before any 'newmtl'"});
   mtl_error("newmtl a\nmap_Kd -s 2 2 1 c.png\n", {":2:", "'-s'", "not supported"});
   mtl_error("newmtl a\nmap_Kd\n", {":2:", "expected a texture file"});
-  mtl_error("newmtl a\nmap_Kd gone.png\n", {":2:", "map_Kd", "gone.png", "cannot open"});
+  // A texture that is not there: likewise the geometry without the materials' colour, and a
+  // warning naming the library's line and the file.
+  write("gone.mtl", "newmtl a\nKd 1 0 0\nmap_Kd gone.png\n");
+  const LoadedMesh untextured = load_mesh(write("uses-gone.obj", "mtllib gone.mtl\n" + square + "usemtl a\nf 1/1 2/1 3/1\n"));
+  EXPECT_EQ(untextured.mesh.triangle_count(), 1u);
+  EXPECT_FALSE(untextured.mesh.has_colour());
+  ASSERT_EQ(untextured.warnings.size(), 1u);
+  for (const std::string& part :
+       {path("gone.mtl") + ":3: map_Kd: no such file", path("gone.png"), std::string("without its materials")}) {
+    EXPECT_NE(untextured.warnings[0].find(part), std::string::npos) << untextured.warnings[0];
+  }
   write("fake.png", "GIF89a not a png");
   mtl_error("newmtl a\nmap_Kd fake.png\n", {":2:", "fake.png", "expected a PNG or JPEG"});
 }

@@ -59,8 +59,10 @@ std::string resolve_reference(const std::string& referrer, const std::string& re
   const fs::path relative = resolved.lexically_relative(folder.empty() ? fs::path(".") : folder);
   if (relative.empty() || *relative.begin() == "..") throw refuse("leads out of the folder");
   std::error_code error;
-  const fs::path real_folder = fs::weakly_canonical(folder.empty() ? fs::path(".") : folder, error);
-  const fs::path real = fs::weakly_canonical(resolved, error);
+  // Absolute first: of a relative path none of whose parts exists, weakly_canonical returns it
+  // relative, and a missing file beside the model read as a link leading out of the folder.
+  const fs::path real_folder = fs::weakly_canonical(fs::absolute(folder.empty() ? fs::path(".") : folder), error);
+  const fs::path real = fs::weakly_canonical(fs::absolute(resolved), error);
   const fs::path inside = real.lexically_relative(real_folder);
   if (!error && (inside.empty() || *inside.begin() == "..")) throw refuse("is a symbolic link leading out of the folder");
   return resolved.string();

@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <filesystem>
 #include <string_view>
 
 #include "roving/core/error.h"
@@ -22,7 +23,8 @@ std::string_view trimmed(std::string_view text) {
 
 }  // namespace
 
-void read_mtl(const std::string& path, std::map<std::string, Material>& materials, TextureCache& textures) {
+void read_mtl(const std::string& path, std::map<std::string, Material>& materials, TextureCache& textures,
+              std::vector<std::string>& missing_textures) {
   const FileBytes file(path, "an .mtl material library");
   LineCursor lines(file.bytes());
   Material* current = nullptr;
@@ -77,6 +79,11 @@ void read_mtl(const std::string& path, std::map<std::string, Material>& material
     }
     if (rest.empty()) throw fail("expected a texture file after 'map_Kd'");
     const std::string texture_path = resolve_reference(path, std::string(rest), "map_Kd");
+    std::error_code error;
+    if (!std::filesystem::exists(texture_path, error)) {
+      missing_textures.push_back(fmt::format("{}:{}: map_Kd: no such file '{}'", path, lines.line_number(), texture_path));
+      continue;
+    }
     std::shared_ptr<const Texture>& texture = textures[texture_path];
     try {
       if (!texture) texture = std::make_shared<const Texture>(read_texture(texture_path));

@@ -4,6 +4,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "roving/core/texture.h"
 
@@ -15,9 +16,12 @@ using TextureCache = std::map<std::string, std::shared_ptr<const Texture>>;
 // Reads the materials of `path` into `materials` (a later definition of a name replaces an earlier
 // one, as in the viewers). Kd is taken as sRGB fractions (code values / 255, as every OBJ viewer
 // displays it); a material without Kd is white. map_Kd's image is read through `textures`; of its
-// options only -clamp is honoured (on: clamp to edge; the default repeats). Throws roving::Error
-// naming the file and line for a malformed or out-of-range Kd, an option we do not apply, or an
-// unreadable texture.
-void read_mtl(const std::string& path, std::map<std::string, Material>& materials, TextureCache& textures);
+// options only -clamp is honoured (on: clamp to edge; the default repeats). A texture file that is
+// not there is named in `missing_textures` (the caller measures the geometry without the
+// materials' colour, as MeshLab and Open3D read it). Throws roving::Error naming the file and line
+// for a malformed or out-of-range Kd, an option we do not apply, or a texture that is there but
+// unreadable.
+void read_mtl(const std::string& path, std::map<std::string, Material>& materials, TextureCache& textures,
+              std::vector<std::string>& missing_textures);
 
 }  // namespace roving

@@ -31,8 +31,8 @@ LoadedMesh read_obj(const std::string& path) {
   std::vector<Material> used;  // the materials faces name, in order of first use
   std::map<std::string, int> used_index;
   int material = -1;
-  // A material library that is not there: the geometry is read without materials, with a warning
-  // (as MeshLab and Open3D read it); a library that is there but malformed is still an error.
+  // A material library or a texture that is not there: the geometry is read without materials, with
+  // a warning (as MeshLab and Open3D read it); one that is there but malformed is still an error.
   bool materials_dropped = false;
   std::size_t first_unmaterialled_line = 0, first_textured_without_uv_line = 0;
 
@@ -99,7 +99,13 @@ LoadedMesh read_obj(const std::string& path) {
             materials_dropped = true;
             continue;
           }
-          read_mtl(library_path, library, textures);
+          std::vector<std::string> missing;
+          read_mtl(library_path, library, textures, missing);
+          for (const std::string& texture : missing) {
+            loaded.warnings.push_back(fmt::format("{}:{}: {}; measured without its materials (no colour from them)",
+                                                  path, lines.line_number(), texture));
+          }
+          if (!missing.empty()) materials_dropped = true;
         } catch (const Error& e) {
           throw fail(e.what());  // names the OBJ and its line, then the library's own file and line
         }
