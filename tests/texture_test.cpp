@@ -286,6 +286,14 @@ TEST_F(TextureFiles, BadObjColourIsAnError) {
        {path("gone.mtl") + ":3: map_Kd: no such file", path("gone.png"), std::string("without its materials")}) {
     EXPECT_NE(untextured.warnings[0].find(part), std::string::npos) << untextured.warnings[0];
   }
+  // The same named from the model's own folder (relative paths, none of the texture's parts there):
+  // still a missing file, not "a link leading out of the folder".
+  const std::filesystem::path before = std::filesystem::current_path();
+  std::filesystem::current_path(std::filesystem::path(path("gone.mtl")).parent_path());
+  const LoadedMesh here = load_mesh("uses-gone.obj");
+  std::filesystem::current_path(before);
+  ASSERT_EQ(here.warnings.size(), 1u);
+  EXPECT_NE(here.warnings[0].find("gone.mtl:3: map_Kd: no such file 'gone.png'"), std::string::npos) << here.warnings[0];
   write("fake.png", "GIF89a not a png");
   mtl_error("newmtl a\nmap_Kd fake.png\n", {":2:", "fake.png", "expected a PNG or JPEG"});
 }
