@@ -16,6 +16,7 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <regex>
 #include <string>
 
 #include "roving/cli/batch.h"
@@ -63,6 +64,34 @@ bool flag_value(const std::string& keyword, const py::handle& value) {
     if (number == 0 || number == 1) return number == 1;
   }
   throw Error(keyword + ": expected True or False, found " + std::string(py::repr(value)));
+}
+
+// A message of the command's in the module's words: each of `subcommand`'s options as its keyword,
+// with the value that follows it where it takes one ("--semantics closest" is semantics='closest'),
+// a flag as keyword=True.
+std::string in_keywords(const std::string& text, const CLI::App& subcommand) {
+  static const std::regex mentioned(R"(--([a-z][a-z0-9-]*)( ([A-Za-z0-9%.:/_-]*[A-Za-z0-9%]))?)");
+  std::string out;
+  std::size_t copied = 0;
+  for (auto it = std::sregex_iterator(text.begin(), text.end(), mentioned); it != std::sregex_iterator(); ++it) {
+    const std::smatch& m = *it;
+    const CLI::Option* option = nullptr;
+    for (const CLI::Option* o : subcommand.get_options()) {
+      const std::vector<std::string>& names = o->get_lnames();
+      if (std::find(names.begin(), names.end(), m[1].str()) != names.end()) option = o;
+    }
+    if (!option) continue;  // not this command's: left as it is
+    std::string keyword = m[1].str();
+    for (char& c : keyword) c = c == '-' ? '_' : c;
+    out += text.substr(copied, m.position(0) - copied);
+    if (option->get_expected_max() == 0) {
+      out += keyword + "=True" + m[2].str();
+    } else {
+      out += m[3].matched ? keyword + "='" + m[3].str() + "'" : keyword;
+    }
+    copied = m.position(0) + m.length(0);
+  }
+  return out + text.substr(copied);
 }
 
 // The keyword arguments as command-line arguments of `subcommand`: a flag's True the flag (False
@@ -429,11 +458,14 @@ py::dict measure(const py::object& reference, const py::object& test, const py::
   py::dict result = parse_json(json);
   result["breached_gates"] = breached;
   // Each warning through Python's warnings, where a notebook shows it and filters apply: a
-  // roving.Warning at the caller's line (a C function adds no frame: stacklevel 1). quiet=True says
-  // nothing, as the command; all are in result["warnings"] either way.
+  // roving.Warning at the caller's line (a C function adds no frame: stacklevel 1), naming keywords
+  // where the command's names options. quiet=True says nothing, as the command; all are in
+  // result["warnings"] either way, as the command's JSON has them.
   if (!args.quiet) {
     const py::object warn = py::module_::import("warnings").attr("warn");
-    for (const std::string& line : run.report.warnings) warn(line, warning_category(), 1);
+    for (const std::string& warning : run.report.warnings) {
+      warn(in_keywords(warning, *line->measure), warning_category(), 1);
+    }
   }
   if (!keep_per_sample) return result;
   if (run.report.symmetric()) {

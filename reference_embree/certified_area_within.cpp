@@ -5,6 +5,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 
 #include "roving/core/error.h"
@@ -24,7 +25,7 @@ struct Verdict {
 }  // namespace
 
 AreaWithin certified_area_within(const TriangleMesh& a, const TriangleMesh& b, const std::vector<double>& thresholds,
-                                 double min_length, std::size_t first, std::size_t last) {
+                                 double min_length, std::size_t first, std::size_t last, const ProgressFn& progress) {
   if (a.triangle_count() == 0 || b.triangle_count() == 0) {
     throw Error("certified area within tau: expected two meshes with triangles, found an empty one");
   }
@@ -109,6 +110,7 @@ AreaWithin certified_area_within(const TriangleMesh& a, const TriangleMesh& b, c
   const std::size_t blocks = (last - first + kBlock - 1) / kBlock;
   std::vector<Verdict> block_sum(blocks, Verdict{std::vector<std::uint64_t>(n, 0), std::vector<std::uint64_t>(n, 0)});
   std::vector<std::size_t> block_splits(blocks, 0), block_queries(blocks, 0);
+  std::atomic<std::size_t> decided{0};  // A's triangles of the blocks done, for `progress`
   tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t block) {
     Verdict& sum = block_sum[block];
     std::vector<Piece> stack;
@@ -147,6 +149,8 @@ AreaWithin certified_area_within(const TriangleMesh& a, const TriangleMesh& b, c
         for (std::size_t k = 0; k < n; ++k) sum.within[k] += v.within[k], sum.undecided[k] += v.undecided[k];
       }
     }
+    const std::size_t done = decided += std::min(last, first + (block + 1) * kBlock) - (first + block * kBlock);
+    if (progress) progress("triangles", done, last - first);
   });
   for (std::size_t block = 0; block < blocks; ++block) {
     for (std::size_t k = 0; k < n; ++k) {

@@ -18,17 +18,18 @@
 
 namespace roving {
 
-HausdorffInterval certified_hausdorff(const TriangleMesh& a, const TriangleMesh& b, double max_gap) {
-  return certified_hausdorff(a, b, max_gap, 0, a.triangle_count());
+HausdorffInterval certified_hausdorff(const TriangleMesh& a, const TriangleMesh& b, double max_gap,
+                                      const ProgressFn& progress) {
+  return certified_hausdorff(a, b, max_gap, 0, a.triangle_count(), progress);
 }
 
 HausdorffInterval certified_hausdorff(const TriangleMesh& a, const TriangleMesh& b, double max_gap,
-                                      std::size_t first, std::size_t last) {
+                                      std::size_t first, std::size_t last, const ProgressFn& progress) {
   if (a.triangle_count() == 0) {
     throw Error("certified Hausdorff distance: expected two meshes with triangles, found an empty one");
   }
   CertifiedHausdorff bound(b, max_gap);
-  bound.add(a, first, last);
+  bound.add(a, first, last, progress);
   return bound.interval();
 }
 
@@ -57,7 +58,7 @@ HausdorffInterval CertifiedHausdorff::interval() const {
   return widened;
 }
 
-void CertifiedHausdorff::add(const TriangleMesh& a, std::size_t first, std::size_t last) {
+void CertifiedHausdorff::add(const TriangleMesh& a, std::size_t first, std::size_t last, const ProgressFn& progress) {
   if (a.triangle_count() == 0) {
     throw Error("certified Hausdorff distance: expected two meshes with triangles, found an empty one");
   }
@@ -85,9 +86,14 @@ void CertifiedHausdorff::add(const TriangleMesh& a, std::size_t first, std::size
     }
   }
   std::vector<ClosestPoints::Found> at_vertex(positions.size());
-  tbb::parallel_for(std::size_t{0}, positions.size(), [&](std::size_t v) {
-    if (used[v]) at_vertex[v] = closest.query(positions[v]);
-  });
+  constexpr std::size_t kVertexBlock = 65536;  // a progress report (a chance to stop) per block
+  for (std::size_t from = 0; from < positions.size(); from += kVertexBlock) {
+    const std::size_t to = std::min(positions.size(), from + kVertexBlock);
+    tbb::parallel_for(from, to, [&](std::size_t v) {
+      if (used[v]) at_vertex[v] = closest.query(positions[v]);
+    });
+    if (progress) progress("vertices", to, positions.size());
+  }
   result.distance_queries +=
       whole ? positions.size() : static_cast<std::size_t>(std::count(used.begin(), used.end(), true));
   // The first point found sets the lower end even at distance 0, so that the farthest point
@@ -144,6 +150,7 @@ void CertifiedHausdorff::add(const TriangleMesh& a, std::size_t first, std::size
     for (auto& four : children) {
       for (Piece& child : four) keep(std::move(child));
     }
+    if (progress) progress("pieces", result.triangles_split, result.triangles_split + heap.size());
   }
   // The parts before this one were settled within the gap of a lower bound no larger than today's.
   result.upper = std::max({result.upper, result.lower, settled, heap.empty() ? 0.0 : heap.front().upper});

@@ -169,16 +169,17 @@ void measure_direction(const Model& reference_model, const Model& test_model, co
     const TriangleMesh& surface = test_surface(*reference);
     if (plan.shard) {  // this shard's slice of the reference's triangles
       const auto [first, last] = plan.shard->range(surface.triangle_count());
-      d.hausdorff = certified_hausdorff(surface, test_mesh, report.hausdorff_bound, first, last);
+      d.hausdorff = certified_hausdorff(surface, test_mesh, report.hausdorff_bound, first, last, progress.callback());
     } else {
-      d.hausdorff = certified_hausdorff(surface, test_mesh, report.hausdorff_bound);
+      d.hausdorff = certified_hausdorff(surface, test_mesh, report.hausdorff_bound, progress.callback());
     }
     if (plan.certify_thresholds && test->type != ModelType::Points) {
       stage = fmt::format("bounding the share of {} within each threshold of {}", reference->path(), test->path());
       progress.stage(fmt::format("{}certified precision and recall", d.label + ": "));
       const auto [first, last] =
           plan.shard ? plan.shard->range(surface.triangle_count()) : std::pair{std::size_t{0}, surface.triangle_count()};
-      d.area_within = certified_area_within(surface, test_mesh, thresholds, report.hausdorff_bound, first, last);
+      d.area_within = certified_area_within(surface, test_mesh, thresholds, report.hausdorff_bound, first, last,
+                                            progress.callback());
     }
   }
   if (plan.correspondences)

@@ -294,7 +294,10 @@ def test_warnings_are_pythons(capfd):
     near, far = cube(1), (cube(1)[0] + 10, cube(1)[1])
     with pytest.warns(roving.Warning) as caught:
         result = roving.measure(near, far, per_sample=False)
-    assert [str(w.message) for w in caught] == result["warnings"] and len(caught) == 2
+    # The same lines as the report's, naming keywords where the command's name its options.
+    shown = [str(w.message) for w in caught]
+    assert shown == [w.replace("--semantics closest", "semantics='closest'") for w in result["warnings"]]
+    assert len(caught) == 2 and "--semantics closest" in result["warnings"][1]
     assert "do not overlap" in result["warnings"][0] and caught[0].filename == __file__
     assert "roving: warning" not in capfd.readouterr().err
     with warnings.catch_warnings():
@@ -386,6 +389,28 @@ def test_progress_callback_hears_each_stage_and_can_stop(tmp_path):
     assert not output.exists() and not list(tmp_path.iterdir())  # nothing written, no temporary left
     with pytest.raises(roving.Error, match="progress: expected a function"):
         roving.measure(BUNNY, FANDISK, progress=3)
+
+
+def test_certified_bounds_report_progress_and_stop_on_it():
+    # The certified Hausdorff interval and the certified shares report their counts as they go, so
+    # that a progress function (and Ctrl-C, which listens the same way) can stop them mid-stage.
+    heard = []
+    roving.measure(BUNNY, FANDISK, symmetric=True, threshold="1%", certify_thresholds=True, per_sample=False,
+                   quiet=True, progress=lambda stage, what, done, total: heard.append((stage, what, done, total)))
+    counts = {(stage, what) for stage, what, done, total in heard if what and 0 < done <= total}
+    assert ("A -> B: certified Hausdorff", "vertices") in counts and ("B -> A: certified Hausdorff", "vertices") in counts
+    assert ("A -> B: certified precision and recall", "triangles") in counts, sorted(counts)
+
+    class Stop(Exception):
+        pass
+
+    def stop(stage, what, done, total):
+        if stage.endswith("certified precision and recall") and what == "triangles":
+            raise Stop(stage)
+
+    with pytest.raises(Stop):
+        roving.measure(BUNNY, FANDISK, symmetric=True, threshold="1%", certify_thresholds=True, per_sample=False,
+                       quiet=True, progress=stop)
 
 
 def test_ctrl_c_stops_a_long_measurement_and_writes_nothing(tmp_path):

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "roving/core/distance_method.h"
 #include "roving/core/triangle_mesh.h"
 
 namespace roving {
@@ -40,10 +41,13 @@ struct AreaWithin {
 // is within tau where its upper bound is <= tau, beyond where its lower bound is > tau, and split
 // in four otherwise while it is longer than `min_length` (> 0) and fewer than kMaxDepth splits
 // from its triangle: the work per triangle is bounded, and the same whatever the range. What is
-// left is undecided. Both cores (TBB). Throws roving::Error on an empty mesh, a threshold that is
-// not finite and >= 0, a bad length or a range outside A.
+// left is undecided. Both cores (TBB). `progress` hears ("triangles", done, last - first) as blocks
+// of A's triangles are decided (what it throws stops the work and is rethrown: Ctrl-C's way in).
+// Throws roving::Error on an empty mesh, a threshold that is not finite and >= 0, a bad length or a
+// range outside A.
 AreaWithin certified_area_within(const TriangleMesh& a, const TriangleMesh& b, const std::vector<double>& thresholds,
-                                 double min_length, std::size_t first, std::size_t last);
+                                 double min_length, std::size_t first, std::size_t last,
+                                 const ProgressFn& progress = {});
 
 constexpr int kMaxDepth = 6;  // at most 4^6 = 4096 pieces of one triangle
 

@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <memory>
 
+#include "roving/core/distance_method.h"
 #include "roving/core/triangle_mesh.h"
 
 namespace roving {
@@ -27,15 +28,19 @@ struct HausdorffInterval {
 // triangle is convex, so over a triangle of A it peaks at a vertex, and the distance to B is at
 // most that. The triangle with the largest upper bound is split in four until every upper bound is
 // within max_gap of the best lower bound. Closest points by Embree's BVH (boxes padded against its
-// float rounding), distances in double; both cores (TBB). Throws roving::Error on an empty mesh.
-HausdorffInterval certified_hausdorff(const TriangleMesh& a, const TriangleMesh& b, double max_gap);
+// float rounding), distances in double; both cores (TBB). `progress` hears ("vertices", done,
+// total) as A's vertices are measured, then ("pieces", split, split + left) as the pieces above the
+// gap are split (what it throws stops the work and is rethrown: Ctrl-C's way in). Throws
+// roving::Error on an empty mesh.
+HausdorffInterval certified_hausdorff(const TriangleMesh& a, const TriangleMesh& b, double max_gap,
+                                      const ProgressFn& progress = {});
 
 // The same over A's triangles [first, last) alone (a shard's share): the largest lower and upper
 // ends over shards covering A make an interval of the whole A with the same guarantee and width,
 // though its ends may differ from the whole run's within that width (the best lower bound a
 // shard prunes with is its own).
 HausdorffInterval certified_hausdorff(const TriangleMesh& a, const TriangleMesh& b, double max_gap,
-                                      std::size_t first, std::size_t last);
+                                      std::size_t first, std::size_t last, const ProgressFn& progress = {});
 
 class ClosestPoints;
 
@@ -53,7 +58,7 @@ class CertifiedHausdorff {
   CertifiedHausdorff& operator=(const CertifiedHausdorff&) = delete;
 
   // A's triangles [first, last); throws roving::Error on an empty A or a range outside it.
-  void add(const TriangleMesh& a, std::size_t first, std::size_t last);
+  void add(const TriangleMesh& a, std::size_t first, std::size_t last, const ProgressFn& progress = {});
   void add(const TriangleMesh& a) { add(a, 0, a.triangle_count()); }
   // The interval over the parts added, each end widened by the closest-point kernel's error bound
   // (roving/core/geometry.h), so that it holds the exact value; throws roving::Error where none was.
