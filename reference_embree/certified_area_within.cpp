@@ -106,7 +106,9 @@ AreaWithin certified_area_within(const TriangleMesh& a, const TriangleMesh& b, c
 
   // The triangles in blocks on both cores, each undecided piece split depth first; the blocks'
   // sums are exact, so their order does not matter.
-  constexpr std::size_t kBlock = 1024;
+  // 64 triangles a block: a block of a close pair's deep splits takes about 0.1 s (1,024 took 1.5 s on
+  // the bunny against its noisy copy at 0.05%), and progress, Ctrl-C's way in, is heard per block.
+  constexpr std::size_t kBlock = 64;
   const std::size_t blocks = (last - first + kBlock - 1) / kBlock;
   std::vector<Verdict> block_sum(blocks, Verdict{std::vector<std::uint64_t>(n, 0), std::vector<std::uint64_t>(n, 0)});
   std::vector<std::size_t> block_splits(blocks, 0), block_queries(blocks, 0);
