@@ -87,7 +87,7 @@ TEST(CliBatch, EveryPairGetsAReportAndAFailureDoesNotStopTheOthers) {
     if (entry.path().extension() != ".json" || entry.path().string().find(".failed.") != std::string::npos) continue;
     std::ifstream file(entry.path());
     const auto json = nlohmann::json::parse(file);
-    EXPECT_EQ(json["schema_version"], 2);
+    EXPECT_EQ(json["schema_version"], 3);
     EXPECT_EQ(json["batch"]["status"], "ok");
     EXPECT_EQ(json["inputs"][0]["path"], data.cubes[0]);
     ++reports;

@@ -202,7 +202,7 @@ TEST(CliReport, ProvenanceNamesToolInputsAndSeed) {
   const CliRun run = run_cli("measure " + cubes.pair + " --samples area:50 --json -");
   ASSERT_EQ(run.exit_code, 0) << run.err;
   const auto json = nlohmann::json::parse(run.out);
-  EXPECT_EQ(json["schema_version"], 2);
+  EXPECT_EQ(json["schema_version"], 3);
   EXPECT_EQ(json["tool"]["name"], "roving");
   EXPECT_FALSE(json["tool"]["commit"].get<std::string>().empty());
   EXPECT_NE(json["command_line"].get<std::string>().find("--samples area:50"), std::string::npos);
@@ -654,7 +654,7 @@ TEST(CliReport, JsonLayoutIsTheDocumentedOne) {
   const auto check_layout = [&](const std::string& arguments, const CliRun& run) {
     ASSERT_EQ(run.exit_code, 0) << arguments << ": " << run.err;
     const auto json = nlohmann::json::parse(run.out);
-    EXPECT_EQ(json["schema_version"], 2);
+    EXPECT_EQ(json["schema_version"], 3);
     std::set<std::string> paths;
     collect_paths(json, "", paths);
     for (const std::string& path : paths) {

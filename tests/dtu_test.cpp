@@ -233,10 +233,7 @@ TEST(DtuProtocol, ExactFiguresAreTheMeansOverItsRegion) {
   // The CSV prints 17 significant digits: the sums agree but for their order (relative 1e-12).
   const auto expect_mean = [](const nlohmann::json& figures, const char* figure, std::pair<double, std::size_t> mean) {
     const nlohmann::json& direction = figures[figure];
-    const nlohmann::json& value = direction["mean"];
-    EXPECT_NEAR(value.is_object() ? value["estimate"].get<double>() : value.get<double>(), mean.first,
-                1e-12 * mean.first)
-        << figure;
+    EXPECT_NEAR(direction["mean"].get<double>(), mean.first, 1e-12 * mean.first) << figure;
     EXPECT_EQ(direction["hits"].get<std::size_t>(), mean.second) << figure;
   };
   expect_mean(exact["figures"], "accuracy", region_mean(test, observed_by));

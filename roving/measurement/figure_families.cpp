@@ -56,16 +56,18 @@ FigureRows reconstruction_figures(const json& report) {
   const json& r = report["reconstruction"];
   const Format length = length_of(report);
   FigureRows rows = {
-      {"accuracy: mean |d|, TEST to REF", figure_text(r["accuracy"]["mean"], length, "none", plain)},
-      {"completeness: mean |d|, REF to TEST", figure_text(r["completeness"]["mean"], length, "none", plain)},
+      {"accuracy: mean |d|, TEST to REF",
+       with_interval(r["accuracy"]["mean"], r["accuracy"].value("mean_interval", json()), length, plain)},
+      {"completeness: mean |d|, REF to TEST",
+       with_interval(r["completeness"]["mean"], r["completeness"].value("mean_interval", json()), length, plain)},
       {"Chamfer distance (mean of the two)",
        with_interval(r["chamfer_mean"], r.value("chamfer_mean_interval", json()), length, plain)},
       {"Chamfer, squared (mean of the two)", figure_text(r["chamfer_squared_mean"], plain)},
       {"normal consistency", figure_text(r["normal_consistency"], plain, "none (the method names no faces)")}};
   for (const json& t : r["thresholds"]) {
     const std::string at = "at tau = " + length(t["tau"].get<double>());
-    rows.push_back({"precision " + at, figure_text(t["precision"], percent)});
-    rows.push_back({"recall " + at, figure_text(t["recall"], percent)});
+    rows.push_back({"precision " + at, with_interval(t["precision"], t.value("precision_interval", json()), percent)});
+    rows.push_back({"recall " + at, with_interval(t["recall"], t.value("recall_interval", json()), percent)});
     rows.push_back({"F-score " + at, with_interval(t["f_score"], t.value("f_score_interval", json()), percent)});
     for (const char* key : {"precision", "recall", "f_score"}) {
       const std::string certified = std::string(key) + "_certified";

@@ -28,7 +28,7 @@ namespace roving {
 
 // The JSON layout's version: raised whenever a field changes meaning or goes away (adding
 // fields keeps it). Documented in docs/report-json.md.
-constexpr int kReportSchemaVersion = 2;
+constexpr int kReportSchemaVersion = 3;
 
 // One direction: the samples of `reference` measured against `test`.
 struct DirectionReport {

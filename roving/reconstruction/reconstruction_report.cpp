@@ -7,9 +7,9 @@
 
 namespace roving {
 
-nlohmann::json estimate_json(const Estimate& e) {
-  if (std::isnan(e.lower)) return e.value;
-  return {{"estimate", e.value}, {"lower", e.lower}, {"upper", e.upper}};
+void add_estimate(nlohmann::json& json, const std::string& key, const Estimate& e) {
+  json[key] = e.value;
+  if (!std::isnan(e.lower)) json[key + "_interval"] = {{"lower", e.lower}, {"upper", e.upper}};
 }
 
 std::string estimate_text(const Estimate& e) {
@@ -19,12 +19,11 @@ std::string estimate_text(const Estimate& e) {
 
 nlohmann::json reconstruction_json(const ReconstructionFigures& f) {
   const auto direction = [](const DirectionFigures& d) {
-    return nlohmann::json{{"mean", estimate_json(d.mean)},
-                          {"median", d.median},
-                          {"rms", estimate_json(d.rms)},
-                          {"normal_consistency", estimate_json(d.normal_consistency)},
-                          {"hits", d.hits},
-                          {"no_hits", d.no_hits}};
+    nlohmann::json json = {{"median", d.median}, {"hits", d.hits}, {"no_hits", d.no_hits}};
+    add_estimate(json, "mean", d.mean);
+    add_estimate(json, "rms", d.rms);
+    add_estimate(json, "normal_consistency", d.normal_consistency);
+    return json;
   };
   nlohmann::json json = {
       {"definition",
@@ -36,7 +35,7 @@ nlohmann::json reconstruction_json(const ReconstructionFigures& f) {
        "within tau of REF; recall: REF's within tau of TEST (a no-hit is beyond); f_score = 2 P R / (P + R). "
        "normal_consistency: mean |n . n'| of a sample's normal and the other surface's at the "
        "correspondence, "
-       "each direction and their mean. Intervals (estimate, lower, upper): 95%, for area-uniform samples; "
+       "each direction and their mean. *_interval (lower, upper): 95%, for area-uniform samples; "
        "chamfer_*_interval and f_score_interval combine the two directions' (independent samples: the delta "
        "method). "
        "*_certified (closest semantics between surfaces): the shares of area surely and possibly within tau, "
@@ -61,10 +60,9 @@ nlohmann::json reconstruction_json(const ReconstructionFigures& f) {
     return nlohmann::json{{"lower", b.lower}, {"upper", b.upper}};
   };
   for (std::size_t i = 0; i < f.thresholds.size(); ++i) {
-    nlohmann::json row = {{"tau", f.thresholds[i]},
-                          {"precision", estimate_json(f.accuracy.within[i])},
-                          {"recall", estimate_json(f.completeness.within[i])},
-                          {"f_score", f.f_score[i]}};
+    nlohmann::json row = {{"tau", f.thresholds[i]}, {"f_score", f.f_score[i]}};
+    add_estimate(row, "precision", f.accuracy.within[i]);
+    add_estimate(row, "recall", f.completeness.within[i]);
     if (!std::isnan(f.f_score_estimate[i].lower)) row["f_score_interval"] = interval(f.f_score_estimate[i]);
     if (!f.precision_certified.empty()) {
       row["precision_certified"] = bounds(f.precision_certified[i]);

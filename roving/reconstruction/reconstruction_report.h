@@ -9,9 +9,10 @@
 
 namespace roving {
 
-// An estimate with its 95% interval where it has one: the value alone, or {estimate, lower, upper}.
-nlohmann::json estimate_json(const Estimate& estimate);
-// The same as text: "value" or "value [lower, upper]" (8 and 6 significant digits).
+// An estimate as `json[key]`, a number whatever the samples, and its 95% interval where it has one
+// beside it as `json[key + "_interval"]` ({lower, upper}), as every interval of the report is given.
+void add_estimate(nlohmann::json& json, const std::string& key, const Estimate& estimate);
+// An estimate as text: "value" or "value [lower, upper]" (8 and 6 significant digits).
 std::string estimate_text(const Estimate& estimate);
 
 nlohmann::json reconstruction_json(const ReconstructionFigures& figures);

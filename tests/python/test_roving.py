@@ -542,20 +542,19 @@ def test_reconstruction_figures_in_closed_form():
                         ("chamfer_squared_sum", 2e-4), ("normal_consistency", 1)):
         assert abs(apart[name] - value) < 1e-12 * max(value, 1), (name, apart[name])
     assert abs(apart["accuracy"]["median"] - 0.01) < 1e-12
-    assert [(t["precision"]["estimate"], t["recall"]["estimate"], t["f_score"]) for t in apart["thresholds"]] == \
-        [(0, 0, 0), (1, 1, 1)]
+    assert [(t["precision"], t["recall"], t["f_score"]) for t in apart["thresholds"]] == [(0, 0, 0), (1, 1, 1)]
     # REF the unit square, TEST its left half (the same plane): TEST is all within 0 of REF
     # (precision 1), and REF within tau of TEST where x < 0.5 + tau (recall 0.5 + tau, by area);
     # REF's mean distance is the integral of x - 0.5 over the right half, 0.125.
     half = roving.measure(square(1), square(0.5), symmetric=True, semantics="closest", threshold=["0.1", "0.25"],
                           samples="area:20000", max_error="50%")["reconstruction"]
     for t, tau in zip(half["thresholds"], (0.1, 0.25)):
-        recall = t["recall"]
-        assert t["precision"]["estimate"] == 1
-        assert recall["lower"] <= 0.5 + tau <= recall["upper"], (tau, recall)
+        recall = t["recall_interval"]  # every figure a number, its interval beside it (schema 3)
+        assert t["precision"] == 1
+        assert recall["lower"] <= 0.5 + tau <= recall["upper"] and recall["lower"] <= t["recall"] <= recall["upper"]
         assert recall["upper"] - recall["lower"] < 0.03
-    assert abs(half["completeness"]["mean"]["estimate"] - 0.125) < 3 * (half["completeness"]["mean"]["upper"] -
-                                                                      half["completeness"]["mean"]["estimate"])
+    completeness = half["completeness"]
+    assert abs(completeness["mean"] - 0.125) < 3 * (completeness["mean_interval"]["upper"] - completeness["mean"])
 
 
 def test_chamfer_and_f_score_intervals_cover_the_closed_form():
