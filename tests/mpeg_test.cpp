@@ -558,12 +558,18 @@ TEST(PcErrorFigures, EveryFileFormGivesTheFiguresOfTheBinaryOne) {
 TEST(PcErrorFigures, BadInputIsOneLine) {
   const std::string a = kData + "sphere10_a.ply", b = kData + "sphere10_b.ply";
   // 1e-300 and 1e-46 are positive doubles that single precision (pc_error's) rounds to 0.
-  for (const char* peak : {"0", "-1", "nan", "1e40", "1e-300", "1e-46", "1e-39"}) {
+  for (const char* peak : {"-1", "nan", "1e40", "1e-300", "1e-46", "1e-39"}) {
     SCOPED_TRACE(peak);
     const CliRun run = run_cli("measure " + a + " " + b + " --pcc --pcc-resolution " + peak);
     EXPECT_EQ(run.exit_code, 2) << run.err;
     EXPECT_NE(run.err.find("--pcc-resolution"), std::string::npos) << run.err;
   }
+  // 0 is pc_error's "no resolution given" (-r 0): the default peak, every figure as without it.
+  const CliRun zero = run_cli("measure " + a + " " + b + " --pcc --pcc-resolution 0 --json -");
+  const CliRun none = run_cli("measure " + a + " " + b + " --pcc --json -");
+  ASSERT_EQ(zero.exit_code, 0) << zero.err;
+  EXPECT_EQ(nlohmann::json::parse(zero.out)["mpeg_pcc"]["symmetric"], nlohmann::json::parse(none.out)["mpeg_pcc"]["symmetric"]);
+  EXPECT_EQ(nlohmann::json::parse(zero.out)["mpeg_pcc"]["peak_from"], nlohmann::json::parse(none.out)["mpeg_pcc"]["peak_from"]);
   const CliRun ibsm = run_cli("measure " + a + " " + b + " --pcc --ibsm");
   EXPECT_EQ(ibsm.exit_code, 2);
   EXPECT_NE(ibsm.err.find("--ibsm: not with --pcc"), std::string::npos) << ibsm.err;

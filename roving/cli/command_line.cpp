@@ -137,8 +137,8 @@ void add_measurement_options(CLI::App& app, MeasureArguments& args, bool& trust_
       "compare --mode pcc, each mesh sampled as mmetric samples it");
   app.add_option("--pcc-resolution", args.pcc_resolution,
                  "the geometry PSNR's peak p in 10 log10(3 p^2 / MSE), pc_error's --resolution (e.g. 1023 "
-                 "for 10-bit voxels); default: the largest nearest-neighbour spacing within A, as pc_error's "
-                 "(on meshes the diagonal of A's box, as mmetric's)");
+                 "for 10-bit voxels); default (or 0, as pc_error's -r 0): the largest nearest-neighbour spacing "
+                 "within A, as pc_error's (on meshes the diagonal of A's box, as mmetric's)");
   app.add_option("--pcc-normals", args.pcc_normals,
                  "A's normals for D2 from this file, pc_error's --inputNorm: a point cloud of A's points "
                  "(in any order, duplicates merged as A's) with normals; they replace any A has");

@@ -334,15 +334,18 @@ MeasurePlan plan_measurement(const MeasureArguments& args) {
   plan.correspondences = args.correspondences || !args.samples_csv_path.empty() || args.pcc;
   plan.options.faces = plan.symmetric || plan.correspondences;
   // Read in single precision, as pc_error reads --resolution: a peak below the least normal float
-  // would become 0 or lose its digits, and every geometry PSNR infinite.
-  if (args.pcc_resolution && !(*args.pcc_resolution >= std::numeric_limits<float>::min() &&
-                               *args.pcc_resolution <= std::numeric_limits<float>::max())) {
+  // would become 0 or lose its digits, and every geometry PSNR infinite. 0 itself is pc_error's
+  // "none given" (its default, and what `-r 0` asks for): the default peak.
+  const bool default_peak = args.pcc_resolution && *args.pcc_resolution == 0;
+  if (args.pcc_resolution && !default_peak &&
+      !(*args.pcc_resolution >= std::numeric_limits<float>::min() &&
+        *args.pcc_resolution <= std::numeric_limits<float>::max())) {
     throw Error(fmt::format("--pcc-resolution: expected a peak > 0 that single precision holds, from {:g} to {:g} "
-                            "(e.g. 1023 for 10-bit voxels), found {}",
+                            "(e.g. 1023 for 10-bit voxels), or 0 for the default peak, found {}",
                             std::numeric_limits<float>::min(), std::numeric_limits<float>::max(),
                             *args.pcc_resolution));
   }
-  plan.pcc_resolution = args.pcc_resolution;
+  plan.pcc_resolution = default_peak ? std::nullopt : args.pcc_resolution;
   plan.pcc_normals = args.pcc_normals;
   plan.pcc_only = args.pcc;
   if (args.pcc) {
