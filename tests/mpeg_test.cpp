@@ -373,6 +373,16 @@ TEST(MpegPoints, EqualPointsMergeAsPcErrorMergesThem) {
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("six.ply: normal 2"), std::string::npos) << e.what();
   }
+  // Of several, the first in the file is named, not the first in the points' sorted order (point
+  // 5, at z = 1e-9, sorts after point 2; point 3, at z = 5, before it).
+  cloud.normals[5] = {nan, 0, 0};
+  cloud.normals[3] = {nan, 0, 0};
+  try {
+    mpeg_points(cloud, "six.ply", true, true);
+    ADD_FAILURE() << "NaN normals that are averaged were accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("six.ply: normal 2"), std::string::npos) << e.what();
+  }
 }
 
 // The lattice search against every point: the shell is all points at the least squared distance

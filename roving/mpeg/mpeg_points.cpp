@@ -240,7 +240,7 @@ MpegPoints sorted_and_merged(const Cloud& cloud, const Codec& codec, bool averag
   std::partial_sum(first_run.begin(), first_run.end(), first_run.begin());
   const std::size_t runs = first_run.back();
 
-  // A normal that is used must be finite; the first such in sorted order is the one named.
+  // A normal that is used must be finite; the first such in the file's order is the one named.
   const bool normals = cloud.has_normals(), colours = cloud.has_colours();
   std::atomic<std::size_t> first_bad_normal{n};
   MpegPoints points;
@@ -262,7 +262,7 @@ MpegPoints sorted_and_merged(const Cloud& cloud, const Codec& codec, bool averag
     };
     const auto normal_at = [&](std::size_t k) {
       const std::array<float, 3> normal = source.normal(keys.index(sorted[k]));
-      if (std::isnan(normal[0])) keep_least(first_bad_normal, k);
+      if (std::isnan(normal[0])) keep_least(first_bad_normal, keys.index(sorted[k]));
       return normal;
     };
     std::size_t out = first_run[b];
@@ -302,7 +302,7 @@ MpegPoints sorted_and_merged(const Cloud& cloud, const Codec& codec, bool averag
     }
   });
   if (first_bad_normal < n) {  // throws
-    const std::uint32_t i = codec.index(order[first_bad_normal]);
+    const auto i = static_cast<std::uint32_t>(first_bad_normal.load());
     to_float(cloud.normal_as_read(i), name, "normal", i);
   }
   return points;
