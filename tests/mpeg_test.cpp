@@ -565,6 +565,38 @@ TEST(PcErrorFigures, EveryFileFormGivesTheFiguresOfTheBinaryOne) {
   testing::cli::fs::remove_all(folder);
 }
 
+// pc_error 0.14.2 reads colour only as uchar (pcc_processing.cpp's checkField(inFile, "red",
+// {"uint8", "uchar"})): a cloud whose colours are floats has none for it, and none here, with a
+// warning naming the file; the geometry's figures are those of the same clouds without colour.
+TEST(PcErrorFigures, FloatColoursGiveNoColourFiguresAsPcErrorGivesNone) {
+  testing::cli::Folder folder;
+  const auto cloud = [&](const std::string& name, double shift, bool float_colours) {
+    std::string text = fmt::format(
+        "ply\nformat ascii 1.0\nelement vertex 27\nproperty float x\nproperty float y\nproperty float z\n"
+        "property {0} red\nproperty {0} green\nproperty {0} blue\nend_header\n",
+        float_colours ? "float" : "uchar");
+    for (int i = 0; i < 27; ++i) {
+      text += fmt::format("{} {} {} {}\n", i % 3 + shift, i / 3 % 3, i / 9, float_colours ? "0.5 0.25 1" : "128 64 255");
+    }
+    return folder.file(name, text);
+  };
+  const std::string a = cloud("a.ply", 0, true), b = cloud("b.ply", 0.25, true), plain = cloud("plain.ply", 0.25, false);
+  const CliRun run = run_cli("measure " + a + " " + b + " --pcc --pcc-resolution 2 --json -");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const nlohmann::json report = nlohmann::json::parse(run.out);
+  EXPECT_FALSE(report["mpeg_pcc"]["colour"].get<bool>());
+  EXPECT_FALSE(report["mpeg_pcc"]["symmetric"].contains("y_psnr"));
+  for (const std::string& file : {a, b}) {
+    EXPECT_NE(run.err.find("colour: " + file + " stores its colours as floats; pc_error reads colour only as uchar"),
+              std::string::npos) << run.err;
+  }
+  // One float-coloured, one uchar-coloured: only the uchar one has colour, and no colour figures.
+  const CliRun mixed = run_cli("measure " + a + " " + plain + " --pcc --pcc-resolution 2 --json -");
+  ASSERT_EQ(mixed.exit_code, 0) << mixed.err;
+  EXPECT_FALSE(nlohmann::json::parse(mixed.out)["mpeg_pcc"]["colour"].get<bool>());
+  EXPECT_EQ(nlohmann::json::parse(mixed.out)["mpeg_pcc"]["symmetric"]["d1_psnr"], report["mpeg_pcc"]["symmetric"]["d1_psnr"]);
+}
+
 TEST(PcErrorFigures, BadInputIsOneLine) {
   const std::string a = kData + "sphere10_a.ply", b = kData + "sphere10_b.ply";
   // 1e-300 and 1e-46 are positive doubles that single precision (pc_error's) rounds to 0.

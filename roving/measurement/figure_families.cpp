@@ -237,6 +237,7 @@ const FigureFamily kMpeg = {
       in.stage = fmt::format("computing MPEG's point-cloud figures of {} and {}", in.a.path(), in.b.path());
       in.progress.stage("MPEG point-cloud figures");
       report.mpeg = mpeg_report(in.a, in.b, in.plan.pcc_resolution, in.plan.pcc_normals);
+      in.warn(report.mpeg->warnings);
       if (!in.plan.pcc_only || !report.symmetric()) return;
       std::array<SurfaceFigures, 2> exact;
       for (int i = 0; i < 2; ++i) {

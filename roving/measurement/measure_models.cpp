@@ -119,6 +119,19 @@ MpegReport mpeg_report(const Model& a, const Model& b, std::optional<double> res
     }
     return mpeg_points(model.points, model.path(), normals && !model.normals_estimated, rules.mmetric);
   };
+  // pc_error reads colour only as uchar: a cloud whose file stores float colours has none for it,
+  // and none in MPEG's figures here.
+  const auto float_colours = [](const Model& model) {
+    return model.type == ModelType::Points && read_as_ply(model.path()) && ply_colours_are_floats(model.path());
+  };
+  const bool uncoloured[2] = {float_colours(a), float_colours(b)};
+  for (int side = 0; side < 2; ++side) {
+    if (!uncoloured[side]) continue;
+    report.warnings.push_back(fmt::format(
+        "colour: {} stores its colours as floats; pc_error reads colour only as uchar (0-255) and gives no "
+        "colour figures for it, nor do MPEG's figures here (store them as uchar to have them)",
+        (side == 0 ? a : b).path()));
+  }
   MpegPoints a_points, b_points, normals;
   tbb::parallel_invoke([&] { a_points = points_of(a, normals_path.empty(), report.read_seconds[0]); },
                        [&] { b_points = points_of(b, rules.mmetric, report.read_seconds[1]); },
@@ -127,6 +140,8 @@ MpegReport mpeg_report(const Model& a, const Model& b, std::optional<double> res
                          // Merged as A's are: under mmetric's rules, duplicates' normals averaged.
                          normals = mpeg_points(load_point_cloud(normals_path), normals_path, true, rules.mmetric);
                        });
+  if (uncoloured[0]) a_points.colours.clear();
+  if (uncoloured[1]) b_points.colours.clear();
   if (!normals_path.empty()) use_normals_of(a_points, normals, normals_path);
   report.figures = mpeg_point_cloud_figures(a_points, b_points, rules, a.path());
   report.normals_from = normals_path;
@@ -197,6 +212,7 @@ void measure_point_clouds(const Model& a, const Model& b, const MeasurePlan& pla
   progress.stage("MPEG point-cloud figures");
   report.mpeg = mpeg_report(a, b, plan.pcc_resolution, plan.pcc_normals);
   progress.clear();
+  warn(report.mpeg->warnings);
   for (int side = 0; side < 2; ++side) report.load_seconds[side] += report.mpeg->read_seconds[side];
   const bool* coloured = report.mpeg->coloured;
   if (coloured[0] != coloured[1]) {

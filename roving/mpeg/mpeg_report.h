@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "roving/mpeg/point_cloud_psnr.h"
 #include "roving/mpeg/surface_psnr.h"
@@ -27,6 +28,7 @@ struct MpegReport {
   bool a_sampled = false;               // A is a mesh, sampled as mmetric samples it (its normals its faces')
   // Two meshes under --pcc: D1 of the surfaces themselves, A -> B and B -> A (surface_psnr.h).
   std::optional<std::array<SurfaceFigures, 2>> surface;
+  std::vector<std::string> warnings;  // about the clouds as pc_error reads them (the report's to give)
 };
 
 nlohmann::json mpeg_json(const MpegReport& report);

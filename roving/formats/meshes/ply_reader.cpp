@@ -410,6 +410,18 @@ bool ply_declares_no_faces(const std::string& path) {
   return true;
 }
 
+bool ply_colours_are_floats(const std::string& path) {
+  const FileBytes file(path, "a .ply model");
+  Header header = parse_header(path, file.bytes());
+  assign_roles(path, header);
+  for (const Element& element : header.elements) {
+    for (const Property& p : element.properties) {
+      if (p.role == Role::Red && (p.type == Scalar::Float32 || p.type == Scalar::Float64)) return true;
+    }
+  }
+  return false;
+}
+
 std::optional<PlyTriangleLayout> ply_triangle_layout(const std::string& path) {
   const FileBytes file(path, "a .ply model");
   Header header = parse_header(path, file.bytes());

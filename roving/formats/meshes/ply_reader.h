@@ -30,6 +30,10 @@ PlyContents read_ply(const std::string& path);
 // Reads only the header: true when it declares no face (or zero faces): a point cloud.
 bool ply_declares_no_faces(const std::string& path);
 
+// Whether the PLY `path` stores its vertices' colours as float or double (0-1, read scaled by 255),
+// not as uchar: MPEG's pc_error reads colour only as uchar. Only the header is read.
+bool ply_colours_are_floats(const std::string& path);
+
 // Where a binary PLY of plain triangles keeps its vertices and faces, so that its faces can be
 // read a block at a time (triangle_stream.h) rather than all at once.
 struct PlyTriangleLayout {
