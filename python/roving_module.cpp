@@ -27,6 +27,7 @@
 #include "roving/core/error.h"
 #include "roving/formats/files/atomic_file.h"
 #include "roving/formats/files/file_bytes.h"
+#include "roving/formats/meshes/mtl_reader.h"
 #include "roving/registry/method_registry.h"
 #include "roving/representations/model.h"
 
@@ -440,6 +441,7 @@ py::dict measure(const py::object& reference, const py::object& test, const py::
   std::unique_ptr<Model> a = reference_is_path ? nullptr : model_of(reference, "reference", !args.pcc);
   std::unique_ptr<Model> b = test_is_path ? nullptr : model_of(test, "test", !args.pcc);
   references_may_leave_folder(line->trust_references);
+  require_materials(line->strict_materials);
   MeasureRun run;
   std::string stage = "starting", json, printed;
   std::vector<std::string> breached;
@@ -520,6 +522,7 @@ int batch(const py::args& pairs, const py::kwargs& all_options) {
   parse_call(*line, *line->batch, pairs, options);
   line->batch_args.defaults.command_line = "roving.batch";
   references_may_leave_folder(line->trust_references);
+  require_materials(line->strict_materials);
   std::string stage = "starting";
   const InterruptScope interrupt;
   py::gil_scoped_release release;
@@ -533,6 +536,7 @@ PYBIND11_MODULE(roving, m) {
       "Shape dissimilarity between 3D models: Z-buffer surface roving, Embree and CGAL references, baselines";
   py::register_exception<Error>(m, "Error", PyExc_ValueError);
   m.attr("Warning") = warning_category();
+  m.attr("RovingWarning") = warning_category();  // the same class, by the name warnings filters often use
   // The version and commit the module was built from: the reports' "tool" says the same.
   m.attr("__version__") = tool_json()["version"].get<std::string>();
   m.attr("commit") = tool_json()["commit"].get<std::string>();

@@ -286,6 +286,11 @@ TEST(CliReport, WarningsForMisalignedAndInsideOutModels) {
   EXPECT_NE(without.err.find("roving: warning: " + unlit + ":1: mtllib 'beetle.mtl': no such file"), std::string::npos)
       << without.err;
   EXPECT_EQ(nlohmann::json::parse(without.out)["warnings"].size(), 1u);
+  // --strict-materials refuses it, naming the library.
+  const CliRun strict = run_cli("measure " + cubes.small + " " + unlit + " --strict-materials");
+  EXPECT_EQ(strict.exit_code, 1) << strict.err;
+  EXPECT_NE(strict.err.find("beetle.mtl"), std::string::npos) << strict.err;
+  EXPECT_NE(strict.err.find("cannot open"), std::string::npos) << strict.err;
 
   const std::string shifted = cubes.folder.file("shifted.obj", cube_obj(0.5, 0.2));
   const CliRun offset = run_cli("measure " + cubes.small + " " + shifted + " --max-error 0.1");

@@ -18,6 +18,7 @@
 #include "roving/core/colour_science.h"
 #include "roving/core/colour_statistics.h"
 #include "roving/core/error.h"
+#include "roving/formats/meshes/mtl_reader.h"
 #include "roving/formats/outputs/coloured_mesh_writer.h"
 #include "roving/formats/meshes/mesh_io.h"
 #include "roving/formats/images_and_matlab/texture_io.h"
@@ -294,6 +295,11 @@ TEST_F(TextureFiles, BadObjColourIsAnError) {
   std::filesystem::current_path(before);
   ASSERT_EQ(here.warnings.size(), 1u);
   EXPECT_NE(here.warnings[0].find("gone.mtl:3: map_Kd: no such file 'gone.png'"), std::string::npos) << here.warnings[0];
+  // require_materials(true) (--strict-materials): an error naming the library's line and the file.
+  require_materials(true);
+  expect_error([&] { load_mesh(path("uses-gone.obj")); }, {path("gone.mtl") + ":3:", "map_Kd", "gone.png", "cannot open"});
+  expect_error([&] { load_mesh(missing); }, {"absent.mtl", "cannot open"});
+  require_materials(false);
   write("fake.png", "GIF89a not a png");
   mtl_error("newmtl a\nmap_Kd fake.png\n", {":2:", "fake.png", "expected a PNG or JPEG"});
 }

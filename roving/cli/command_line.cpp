@@ -62,10 +62,13 @@ std::string unknown_argument(const std::vector<std::string>& arguments, const CL
 }
 
 // The options that say how to measure, shared by `measure` and `batch`.
-void add_measurement_options(CLI::App& app, MeasureArguments& args, bool& trust_references) {
+void add_measurement_options(CLI::App& app, MeasureArguments& args, bool& trust_references, bool& strict_materials) {
   app.add_flag("--trust-references", trust_references,
                "let files a model names (glTF buffers) lie outside the model's folder: absolute paths, '..', "
                "symbolic links out (by default refused, for models from elsewhere)");
+  app.add_flag("--strict-materials", strict_materials,
+               "refuse an OBJ whose material library (mtllib) or texture (map_Kd) is not there (by default "
+               "a warning, and the geometry measured without the materials' colour)");
   app.add_option("--method", args.method, fmt::format("distance method: {}", fmt::join(method_names(), ", ")))
       ->capture_default_str();
   app.add_option("--semantics", args.semantics,
@@ -247,6 +250,7 @@ std::unique_ptr<CommandLine> make_command_line() {
   MeasureArguments& args = line->args;
   BatchArguments& batch_args = line->batch_args;
   bool& trust_references = line->trust_references;
+  bool& strict_materials = line->strict_materials;
   app.description(
       "surface roving: shape dissimilarity between 3D models (Z-buffer surface roving, "
       "with exact CPU references and classic baselines)");
@@ -268,7 +272,7 @@ std::unique_ptr<CommandLine> make_command_line() {
           "test model M_C: mesh (.obj .ply .off .stl .gltf .glb .3mf), Bezier patches (.bpt), voxels "
           "(.binvox) or point cloud (.ply without faces, .xyz; drawn as surfels)")
       ->required();
-  add_measurement_options(*measure, args, trust_references);
+  add_measurement_options(*measure, args, trust_references, strict_materials);
   measure->add_option("--fail-above", args.gates,
                       fmt::format("METRIC=LIMIT (a length, or P% of the diagonal; no_hits: a count or P% of "
                                   "the samples): exit 3 if METRIC's magnitude exceeds LIMIT; repeatable. "
@@ -349,7 +353,7 @@ std::unique_ptr<CommandLine> make_command_line() {
       "--skip-unpaired", batch_args.skip_unpaired,
       "with REF_FOLDER TEST_FOLDER: measure the files found in both and list the others on stderr "
       "(without it, a file with no partner of the same name is an error)");
-  add_measurement_options(*batch, batch_args.defaults, trust_references);
+  add_measurement_options(*batch, batch_args.defaults, trust_references, strict_materials);
 
   MergeArguments& merge_args = line->merge_args;
   CLI::App* merge = line->merge = app.add_subcommand(

@@ -23,6 +23,7 @@ struct CommandLine {
   BatchArguments batch_args;  // batch's
   MergeArguments merge_args;  // merge's
   bool trust_references = false;
+  bool strict_materials = false;
   bool version = false;
 };
 

@@ -7,6 +7,7 @@
 #include "roving/core/memory_budget.h"
 #include "roving/formats/files/atomic_file.h"
 #include "roving/formats/files/file_bytes.h"
+#include "roving/formats/meshes/mtl_reader.h"
 
 int main(int argc, char** argv) {
   const std::unique_ptr<roving::CommandLine> made = roving::make_command_line();
@@ -39,6 +40,7 @@ int main(int argc, char** argv) {
     return 2;
   }
   roving::references_may_leave_folder(line.trust_references);
+  roving::require_materials(line.strict_materials);
   roving::remove_temporaries_on_signals();  // SIGINT, SIGTERM: no temporary file left, exit 130 / 143
   std::string stage = "starting";           // what the run is doing, for the message when memory runs out
   try {

@@ -14,6 +14,8 @@
 namespace roving {
 namespace {
 
+bool strict_materials = false;
+
 std::string_view trimmed(std::string_view text) {
   while (!text.empty() && (text.front() == ' ' || text.front() == '\t')) text.remove_prefix(1);
   while (!text.empty() && (text.back() == ' ' || text.back() == '\t' || text.back() == '\r'))
@@ -22,6 +24,14 @@ std::string_view trimmed(std::string_view text) {
 }
 
 }  // namespace
+
+void require_materials(bool required) {
+  strict_materials = required;
+}
+
+bool materials_required() {
+  return strict_materials;
+}
 
 void read_mtl(const std::string& path, std::map<std::string, Material>& materials, TextureCache& textures,
               std::vector<std::string>& missing_textures) {
@@ -80,7 +90,7 @@ void read_mtl(const std::string& path, std::map<std::string, Material>& material
     if (rest.empty()) throw fail("expected a texture file after 'map_Kd'");
     const std::string texture_path = resolve_reference(path, std::string(rest), "map_Kd");
     std::error_code error;
-    if (!std::filesystem::exists(texture_path, error)) {
+    if (!strict_materials && !std::filesystem::exists(texture_path, error)) {
       missing_textures.push_back(fmt::format("{}:{}: map_Kd: no such file '{}'", path, lines.line_number(), texture_path));
       continue;
     }

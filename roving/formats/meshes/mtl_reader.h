@@ -24,4 +24,10 @@ using TextureCache = std::map<std::string, std::shared_ptr<const Texture>>;
 void read_mtl(const std::string& path, std::map<std::string, Material>& materials, TextureCache& textures,
               std::vector<std::string>& missing_textures);
 
+// require_materials(true) (the CLI's --strict-materials): a material library or texture that is
+// not there is an error naming it, not a warning (read_mtl and the OBJ reader ask
+// materials_required()).
+void require_materials(bool required);
+bool materials_required();
+
 }  // namespace roving

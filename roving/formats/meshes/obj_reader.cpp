@@ -92,7 +92,7 @@ LoadedMesh read_obj(const std::string& path) {
         try {
           const std::string library_path = resolve_reference(path, std::string(name), "mtllib");
           std::error_code error;
-          if (!std::filesystem::exists(library_path, error)) {
+          if (!materials_required() && !std::filesystem::exists(library_path, error)) {
             loaded.warnings.push_back(fmt::format("{}:{}: mtllib {}: no such file '{}'; measured without its "
                                                   "materials (no colour from them)",
                                                   path, lines.line_number(), roving::quoted(name), library_path));
