@@ -214,8 +214,9 @@ DtuFigures dtu_figures(const std::vector<Vec3>& reconstruction, const std::vecto
   figures.ground_truth_above = above.size();
   const int runs = options.first_seed ? std::max(options.runs, 1) : 1;
   // The ground truth's tree is built on the other core while the first run thins.
-  std::future<std::unique_ptr<PointTree>> building =
-      std::async(std::launch::async, [&] { return std::make_unique<PointTree>(ground_truth); });
+  // In spatial order: a data set's ground truth comes in its scanner's order, or at random.
+  std::future<std::unique_ptr<PointTree>> building = std::async(
+      std::launch::async, [&] { return std::make_unique<PointTree>(ground_truth, PointTree::Layout::InSpace); });
   std::unique_ptr<PointTree> truth_tree;
   for (int run = 0; run < runs; ++run) {
     // Three steps a run: thinning, masking and the accuracy queries, the completeness queries.
@@ -248,7 +249,7 @@ DtuFigures dtu_figures(const std::vector<Vec3>& reconstruction, const std::vecto
     std::unique_ptr<PointTree> box_tree;
     tbb::parallel_invoke(
         [&] { std::tie(r.accuracy, r.accuracy_counted) = mean_nearest(observed, *truth_tree, options.max_dist); },
-        [&] { box_tree = std::make_unique<PointTree>(in_box); });
+        [&] { box_tree = std::make_unique<PointTree>(in_box, PointTree::Layout::InSpace); });
     step(2);
     std::tie(r.completeness, r.completeness_counted) = mean_nearest(above, *box_tree, options.max_dist);
     r.overall = (r.accuracy + r.completeness) / 2;

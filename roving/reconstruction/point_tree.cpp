@@ -6,6 +6,8 @@
 #include <limits>
 #include <nanoflann.hpp>
 
+#include "roving/reconstruction/spatial_order.h"
+
 namespace roving {
 namespace {
 
@@ -32,8 +34,16 @@ struct PointTree::Index {
   KdTree tree;
 };
 
-PointTree::PointTree(const std::vector<Vec3>& points) : points_(points) {
-  if (!points.empty()) index_ = std::make_unique<Index>(points);
+PointTree::PointTree(const std::vector<Vec3>& points, Layout layout) : points_(points) {
+  if (points.empty()) return;
+  if (layout == Layout::AsGiven) {
+    index_ = std::make_unique<Index>(points);
+    return;
+  }
+  original_ = spatial_order(points);
+  ordered_.resize(points.size());
+  tbb::parallel_for(std::size_t{0}, points.size(), [&](std::size_t k) { ordered_[k] = points[original_[k]]; });
+  index_ = std::make_unique<Index>(ordered_);
 }
 
 PointTree::~PointTree() = default;
@@ -41,8 +51,11 @@ PointTree::~PointTree() = default;
 std::vector<double> PointTree::nearest_distances(const std::vector<Vec3>& from) const {
   std::vector<double> distance(from.size(), std::numeric_limits<double>::quiet_NaN());
   if (!index_) return distance;
+  // Neighbouring queries in turn: their paths down the tree are mostly in cache already.
+  const std::vector<std::uint32_t> order = spatial_order(from);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, from.size(), 4096), [&](const auto& range) {
-    for (std::size_t i = range.begin(); i < range.end(); ++i) {
+    for (std::size_t k = range.begin(); k < range.end(); ++k) {
+      const std::uint32_t i = order[k];
       std::uint32_t index = 0;
       double squared = 0;
       index_->tree.knnSearch(from[i].data(), 1, &index, &squared);
@@ -59,6 +72,7 @@ void PointTree::nearest(const std::vector<Vec3>& from, std::vector<std::uint32_t
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, from.size(), 4096), [&](const auto& range) {
     for (std::size_t i = range.begin(); i < range.end(); ++i) {
       index_->tree.knnSearch(from[i].data(), 1, &index[i], &squared[i]);
+      if (!original_.empty()) index[i] = original_[index[i]];
     }
   });
 }
@@ -67,7 +81,7 @@ void PointTree::nearest_two(const Vec3& p, std::uint32_t& index, double& squared
   std::uint32_t indices[2] = {0, 0};
   double squares[2] = {0, std::numeric_limits<double>::infinity()};
   const std::size_t found = index_->tree.knnSearch(p.data(), 2, indices, squares);
-  index = indices[0];
+  index = original_.empty() ? indices[0] : original_[indices[0]];
   squared = squares[0];
   second_squared = found == 2 ? squares[1] : std::numeric_limits<double>::infinity();
 }

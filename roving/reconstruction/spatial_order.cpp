@@ -10,9 +10,13 @@
 
 namespace roving {
 
-void order_in_space(std::vector<Vec3>& points) {
+std::vector<std::uint32_t> spatial_order(const std::vector<Vec3>& points) {
   const std::size_t n = points.size();
-  if (n < 2) return;
+  std::vector<std::uint32_t> order(n);
+  if (n < 2) {
+    for (std::size_t i = 0; i < n; ++i) order[i] = static_cast<std::uint32_t>(i);
+    return order;
+  }
   const BoundingBox box = tbb::parallel_reduce(
       tbb::blocked_range<std::size_t>(0, n, 1 << 14), BoundingBox{},
       [&](const tbb::blocked_range<std::size_t>& range, BoundingBox b) {
@@ -47,12 +51,19 @@ void order_in_space(std::vector<Vec3>& points) {
       at += count;
     }
   }
-  std::vector<Vec3> ordered(n);
   tbb::parallel_for(std::size_t(0), chunks, [&](std::size_t c) {
     const auto [begin, end] = chunk_range(c);
     for (std::size_t i = begin; i < end; ++i)
-      ordered[place[c * buckets + bucket_of(points[i])]++] = points[i];
+      order[place[c * buckets + bucket_of(points[i])]++] = static_cast<std::uint32_t>(i);
   });
+  return order;
+}
+
+void order_in_space(std::vector<Vec3>& points) {
+  if (points.size() < 2) return;
+  const std::vector<std::uint32_t> order = spatial_order(points);
+  std::vector<Vec3> ordered(points.size());
+  tbb::parallel_for(std::size_t(0), points.size(), [&](std::size_t k) { ordered[k] = points[order[k]]; });
   points.swap(ordered);
 }
 
