@@ -100,8 +100,8 @@ MpegStudy mpeg_study(const std::vector<std::pair<std::string, TriangleMesh>>& mo
       MpegRules rules;
       rules.resolution = kPeak;
       rules.mmetric = true;
-      const MpegPoints a_points = mpeg_points(mmetric_samples(a, name), name, true, true);
-      const MpegPoints b_points = mpeg_points(mmetric_samples(b, copy), copy, true, true);
+      const MpegPoints a_points = mpeg_points(mmetric_samples(a, name), name, MpegReading{true, true});
+      const MpegPoints b_points = mpeg_points(mmetric_samples(b, copy), copy, MpegReading{true, true});
       const MpegFigures sampled = mpeg_point_cloud_figures(a_points, b_points, rules, name);
       const double sampled_seconds = watch.seconds();
 

@@ -36,12 +36,37 @@ const std::string kData = std::string(ROVING_SOURCE_DIR) + "/tests/data/mpeg/";
 struct Golden {
   std::string command;                        // pc_error's, as recorded
   std::string file_a, file_b;
-  std::string resolution;                     // empty: pc_error's default peak
-  std::string normals;                        // --inputNorm: A's normals from this file
-  bool rgb = false;                           // --mseSpace=0: c[k] are R, G, B
+  std::string options;                        // the command's options, as `roving measure --pcc` takes them
+  std::string colour_space;                   // --mseSpace: "0", "1" (default) or "8"
   double peak = 0;
   std::map<std::string, std::string> values;  // "a_to_b/d1_mse" -> "1.48473455"
 };
+
+// A pc_error (or mmetric) command line's options as roving's: each option that changes a figure has
+// its equivalent (docs/mpeg.md's table); those that change none are left out; any other fails.
+std::string translated(const std::string& command) {
+  static const std::map<std::string, std::string> ours = {
+      {"resolution", "--pcc-resolution"},        {"inputNorm", "--pcc-normals"},
+      {"dropdups", "--pcc-dropdups"},            {"neighborsProc", "--pcc-neighbors-proc"},
+      {"averageNormals", "--pcc-average-normals"}, {"mseSpace", "--pcc-mse-space"},
+      {"normalCalcModificationEnable", "--pcc-normal-calc-modification"}};
+  // Files, and options whose figures roving always gives (colour, Hausdorff) or that change none.
+  static const std::set<std::string> none = {"fileA", "fileB", "inputModelA", "inputModelB", "color",
+                                             "hausdorff", "nbThreads", "mode"};
+  std::string options;
+  const std::regex option(R"(--(\w+)(=(\S+))?)");
+  for (auto it = std::sregex_iterator(command.begin(), command.end(), option); it != std::sregex_iterator(); ++it) {
+    const std::string key = (*it)[1], value = (*it)[3];
+    if (none.count(key)) continue;
+    const auto found = ours.find(key);
+    if (found == ours.end()) {
+      ADD_FAILURE() << "--" << key << " of " << command << " has no equivalent";
+      continue;
+    }
+    options += " " + found->second + " " + (key == "inputNorm" ? kData + value : value);
+  }
+  return options;
+}
 
 Golden read_golden(const std::string& name) {
   std::ifstream in(kData + "golden/" + name + ".txt");
@@ -55,11 +80,12 @@ Golden read_golden(const std::string& name) {
   };
   g.file_a = option("fileA") + option("inputModelA");  // pc_error's or mmetric's
   g.file_b = option("fileB") + option("inputModelB");
-  g.resolution = option("resolution");
-  g.normals = option("inputNorm");
-  g.rgb = option("mseSpace") == "0";
+  g.options = translated(g.command);
+  g.colour_space = option("mseSpace").empty() ? "1" : option("mseSpace");
   const char* sections[] = {"a_to_b", "b_to_a", "symmetric"};
-  const char* ycbcr[] = {"y", "cb", "cr"};
+  // c[k]'s names in each colour space (h.c[k] are always R, G, B).
+  const char* const spaces[][3] = {{"r", "g", "b"}, {"y", "cb", "cr"}, {"ycocg_y", "co", "cg"}};
+  const auto& space = spaces[g.colour_space == "0" ? 0 : g.colour_space == "8" ? 2 : 1];
   const char* rgb[] = {"r", "g", "b"};
   const std::regex geometry(R"(^\s*(mse|h\.)[12F]?(,PSNR)?\s*[12F]?\s*\((p2point|p2plane)\): (\S+))");
   const std::regex colour(R"(^\s*(h\.)?c\[(\d)\],(PSNR)?\s*[12F]\s*: (\S+))");
@@ -76,7 +102,7 @@ Golden read_golden(const std::string& name) {
     } else if (std::regex_search(line, m, colour)) {
       const int channel = std::stoi(m[2]);
       const bool hausdorff = m[1].matched;
-      const std::string name = hausdorff || g.rgb ? rgb[channel] : ycbcr[channel];
+      const std::string name = hausdorff ? rgb[channel] : space[channel];
       const bool psnr = m[3].matched;
       g.values[section + "/" + name + (hausdorff ? "_hausdorff" : "") + (psnr ? "_psnr" : hausdorff ? "" : "_mse")] =
           m[4];
@@ -86,9 +112,7 @@ Golden read_golden(const std::string& name) {
 }
 
 nlohmann::json measure_pcc(const Golden& g) {
-  const CliRun run = run_cli("measure " + kData + g.file_a + " " + kData + g.file_b + " --pcc --json -" +
-                             (g.resolution.empty() ? "" : " --pcc-resolution " + g.resolution) +
-                             (g.normals.empty() ? "" : " --pcc-normals " + kData + g.normals));
+  const CliRun run = run_cli("measure " + kData + g.file_a + " " + kData + g.file_b + " --pcc --json -" + g.options);
   EXPECT_EQ(run.exit_code, 0) << run.err;
   return nlohmann::json::parse(run.out)["mpeg_pcc"];
 }
@@ -120,6 +144,63 @@ TEST(PcErrorGolden, VoxelisedTenBitsWithDuplicates) {
   expect_equal_to_pc_error("sphere10_r1023", 3 * 8 + 3 * 12);
   expect_equal_to_pc_error("sphere10_peak", 3 * 8 + 3 * 12);
   expect_equal_to_pc_error("sphere10_rgb", 3 * 8 + 3 * 12);
+}
+
+// pc_error's options that change a figure, each from its recorded command line as translated()
+// translates it: which points at one position are kept (--dropdups), which colour of the points
+// tied nearest (--neighborsProc: on sphere10 most points have several), D2 from the first found
+// alone (--averageNormals 0), YCoCg-R (--mseSpace 8), and some together.
+TEST(PcErrorGolden, EveryOptionThatChangesAFigure) {
+  for (const char* name : {"sphere10_dropdups0", "sphere10_dropdups1", "sphere10_neighbors0", "sphere10_neighbors2",
+                           "sphere10_neighbors3", "sphere10_neighbors4", "sphere10_average_normals0", "sphere10_ycocg",
+                           "sphere10_dropdups0_neighbors2", "sphere10_mixed", "blob_float_neighbors3"}) {
+    expect_equal_to_pc_error(name, 3 * 8 + 3 * 12);
+  }
+  expect_equal_to_pc_error("torus11_average_normals0", 3 * 8);
+  // The options are in the report, as pc_error names them; the defaults' reports have none.
+  const nlohmann::json mixed = measure_pcc(read_golden("sphere10_mixed"));
+  EXPECT_EQ(mixed["pc_error_options"],
+            nlohmann::json({{"dropdups", 1}, {"neighborsProc", 4}, {"averageNormals", 0}, {"mseSpace", 8}}));
+  EXPECT_EQ(mixed["points"][0], 6649);
+  EXPECT_EQ(measure_pcc(read_golden("sphere10_dropdups0"))["points"][0], 8000);
+  EXPECT_FALSE(measure_pcc(read_golden("sphere10_r1023")).contains("pc_error_options"));
+}
+
+// NaN normals in A (60 of 8,000): pc_error computes on, adding for a nearest point with a NaN normal
+// the sum of the coordinates' differences, unsquared (under --averageNormals 0 the squared distance);
+// so do MPEG's figures here, with a warning naming how many and the first.
+TEST(PcErrorGolden, NanNormalsAsPcErrorComputesOnThem) {
+  expect_equal_to_pc_error("sphere10_nan_normals", 3 * 8 + 3 * 12);
+  expect_equal_to_pc_error("sphere10_nan_normals_average0", 3 * 8 + 3 * 12);
+  const CliRun run =
+      run_cli("measure " + kData + "sphere10_a_nan_normals.ply " + kData + "sphere10_b.ply --pcc --json -");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(run.err.find("of " + kData + "sphere10_a_nan_normals.ply's normals are NaN, the first its point"),
+            std::string::npos)
+      << run.err;
+}
+
+// The defaults through pc_error's loop as written (pc_error_loop.h) and through the faster search
+// give the same figures, bit for bit: the voxelised pairs' lattice, the float pair's k-d tree.
+TEST(PcErrorFigures, ItsLoopAsWrittenAgreesWithTheFasterSearch) {
+  for (const char* pair : {"sphere10", "torus11", "blob_float"}) {
+    SCOPED_TRACE(pair);
+    MpegPoints a = mpeg_points(read_point_cloud(kData + pair + "_a.ply", false), "a", MpegReading{true});
+    const MpegPoints b = mpeg_points(read_point_cloud(kData + pair + "_b.ply", false), "b", MpegReading{false});
+    MpegRules rules;
+    const MpegFigures fast = mpeg_point_cloud_figures(a, b, rules, "a");
+    a.nan_normals = 1;  // pretends: the loop as written then answers
+    const MpegFigures loop = mpeg_point_cloud_figures(a, b, rules, "a");
+    for (const auto& [f, l] : {std::pair(fast.a_to_b, loop.a_to_b), std::pair(fast.b_to_a, loop.b_to_a)}) {
+      EXPECT_EQ(f.d1_mse, l.d1_mse);
+      EXPECT_EQ(f.d2_mse, l.d2_mse);
+      EXPECT_EQ(f.d1_hausdorff, l.d1_hausdorff);
+      EXPECT_EQ(f.d2_hausdorff, l.d2_hausdorff);
+      EXPECT_EQ(f.ycbcr_mse, l.ycbcr_mse);
+      EXPECT_EQ(f.rgb_mse, l.rgb_mse);
+      EXPECT_EQ(f.rgb_hausdorff, l.rgb_hausdorff);
+    }
+  }
 }
 
 // A's normals not unit, and some of length 0, as some tools write them: pc_error uses them as the
@@ -196,6 +277,8 @@ TEST(MmetricGolden, MeshesSampledAsMmetricSamplesThem) {
   expect_equal_to_pc_error("mmetric_fandisk10_r1023", 3 * 8 + 3 * 12);
   expect_equal_to_pc_error("mmetric_rocker8", 3 * 8);
   expect_equal_to_pc_error("mmetric_fandisk10_points", 3 * 8 + 3 * 12);
+  // --normalCalcModificationEnable=false: A -> B's D2 along A's normals carried onto B, as pc_error's.
+  expect_equal_to_pc_error("mmetric_fandisk10_carried", 3 * 8 + 3 * 12);
   const nlohmann::json ours = measure_pcc(read_golden("mmetric_fandisk10"));
   std::ifstream golden(kData + "golden/mmetric_fandisk10.txt");
   const std::string text((std::istreambuf_iterator<char>(golden)), std::istreambuf_iterator<char>());
@@ -358,7 +441,7 @@ TEST(MpegPoints, EqualPointsMergeAsPcErrorMergesThem) {
   const double nan = std::nan("");
   cloud.normals = {{1, 0, 0}, {0, 1, 0}, {nan, 0, 0}, {0, 0, 1}, {0, -1, 0}, {0, 0, -1}};
   cloud.colours = {{10, 20, 30}, {0, 0, 0}, {255, 255, 254}, {7, 8, 9}, {11, 21, 32}, {1, 2, 3}};
-  const MpegPoints points = mpeg_points(cloud, "six.ply", true);
+  const MpegPoints points = mpeg_points(cloud, "six.ply", MpegReading{true});
   ASSERT_EQ(points.size(), 4u);
   EXPECT_EQ(points.points_read, 6u);
   using P = std::array<float, 3>;
@@ -368,7 +451,7 @@ TEST(MpegPoints, EqualPointsMergeAsPcErrorMergesThem) {
   EXPECT_EQ(points.colours, (std::vector<C>{{7, 8, 9}, {127, 127, 127}, {10, 20, 31}, {1, 2, 3}}));
   // mmetric's merging averages the normals instead, so there the NaN one is read and named.
   try {
-    mpeg_points(cloud, "six.ply", true, true);
+    mpeg_points(cloud, "six.ply", MpegReading{true, true});
     ADD_FAILURE() << "a NaN normal that is averaged was accepted";
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("six.ply: normal 2"), std::string::npos) << e.what();
@@ -378,11 +461,46 @@ TEST(MpegPoints, EqualPointsMergeAsPcErrorMergesThem) {
   cloud.normals[5] = {nan, 0, 0};
   cloud.normals[3] = {nan, 0, 0};
   try {
-    mpeg_points(cloud, "six.ply", true, true);
+    mpeg_points(cloud, "six.ply", MpegReading{true, true});
     ADD_FAILURE() << "NaN normals that are averaged were accepted";
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("six.ply: normal 2"), std::string::npos) << e.what();
   }
+}
+
+// pc_error's --dropdups 0 and 1, the counts --neighborsProc 2 weighs by, and NaN normals kept where
+// asked (pc_error computes on with them; counted, the first in file order named).
+TEST(MpegPoints, DuplicatesKeptOrTheFirstAsPcErrorsDropdupsSays) {
+  PointCloud cloud;
+  cloud.positions = {{1, 0, 0}, {-0.0, 2, 0}, {0, 2, 0}, {0, -1, 5}, {1, 0, 0}, {1, 0, 1e-9}};
+  const double nan = std::nan("");
+  cloud.normals = {{1, 0, 0}, {0, 1, 0}, {nan, 0, 0}, {0, 0, 1}, {0, -1, 0}, {0, 0, -1}};
+  cloud.colours = {{10, 20, 30}, {0, 0, 0}, {255, 255, 254}, {7, 8, 9}, {11, 21, 32}, {1, 2, 3}};
+  using C = std::array<std::uint8_t, 3>;
+  MpegReading all{true};
+  all.dropdups = 0;
+  EXPECT_THROW(mpeg_points(cloud, "six.ply", all), Error);  // point 2's NaN normal is used now
+  all.nan_normals = true;
+  const MpegPoints kept = mpeg_points(cloud, "six.ply", all);
+  ASSERT_EQ(kept.size(), 6u);  // sorted, equal points in file order
+  EXPECT_EQ(kept.colours, (std::vector<C>{{7, 8, 9}, {0, 0, 0}, {255, 255, 254}, {10, 20, 30}, {11, 21, 32}, {1, 2, 3}}));
+  EXPECT_EQ(kept.nan_normals, 1u);
+  EXPECT_EQ(kept.first_nan_normal, 2u);
+  EXPECT_TRUE(std::isnan(kept.normals[2][0]));
+  MpegReading first{true};
+  first.dropdups = 1;
+  const MpegPoints firsts = mpeg_points(cloud, "six.ply", first);  // point 2 is dropped, its normal unused
+  EXPECT_EQ(firsts.colours, (std::vector<C>{{7, 8, 9}, {0, 0, 0}, {10, 20, 30}, {1, 2, 3}}));
+  using P = std::array<float, 3>;
+  EXPECT_EQ(firsts.normals, (std::vector<P>{{0, 0, 1}, {0, 1, 0}, {1, 0, 0}, {0, 0, -1}}));
+  EXPECT_EQ(firsts.nan_normals, 0u);
+  MpegReading counted{true};
+  counted.merged_counts = true;
+  EXPECT_EQ(mpeg_points(cloud, "six.ply", counted).merged, (std::vector<std::uint32_t>{1, 2, 2, 1}));
+  // An infinite normal is refused even where NaN ones are kept.
+  cloud.normals[0] = {std::numeric_limits<double>::infinity(), 0, 0};
+  all.dropdups = 2;
+  EXPECT_THROW(mpeg_points(cloud, "six.ply", all), Error);
 }
 
 // The lattice search against every point: the shell is all points at the least squared distance
@@ -480,9 +598,9 @@ TEST(PcErrorFigures, VoxelisedCloudsGiveTheFiguresOfTheGeneralSearch) {
       rules.mmetric = mmetric;
       rules.resolution = resolution;
       const MpegFigures on =
-          mpeg_point_cloud_figures(mpeg_points(a, "a", true), mpeg_points(b, "b", false), rules, "a");
-      const MpegFigures off = mpeg_point_cloud_figures(mpeg_points(a_moved, "a", true),
-                                                       mpeg_points(b_moved, "b", false), rules, "a");
+          mpeg_point_cloud_figures(mpeg_points(a, "a", MpegReading{true}), mpeg_points(b, "b", MpegReading{false}), rules, "a");
+      const MpegFigures off = mpeg_point_cloud_figures(mpeg_points(a_moved, "a", MpegReading{true}),
+                                                       mpeg_points(b_moved, "b", MpegReading{false}), rules, "a");
       EXPECT_EQ(on.peak, off.peak);
       for (const auto& [x, y] : {std::pair{on.a_to_b, off.a_to_b}, std::pair{on.b_to_a, off.b_to_a}}) {
         EXPECT_EQ(x.d1_mse, y.d1_mse);

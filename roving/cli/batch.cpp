@@ -249,6 +249,11 @@ std::string pair_key(const MeasureArguments& a, const std::string& reference_sha
   if (a.pcc) identity += "|pcc";
   if (a.pcc_resolution) identity += fmt::format("|pcc_resolution={}", *a.pcc_resolution);
   if (!a.pcc_normals.empty()) identity += "|pcc_normals=" + other_files;
+  if (a.pcc_dropdups != 2 || a.pcc_neighbors_proc != 1 || a.pcc_average_normals != 1 || a.pcc_mse_space != 1) {
+    identity += fmt::format("|pcc_options={},{},{},{}", a.pcc_dropdups, a.pcc_neighbors_proc, a.pcc_average_normals,
+                            a.pcc_mse_space);
+  }
+  if (!a.pcc_normal_calc_modification) identity += "|pcc_normal_calc_modification=false";
   if (!a.protocol.empty()) {
     identity += fmt::format("|protocol={}|files={}|dtu={},{},{}|seed={}|runs={}|tnt_scene={}|tnt_tau={}", a.protocol,
                             other_files, a.dtu_density, a.dtu_patch, a.dtu_max_dist, a.protocol_seed,

@@ -145,6 +145,30 @@ void add_measurement_options(CLI::App& app, MeasureArguments& args, bool& trust_
   app.add_option("--pcc-normals", args.pcc_normals,
                  "A's normals for D2 from this file, pc_error's --inputNorm: a point cloud of A's points "
                  "(in any order, duplicates merged as A's) with normals; they replace any A has");
+  app.add_option("--pcc-dropdups", args.pcc_dropdups,
+                 "pc_error's --dropdups: points of one cloud at one position 0 all kept, 1 the first kept, 2 merged "
+                 "into one, their colours averaged")
+      ->check(CLI::Range(0, 2))
+      ->capture_default_str();
+  app.add_option("--pcc-neighbors-proc", args.pcc_neighbors_proc,
+                 "pc_error's --neighborsProc: the colour of the other cloud's points tied nearest, 0 the first its "
+                 "search finds, 1 their mean, 2 their mean weighted by the points each merged, 3 the nearest in RGB, "
+                 "4 the farthest in RGB")
+      ->check(CLI::Range(0, 4))
+      ->capture_default_str();
+  app.add_option("--pcc-average-normals", args.pcc_average_normals,
+                 "pc_error's --averageNormals: 1 D2 averaged over the points tied nearest, 0 the first found alone")
+      ->check(CLI::Range(0, 1))
+      ->capture_default_str();
+  app.add_option("--pcc-mse-space", args.pcc_mse_space,
+                 "pc_error's --mseSpace: 8 adds YCoCg-R's colour PSNRs; 0 (RGB) and 1 (BT.709 Y'CbCr) are both "
+                 "always given")
+      ->check(CLI::IsMember({0, 1, 8}))
+      ->capture_default_str();
+  app.add_option("--pcc-normal-calc-modification", args.pcc_normal_calc_modification,
+                 "mmetric's --normalCalcModificationEnable, on meshes: true, D2 from A to B along B's own normals "
+                 "(its samples' faces'); false, along A's carried onto B as pc_error carries them")
+      ->capture_default_str();
   app.add_option("--protocol", args.protocol,
                  "a benchmark's own evaluation, step by step, on REF (its ground truth) and TEST (the "
                  "reconstruction): dtu, as DTUeval-python's eval.py computes it (needs --dtu-obs-mask and "

@@ -44,6 +44,11 @@ struct MeasureArguments {
   bool pcc = false;                     // MPEG's point-cloud figures alone (pc_error's)
   std::optional<double> pcc_resolution;  // their PSNR peak; unset: pc_error's default
   std::string pcc_normals;               // A's normals from this file (pc_error's --inputNorm)
+  int pcc_dropdups = 2;                  // pc_error's --dropdups, --neighborsProc, --averageNormals, --mseSpace
+  int pcc_neighbors_proc = 1;
+  int pcc_average_normals = 1;
+  int pcc_mse_space = 1;
+  bool pcc_normal_calc_modification = true;  // mmetric's --normalCalcModificationEnable
   std::string protocol;                  // "dtu", "tanks-and-temples": a benchmark's own evaluation (roving/protocols/)
   std::string dtu_obs_mask, dtu_plane;   // its data set's files
   double dtu_density = 0.2, dtu_patch = 60, dtu_max_dist = 20;

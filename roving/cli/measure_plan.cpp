@@ -347,6 +347,11 @@ MeasurePlan plan_measurement(const MeasureArguments& args) {
   }
   plan.pcc_resolution = default_peak ? std::nullopt : args.pcc_resolution;
   plan.pcc_normals = args.pcc_normals;
+  plan.pcc_options.dropdups = args.pcc_dropdups;
+  plan.pcc_options.neighbors_proc = args.pcc_neighbors_proc;
+  plan.pcc_options.average_normals = args.pcc_average_normals != 0;
+  plan.pcc_options.ycocg = args.pcc_mse_space == 8;
+  plan.pcc_b_own_normals = args.pcc_normal_calc_modification;
   plan.pcc_only = args.pcc;
   if (args.pcc) {
     // --pcc's outputs are MPEG's figures in the report: no per-sample files, pictures or pages.

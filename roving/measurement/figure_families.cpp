@@ -236,7 +236,7 @@ const FigureFamily kMpeg = {
     [](FamilyInputs& in, MeasureReport& report) {
       in.stage = fmt::format("computing MPEG's point-cloud figures of {} and {}", in.a.path(), in.b.path());
       in.progress.stage("MPEG point-cloud figures");
-      report.mpeg = mpeg_report(in.a, in.b, in.plan.pcc_resolution, in.plan.pcc_normals);
+      report.mpeg = mpeg_report(in.a, in.b, in.plan);
       in.warn(report.mpeg->warnings);
       if (!in.plan.pcc_only || !report.symmetric()) return;
       std::array<SurfaceFigures, 2> exact;

@@ -44,7 +44,30 @@ bool has_colour(const Model& model) {
 
 }  // namespace
 
+namespace {
+
+// pc_error's options apply to MPEG's figures of two point clouds; mmetric's, to those of a mesh
+// (measured by mmetric's rules, whose pc_error-like options are not compared with mmetric here).
+void require_mpeg_options_apply(const MeasurePlan& plan, const Model& a, const Model& b) {
+  const bool mesh = a.type == ModelType::Mesh || b.type == ModelType::Mesh;
+  const bool mpeg = plan.pcc_only || (a.type == ModelType::Points && b.type == ModelType::Points);
+  if ((!plan.pcc_options.defaults() || plan.pcc_options.ycocg) && (!mpeg || mesh)) {
+    throw Error(fmt::format("--pcc-dropdups, --pcc-neighbors-proc, --pcc-average-normals, --pcc-mse-space: "
+                            "pc_error's options, for MPEG's figures of two point clouds; found {} and {}{}",
+                            to_string(a.type), to_string(b.type),
+                            mesh ? " (a mesh is measured as mmetric's compare --mode pcc measures it)" : ""));
+  }
+  if (!plan.pcc_b_own_normals && (!mpeg || !mesh)) {
+    throw Error(fmt::format("--pcc-normal-calc-modification: mmetric's option, for MPEG's figures of a mesh "
+                            "(--pcc); found {} and {} (pc_error's D2 always carries A's normals onto B)",
+                            to_string(a.type), to_string(b.type)));
+  }
+}
+
+}  // namespace
+
 void describe_pair(const Model& a, const Model& b, MeasurePlan& plan, MeasureReport& report) {
+  require_mpeg_options_apply(plan, a, b);
   if (!plan.pcc_normals.empty() && !(a.type == ModelType::Points && b.type == ModelType::Points)) {
     if (plan.pcc_only) {
       throw Error(fmt::format("--pcc-normals: pc_error's --inputNorm, for two point clouds; {} is a mesh "
@@ -88,36 +111,49 @@ namespace {
 
 // `path`'s point cloud as pc_error holds it: a binary PLY's records read where the file lies,
 // straight into single precision, any other file through read_point_cloud (normals as it has them).
-MpegPoints read_mpeg_points(const std::string& path, bool with_normals, bool average_normals) {
+MpegPoints read_mpeg_points(const std::string& path, const MpegReading& reading) {
   if (read_as_ply(path)) {
     const FileBytes file(path, "a .ply point cloud");
     if (const std::optional<PackedPointCloud> packed = ply_packed_points(path, file.bytes())) {
-      return mpeg_points(*packed, path, with_normals, average_normals);
+      return mpeg_points(*packed, path, reading);
     }
   }
-  return mpeg_points(read_point_cloud(path, false), path, with_normals, average_normals);
+  return mpeg_points(read_point_cloud(path, false), path, reading);
 }
 
 }  // namespace
 
-MpegReport mpeg_report(const Model& a, const Model& b, std::optional<double> resolution,
-                       const std::string& normals_path) {
+MpegReport mpeg_report(const Model& a, const Model& b, const MeasurePlan& plan) {
   const Stopwatch watch;
   MpegReport report;
   MpegRules rules;
-  rules.resolution = resolution;
+  rules.resolution = plan.pcc_resolution;
   rules.mmetric = a.type == ModelType::Mesh || b.type == ModelType::Mesh;
+  rules.options = plan.pcc_options;
+  rules.b_own_normals = plan.pcc_b_own_normals;
+  // How each cloud is held: merged as pc_error's --dropdups says (mmetric's own merging for
+  // meshes' samples); NaN normals kept, as pc_error computes on with them.
+  MpegReading reading;
+  reading.average_normals = rules.mmetric;
+  reading.dropdups = plan.pcc_options.dropdups;
+  reading.merged_counts = plan.pcc_options.neighbors_proc == 2 && plan.pcc_options.dropdups == 2;
+  reading.nan_normals = !rules.mmetric;
   const auto points_of = [&](const Model& model, bool normals, double& read_seconds) {
+    MpegReading r = reading;
+    r.normals = normals;
     if (model.type == ModelType::Mesh) {
-      return mpeg_points(mmetric_samples(model.mesh.mesh, model.path()), model.path(), true, true);
+      MpegReading samples;
+      samples.average_normals = true;
+      return mpeg_points(mmetric_samples(model.mesh.mesh, model.path()), model.path(), samples);
     }
     if (model.points_in_file) {
       const Stopwatch read;
-      MpegPoints points = read_mpeg_points(model.path(), normals, rules.mmetric);
+      MpegPoints points = read_mpeg_points(model.path(), r);
       read_seconds = read.seconds();
       return points;
     }
-    return mpeg_points(model.points, model.path(), normals && !model.normals_estimated, rules.mmetric);
+    r.normals = normals && !model.normals_estimated;
+    return mpeg_points(model.points, model.path(), r);
   };
   // pc_error reads colour only as uchar: a cloud whose file stores float colours has none for it,
   // and none in MPEG's figures here.
@@ -132,19 +168,29 @@ MpegReport mpeg_report(const Model& a, const Model& b, std::optional<double> res
         "colour figures for it, nor do MPEG's figures here (store them as uchar to have them)",
         (side == 0 ? a : b).path()));
   }
+  const std::string& normals_path = plan.pcc_normals;
   MpegPoints a_points, b_points, normals;
   tbb::parallel_invoke([&] { a_points = points_of(a, normals_path.empty(), report.read_seconds[0]); },
                        [&] { b_points = points_of(b, rules.mmetric, report.read_seconds[1]); },
                        [&] {
                          if (normals_path.empty()) return;
-                         // Merged as A's are: under mmetric's rules, duplicates' normals averaged.
-                         normals = mpeg_points(load_point_cloud(normals_path), normals_path, true, rules.mmetric);
+                         // Merged as A's are.
+                         normals = mpeg_points(load_point_cloud(normals_path), normals_path, reading);
                        });
   if (uncoloured[0]) a_points.colours.clear();
   if (uncoloured[1]) b_points.colours.clear();
   if (!normals_path.empty()) use_normals_of(a_points, normals, normals_path);
+  if (a_points.nan_normals > 0) {
+    report.warnings.push_back(fmt::format(
+        "normals: {} of {}'s normals are NaN, the first its point {} in file order; as pc_error, D2 takes "
+        "the sum of the coordinates' differences (unsquared) for a nearest point with a NaN normal (the squared "
+        "distance under --pcc-average-normals 0)",
+        a_points.nan_normals, normals_path.empty() ? a.path() : normals_path, a_points.first_nan_normal));
+  }
   report.figures = mpeg_point_cloud_figures(a_points, b_points, rules, a.path());
   report.normals_from = normals_path;
+  report.options = plan.pcc_options;
+  report.b_own_normals = plan.pcc_b_own_normals;
   report.a_sampled = a.type == ModelType::Mesh;
   report.points_read[0] = a_points.points_read;
   report.points_read[1] = b_points.points_read;
@@ -207,10 +253,11 @@ void measure_point_clouds(const Model& a, const Model& b, const MeasurePlan& pla
                               to_string(model->type)));
     }
   }
+  require_mpeg_options_apply(plan, a, b);
   report.pcc_only = true;
   stage = fmt::format("computing MPEG's point-cloud figures of {} and {}", a.path(), b.path());
   progress.stage("MPEG point-cloud figures");
-  report.mpeg = mpeg_report(a, b, plan.pcc_resolution, plan.pcc_normals);
+  report.mpeg = mpeg_report(a, b, plan);
   progress.clear();
   warn(report.mpeg->warnings);
   for (int side = 0; side < 2; ++side) report.load_seconds[side] += report.mpeg->read_seconds[side];

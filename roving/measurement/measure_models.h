@@ -24,9 +24,9 @@ Model load_for(const MeasurePlan& plan, const std::string& path, std::optional<M
 
 // MPEG's point-cloud figures: of two point clouds as pc_error computes them (its D2 takes A's
 // normals from its file; estimated ones are not pc_error's), or, where a model is a mesh, as
-// mmetric's compare --mode pcc does, each mesh sampled as mmetric samples it. `normals_path`:
-// --pcc-normals (empty: A's own).
-MpegReport mpeg_report(const Model& a, const Model& b, std::optional<double> resolution, const std::string& normals_path);
+// mmetric's compare --mode pcc does, each mesh sampled as mmetric samples it; with the plan's
+// peak, normals file and pc_error's (or mmetric's) options.
+MpegReport mpeg_report(const Model& a, const Model& b, const MeasurePlan& plan);
 
 // --pcc where a model is a point cloud: MPEG's figures of a and b alone (report.pcc_only; a mesh
 // among them sampled as mmetric samples it); throws naming a model that is neither a point cloud

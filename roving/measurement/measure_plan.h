@@ -11,6 +11,7 @@
 
 #include "gates.h"
 #include "shard.h"
+#include "roving/mpeg/point_cloud_psnr.h"
 #include "roving/core/distance_method.h"
 #include "roving/formats/outputs/heatmap.h"
 #include "roving/gl_methods/gl_methods.h"
@@ -45,6 +46,8 @@ struct MeasurePlan {
   bool pcc_only = false;                         // --pcc: MPEG's point-cloud figures, nothing else
   std::optional<double> pcc_resolution;          // --pcc-resolution
   std::string pcc_normals;                       // --pcc-normals
+  PcErrorOptions pcc_options;                    // --pcc-dropdups, -neighbors-proc, -average-normals, -mse-space
+  bool pcc_b_own_normals = true;                 // --pcc-normal-calc-modification (mmetric's, on meshes)
   std::optional<DtuPlan> dtu;                    // --protocol dtu
   std::optional<TanksAndTemplesPlan> tnt;        // --protocol tanks-and-temples
   bool protocol_only = false;                    // --protocol without --symmetric: its figures alone

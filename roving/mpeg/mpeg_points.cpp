@@ -211,7 +211,9 @@ struct PackedRecords {
 // The cloud's points sorted by `codec` (the order pc_error's sort gives: lexicographic, equal
 // points in file order) and runs of equal points merged into one.
 template <class Codec, class Cloud>
-MpegPoints sorted_and_merged(const Cloud& cloud, const Codec& codec, bool average_normals, const std::string& name) {
+MpegPoints sorted_and_merged(const Cloud& cloud, const Codec& codec, const MpegReading& reading,
+                             const std::string& name) {
+  const bool keep_all = reading.dropdups == 0;
   using Entry = decltype(codec.make({}, 0));
   const std::size_t n = cloud.size();
   std::vector<Entry> order(n);
@@ -233,21 +235,23 @@ MpegPoints sorted_and_merged(const Cloud& cloud, const Codec& codec, bool averag
   tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t b) {
     std::size_t count = 0;
     for (std::size_t k = b * kBlock; k < std::min(n, (b + 1) * kBlock); ++k) {
-      count += k == 0 || codec.position(order[k]) != codec.position(order[k - 1]);
+      count += keep_all || k == 0 || codec.position(order[k]) != codec.position(order[k - 1]);
     }
     first_run[b + 1] = count;
   });
   std::partial_sum(first_run.begin(), first_run.end(), first_run.begin());
   const std::size_t runs = first_run.back();
 
-  // A normal that is used must be finite; the first such in the file's order is the one named.
+  // A normal that is used must be finite (or NaN, where kept); the first such in the file's order
+  // is the one named.
   const bool normals = cloud.has_normals(), colours = cloud.has_colours();
-  std::atomic<std::size_t> first_bad_normal{n};
+  std::atomic<std::size_t> first_bad_normal{n}, first_nan_normal{n}, nan_normals{0};
   MpegPoints points;
   points.points_read = n;
   points.positions.resize(runs);
   if (normals) points.normals.resize(runs);
   if (colours) points.colours.resize(runs);
+  if (reading.merged_counts) points.merged.resize(runs);
   tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t b) {
     // What the loop reads, copied into this frame: the colours' byte stores might otherwise be
     // into any of it, and the compiler would read it all again after each.
@@ -261,21 +265,33 @@ MpegPoints sorted_and_merged(const Cloud& cloud, const Codec& codec, bool averag
       return keys.position(sorted[k]) == keys.position(sorted[j]);
     };
     const auto normal_at = [&](std::size_t k) {
-      const std::array<float, 3> normal = source.normal(keys.index(sorted[k]));
-      if (std::isnan(normal[0])) keep_least(first_bad_normal, keys.index(sorted[k]));
+      const std::uint32_t i = keys.index(sorted[k]);
+      const std::array<float, 3> normal = source.normal(i);
+      if (std::isnan(normal[0])) {
+        const Vec3 read = source.normal_as_read(i);
+        const bool nan = std::isnan(read.x()) || std::isnan(read.y()) || std::isnan(read.z());
+        const auto fits = [](double c) { return std::isnan(c) || std::fabs(c) <= std::numeric_limits<float>::max(); };
+        if (nan && fits(read.x()) && fits(read.y()) && fits(read.z())) {
+          keep_least(first_nan_normal, i);
+          ++nan_normals;
+        } else {
+          keep_least(first_bad_normal, i);
+        }
+      }
       return normal;
     };
     std::size_t out = first_run[b];
     std::size_t run = b * kBlock;
-    while (run < n && run > 0 && same_position(run, run - 1)) ++run;  // the block before's
+    while (!keep_all && run < n && run > 0 && same_position(run, run - 1)) ++run;  // the block before's
     for (const std::size_t stop = std::min(n, (b + 1) * kBlock); run < stop; ++out) {
       // The colours and normals are read in sorted order, at random in the file's: asked for
       // ahead, their cache misses overlap instead of following one another.
       if (run + kAhead < n && (normals || colours)) source.prefetch(keys.index(sorted[run + kAhead]));
       std::size_t end = run + 1;
-      while (end < n && same_position(end, run)) ++end;
+      while (!keep_all && end < n && same_position(end, run)) ++end;
       positions_out[out] = keys.point(sorted[run]);
-      if (normals && average_normals) {
+      if (reading.merged_counts) points.merged[out] = std::uint32_t(end - run);
+      if (normals && reading.average_normals) {
         std::array<float, 3> sum = {0, 0, 0};  // in single precision, in the sorted order, as mmetric
         for (std::size_t k = run; k < end; ++k) {
           const std::array<float, 3> normal = normal_at(k);
@@ -287,6 +303,9 @@ MpegPoints sorted_and_merged(const Cloud& cloud, const Codec& codec, bool averag
         normals_out[out] = normal_at(run);
       }
       if (colours && end == run + 1) {  // most points: their own colour, without three divisions
+        const std::uint32_t i = keys.index(sorted[run]);
+        colours_out[out] = {source.colour(i, 0), source.colour(i, 1), source.colour(i, 2)};
+      } else if (colours && reading.dropdups == 1) {  // the first's colour
         const std::uint32_t i = keys.index(sorted[run]);
         colours_out[out] = {source.colour(i, 0), source.colour(i, 1), source.colour(i, 2)};
       } else if (colours) {
@@ -301,16 +320,18 @@ MpegPoints sorted_and_merged(const Cloud& cloud, const Codec& codec, bool averag
       run = end;
     }
   });
-  if (first_bad_normal < n) {  // throws
-    const auto i = static_cast<std::uint32_t>(first_bad_normal.load());
+  if (first_bad_normal < n || (first_nan_normal < n && !reading.nan_normals)) {  // throws
+    const auto i = static_cast<std::uint32_t>(std::min(first_bad_normal.load(), first_nan_normal.load()));
     to_float(cloud.normal_as_read(i), name, "normal", i);
   }
+  points.nan_normals = nan_normals;
+  points.first_nan_normal = first_nan_normal;
   return points;
 }
 
 // `cloud`'s points as pc_error holds them (mpeg_points): checked, sorted and merged.
 template <class Cloud>
-MpegPoints points_of(Cloud& cloud, const std::string& name, bool average_normals) {
+MpegPoints points_of(Cloud& cloud, const std::string& name, const MpegReading& reading) {
   const std::size_t n = cloud.size();
   // On all cores: the points checked and prepared, and the bits in which they differ from the
   // first. The first point that is not representable (in file order) is the one named.
@@ -346,13 +367,14 @@ MpegPoints points_of(Cloud& cloud, const std::string& name, bool average_normals
     layout.width[c] = varying[c] == 0 ? 0 : 32 - __builtin_clz(varying[c]) - layout.low[c];
   }
   while (layout.index_bits < 64 && (std::uint64_t{1} << layout.index_bits) < n) ++layout.index_bits;
-  if (layout.bits() <= 64) return sorted_and_merged(cloud, packed, average_normals, name);
-  return sorted_and_merged(cloud, WideCodec{}, average_normals, name);
+  if (layout.bits() <= 64) return sorted_and_merged(cloud, packed, reading, name);
+  return sorted_and_merged(cloud, WideCodec{}, reading, name);
 }
 
 }  // namespace
 
-MpegPoints mpeg_points(const PointCloud& cloud, const std::string& name, bool with_normals, bool average_normals) {
+MpegPoints mpeg_points(const PointCloud& cloud, const std::string& name, const MpegReading& reading) {
+  const bool with_normals = reading.normals;
   const std::size_t n = cloud.positions.size();
   if (n == 0) throw Error(fmt::format("{}: no points; expected a point cloud", name));
   if (with_normals && !cloud.normals.empty() && cloud.normals.size() != n) {
@@ -366,14 +388,13 @@ MpegPoints mpeg_points(const PointCloud& cloud, const std::string& name, bool wi
   std::vector<std::array<float, 3>> normals(with_normals && !cloud.normals.empty() ? n : 0);
   std::vector<std::array<std::uint8_t, 4>> colours(cloud.colours.empty() ? 0 : n);
   MemoryCloud memory{&cloud, normals.empty() ? nullptr : normals.data(), colours.empty() ? nullptr : colours.data()};
-  return points_of(memory, name, average_normals);
+  return points_of(memory, name, reading);
 }
 
-MpegPoints mpeg_points(const PackedPointCloud& packed, const std::string& name, bool with_normals,
-                       bool average_normals) {
+MpegPoints mpeg_points(const PackedPointCloud& packed, const std::string& name, const MpegReading& reading) {
   if (packed.count == 0) throw Error(fmt::format("{}: no points; expected a point cloud", name));
-  PackedRecords records{packed, with_normals};
-  return points_of(records, name, average_normals);
+  PackedRecords records{packed, reading.normals};
+  return points_of(records, name, reading);
 }
 
 void use_normals_of(MpegPoints& a, MpegPoints& normals, const std::string& name) {
@@ -398,6 +419,8 @@ void use_normals_of(MpegPoints& a, MpegPoints& normals, const std::string& name)
                             ours[0], ours[1], ours[2]));
   }
   a.normals = std::move(normals.normals);
+  a.nan_normals = normals.nan_normals;
+  a.first_nan_normal = normals.first_nan_normal;
 }
 
 }  // namespace roving

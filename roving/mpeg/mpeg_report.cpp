@@ -13,6 +13,9 @@ nlohmann::json psnr_json(double psnr) {
   return std::isfinite(psnr) ? nlohmann::json(psnr) : nlohmann::json(nullptr);
 }
 
+// YCoCg-R's PSNR peaks, as pc_error's: 255 for Y, 511 for Co and Cg.
+double ycocg_peak(int channel) { return channel == 0 ? 255 : 511; }
+
 nlohmann::json mpeg_direction_json(const MpegDirection& d, const MpegFigures& f) {
   nlohmann::json json = {{"points", d.points},
                          {"d1_mse", d.d1_mse},
@@ -37,6 +40,13 @@ nlohmann::json mpeg_direction_json(const MpegDirection& d, const MpegFigures& f)
       json[fmt::format("{}_psnr", rgb[c])] = psnr_json(colour_psnr(d.rgb_mse[c], 255));
       json[fmt::format("{}_hausdorff", rgb[c])] = d.rgb_hausdorff[c];
       json[fmt::format("{}_hausdorff_psnr", rgb[c])] = psnr_json(colour_psnr(d.rgb_hausdorff[c], 255));
+    }
+  }
+  if (f.ycocg) {  // pc_error's --mseSpace=8: Y on [0, 255], Co and Cg on [1, 511]
+    const char* ycocg[3] = {"ycocg_y", "co", "cg"};
+    for (int c = 0; c < 3; ++c) {
+      json[fmt::format("{}_mse", ycocg[c])] = d.ycocg_mse[c];
+      json[fmt::format("{}_psnr", ycocg[c])] = psnr_json(colour_psnr(d.ycocg_mse[c], ycocg_peak(c)));
     }
   }
   return json;
@@ -97,6 +107,15 @@ nlohmann::json mpeg_json(const MpegReport& m) {
       {"b_to_a", mpeg_direction_json(f.b_to_a, f)},
       {"symmetric", mpeg_direction_json(f.symmetric(), f)},
       {"seconds", m.seconds}};
+  // Options other than the tools' defaults, named as the tools name them.
+  const PcErrorOptions& o = m.options;
+  if (!o.defaults() || o.ycocg) {
+    json["pc_error_options"] = {{"dropdups", o.dropdups},
+                                {"neighborsProc", o.neighbors_proc},
+                                {"averageNormals", o.average_normals ? 1 : 0},
+                                {"mseSpace", o.ycocg ? 8 : 1}};
+  }
+  if (!m.b_own_normals) json["mmetric_options"] = {{"normalCalcModificationEnable", false}};
   if (m.surface) {
     const auto& [ab, ba] = *m.surface;
     json["exact_surface"] = {
@@ -123,6 +142,12 @@ std::string mpeg_lines(const MpegReport& m) {
                    : "largest nearest-neighbour spacing within A",
       m.points[0], m.points[1], m.points_read[0], m.points_read[1], f.mmetric ? "sampled or read" : "read");
   if (!m.normals_from.empty()) out += fmt::format("  D2 along A's normals from {}\n", m.normals_from);
+  if (!m.options.defaults() || m.options.ycocg) {
+    out += fmt::format("  pc_error's --dropdups={} --neighborsProc={} --averageNormals={} --mseSpace={}\n",
+                       m.options.dropdups, m.options.neighbors_proc, m.options.average_normals ? 1 : 0,
+                       m.options.ycocg ? 8 : 1);
+  }
+  if (!m.b_own_normals) out += "  mmetric's --normalCalcModificationEnable=false: A's normals carried onto B\n";
   out += fmt::format("  {:<28} {:>16} {:>16} {:>16}\n", "figure", "A -> B", "B -> A", "symmetric");
   const MpegDirection both = f.symmetric();
   const auto row = [&](const char* name, auto value) {
@@ -152,6 +177,11 @@ std::string mpeg_lines(const MpegReport& m) {
     const char* rgb[3] = {"R PSNR, dB", "G PSNR, dB", "B PSNR, dB"};
     for (int c = 0; c < 3; ++c)
       row(rgb[c], [&](const MpegDirection& d) { return colour_psnr(d.rgb_mse[c], 255); });
+  }
+  if (f.ycocg) {
+    const char* names[3] = {"Y PSNR (YCoCg-R), dB", "Co PSNR, dB", "Cg PSNR, dB"};
+    for (int c = 0; c < 3; ++c)
+      row(names[c], [&](const MpegDirection& d) { return colour_psnr(d.ycocg_mse[c], ycocg_peak(c)); });
   }
   if (!f.d2) out += "  no D2: A has no normals in its file (pc_error takes D2's normals from A alone)\n";
   if (m.surface) {

@@ -29,6 +29,8 @@ struct MpegReport {
   // Two meshes under --pcc: D1 of the surfaces themselves, A -> B and B -> A (surface_psnr.h).
   std::optional<std::array<SurfaceFigures, 2>> surface;
   std::vector<std::string> warnings;  // about the clouds as pc_error reads them (the report's to give)
+  PcErrorOptions options;             // pc_error's options the figures follow
+  bool b_own_normals = true;          // mmetric's --normalCalcModificationEnable (meshes)
 };
 
 nlohmann::json mpeg_json(const MpegReport& report);

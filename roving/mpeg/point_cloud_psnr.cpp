@@ -12,44 +12,22 @@
 #include <limits>
 #include <memory>
 #include <mutex>
-#include <nanoflann.hpp>
 #include <optional>
 #include <vector>
 
 #include "roving/core/error.h"
 #include "roving/mpeg/lattice_neighbours.h"
+#include "roving/mpeg/pc_error_arithmetic.h"
+#include "roving/mpeg/pc_error_loop.h"
 
 namespace roving {
 namespace {
 
 using Point = std::array<float, 3>;
+using PointsAdaptor = MpegPointsAdaptor;
+using KdTree = MpegKdTree;  // pc_error's: its figures then agree to the last bit
 
-struct PointsAdaptor {
-  const std::vector<Point>& points;
-  std::size_t kdtree_get_point_count() const { return points.size(); }
-  float kdtree_get_pt(std::uint32_t i, std::size_t axis) const { return points[i][axis]; }
-  template <class Box>
-  bool kdtree_get_bbox(Box&) const {
-    return false;
-  }
-};
-
-// Squared distances in double of single-precision differences, as pc_error's (and nanoflann's
-// L2 metric on float points) are: the figures then agree to the last bit.
-using KdTree =
-    nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Adaptor<float, PointsAdaptor, double>, PointsAdaptor, 3,
-                                        std::uint32_t>;
-
-// The squared distance of two points as the k-d tree's metric and pc_error compute it: in double,
-// of the single-precision differences, summed x, y, z.
-double squared_distance(const Point& p, const Point& q) {
-  double sum = 0;
-  for (int c = 0; c < 3; ++c) {
-    const double d = p[c] - q[c];
-    sum += d * d;
-  }
-  return sum;
-}
+double squared_distance(const Point& p, const Point& q) { return mpeg_squared_distance(p, q); }
 
 constexpr std::size_t kMaxNeighbours = 30;  // pc_error's bound on the neighbours it looks at
 
@@ -130,7 +108,7 @@ class NearestPoints {
   // Built on first use: on a lattice, most clouds never need it.
   const KdTree& tree() const {
     std::call_once(built_, [this] {
-      tree_ = std::make_unique<KdTree>(3, adaptor_, nanoflann::KDTreeSingleIndexAdaptorParams(10));
+      tree_ = std::make_unique<KdTree>(3, adaptor_, nanoflann::KDTreeSingleIndexAdaptorParams(kMpegTreeLeaf));
     });
     return *tree_;
   }
@@ -189,14 +167,6 @@ void for_each_block(std::size_t count, const Body& body) {
   tbb::parallel_for(std::size_t{0}, (count + kBlock - 1) / kBlock, [&](std::size_t block) {
     body(block, block * kBlock, std::min(count, (block + 1) * kBlock));
   });
-}
-
-// pc_error's BT.709 Y'CbCr on [0, 1], in single precision as it stores it.
-std::array<float, 3> ycbcr(const std::array<std::uint8_t, 3>& c) {
-  const double r = c[0], g = c[1], b = c[2];
-  return {float((0.2126 * r + 0.7152 * g + 0.0722 * b) / 255.0),
-          float((-0.1146 * r - 0.3854 * g + 0.5000 * b) / 255.0 + 0.5000),
-          float((0.5000 * r - 0.4542 * g - 0.0458 * b) / 255.0 + 0.5000)};
 }
 
 // Each point of `from`'s nearest points in `to` (nearest_tied), kept block by block for a second
@@ -274,7 +244,7 @@ std::vector<Point> normals_carried(const MpegPoints& a, const MpegPoints& b, con
 // Each point of `from` against `to`: sums and maxima per block, then over the blocks in order.
 // `matches`: `from`'s points' matches where found already, else searched here.
 MpegDirection direction(const MpegPoints& from, const MpegPoints& to, const NearestPoints& to_nearest,
-                        const Matches* matches, const std::vector<Point>* to_normals, bool colour,
+                        const Matches* matches, const std::vector<Point>* to_normals, bool colour, bool ycocg,
                         double threshold) {
   const bool ties = to_normals || colour;  // D1 needs the nearest point alone
   std::vector<MpegDirection> blocks((from.size() + kBlock - 1) / kBlock);
@@ -335,7 +305,11 @@ MpegDirection direction(const MpegPoints& from, const MpegPoints& to, const Near
           const unsigned count = unsigned(n.found);
           for (int c = 0; c < 3; ++c) mean[c] = std::uint8_t((2 * total[c] + count) / (2 * count));
         }
-        const std::array<float, 3> in = ycbcr(from.colours[i]), met = ycbcr(mean);
+        const std::array<float, 3> in = pc_error_ycbcr(from.colours[i]), met = pc_error_ycbcr(mean);
+        if (ycocg) {
+          const std::array<float, 3> in8 = pc_error_ycocg(from.colours[i]), met8 = pc_error_ycocg(mean);
+          for (int c = 0; c < 3; ++c) sum.ycocg_mse[c] += double((in8[c] - met8[c]) * (in8[c] - met8[c]));
+        }
         for (int c = 0; c < 3; ++c) {
           const float dy = in[c] - met[c];
           sum.ycbcr_mse[c] += double(dy * dy);
@@ -357,6 +331,7 @@ MpegDirection direction(const MpegPoints& from, const MpegPoints& to, const Near
     for (int c = 0; c < 3; ++c) {
       d.ycbcr_mse[c] += b.ycbcr_mse[c];
       d.rgb_mse[c] += b.rgb_mse[c];
+      d.ycocg_mse[c] += b.ycocg_mse[c];
       d.rgb_hausdorff[c] = std::max(d.rgb_hausdorff[c], b.rgb_hausdorff[c]);
     }
   }
@@ -366,6 +341,7 @@ MpegDirection direction(const MpegPoints& from, const MpegPoints& to, const Near
   for (int c = 0; c < 3; ++c) {
     d.ycbcr_mse[c] /= count;
     d.rgb_mse[c] /= count;
+    d.ycocg_mse[c] /= count;
   }
   return d;
 }
@@ -396,6 +372,7 @@ MpegDirection MpegFigures::symmetric() const {
   for (int c = 0; c < 3; ++c) {
     worse.ycbcr_mse[c] = std::max(a_to_b.ycbcr_mse[c], b_to_a.ycbcr_mse[c]);
     worse.rgb_mse[c] = std::max(a_to_b.rgb_mse[c], b_to_a.rgb_mse[c]);
+    worse.ycocg_mse[c] = std::max(a_to_b.ycocg_mse[c], b_to_a.ycocg_mse[c]);
     worse.rgb_hausdorff[c] = std::max(a_to_b.rgb_hausdorff[c], b_to_a.rgb_hausdorff[c]);
   }
   return worse;
@@ -422,14 +399,24 @@ MpegFigures mpeg_point_cloud_figures(const MpegPoints& a, const MpegPoints& b, c
                       *resolution <= std::numeric_limits<float>::max())) {
     throw Error(fmt::format("--pcc-resolution: expected a peak > 0 that single precision holds, found {}", *resolution));
   }
+  const PcErrorOptions& options = rules.options;
+  if (!(options.dropdups >= 0 && options.dropdups <= 2) ||
+      !(options.neighbors_proc >= 0 && options.neighbors_proc <= 4)) {
+    throw Error(fmt::format("--pcc-dropdups {}, --pcc-neighbors-proc {}: expected 0 to 2 and 0 to 4", options.dropdups,
+                            options.neighbors_proc));
+  }
+  // pc_error's own loop where the search below does not follow it: its other options, NaN normals.
+  const bool literal = !options.defaults() || a.nan_normals > 0;
   NearestPoints a_nearest(a), b_nearest(b);
   std::unique_ptr<LatticeNeighbours> a_lattice, b_lattice;
-  tbb::parallel_invoke([&] { a_lattice = LatticeNeighbours::build(a.positions); },
-                       [&] { b_lattice = LatticeNeighbours::build(b.positions); });
+  if (!literal) {
+    tbb::parallel_invoke([&] { a_lattice = LatticeNeighbours::build(a.positions); },
+                         [&] { b_lattice = LatticeNeighbours::build(b.positions); });
+  }
   if (a_lattice && b_lattice) {  // both voxelised: queries from either are on the lattice
     a_nearest.use_lattice(std::move(a_lattice));
     b_nearest.use_lattice(std::move(b_lattice));
-  } else {
+  } else if (!literal) {
     tbb::parallel_invoke([&] { a_nearest.tree(); }, [&] { b_nearest.tree(); });
   }
 
@@ -458,10 +445,17 @@ MpegFigures mpeg_point_cloud_figures(const MpegPoints& a, const MpegPoints& b, c
   }
   figures.d2 = !a.normals.empty();
   figures.colour = !a.colours.empty() && !b.colours.empty();
+  figures.ycocg = figures.colour && options.ycocg;
   // B's normals for A -> B: mmetric takes B's own where it has them, pc_error carries A's over.
   std::vector<Point> carried;
-  const bool own = rules.mmetric && !b.normals.empty();
+  const bool own = rules.b_normals_own() && !b.normals.empty();
   const double threshold = rules.tie_threshold();
+  if (literal) {
+    a_nearest.release();
+    b_nearest.release();
+    pc_error_directions(a, b, own ? &b.normals : nullptr, options, threshold, figures);
+    return figures;
+  }
   // Each direction's matches are searched once: B's in A serve B -> A and the points of B that
   // no point of A matched, A's in B carry A's normals over and serve A -> B.
   std::optional<Matches> a_in_b, b_in_a;
@@ -476,10 +470,11 @@ MpegFigures mpeg_point_cloud_figures(const MpegPoints& a, const MpegPoints& b, c
     carried = normals_carried(a, b, *a_in_b, *b_in_a);
   }
   const std::vector<Point>* b_normals = !figures.d2 ? nullptr : own ? &b.normals : &carried;
-  figures.a_to_b = direction(a, b, b_nearest, a_in_b ? &*a_in_b : nullptr, b_normals, figures.colour, threshold);
+  figures.a_to_b = direction(a, b, b_nearest, a_in_b ? &*a_in_b : nullptr, b_normals, figures.colour,
+                             figures.ycocg, threshold);
   a_in_b.reset();
   figures.b_to_a = direction(b, a, a_nearest, b_in_a ? &*b_in_a : nullptr, figures.d2 ? &a.normals : nullptr,
-                             figures.colour, threshold);
+                             figures.colour, figures.ycocg, threshold);
   return figures;
 }
 

@@ -33,6 +33,7 @@ struct MpegDirection {
   double d1_mse = 0, d1_hausdorff = 0;
   double d2_mse = 0, d2_hausdorff = 0;           // where there is D2
   std::array<double, 3> ycbcr_mse{}, rgb_mse{};  // where there is colour
+  std::array<double, 3> ycocg_mse{};             // YCoCg-R's, where asked for (PcErrorOptions::ycocg)
   std::array<double, 3> rgb_hausdorff{};         // largest squared difference per RGB channel
 };
 
@@ -42,19 +43,42 @@ struct MpegFigures {
   bool d2 = false;          // A has normals
   bool colour = false;      // both have colour
   bool mmetric = false;     // by mmetric's rules (MpegRules)
+  bool ycocg = false;       // YCoCg-R's colour figures too
   MpegDirection a_to_b, b_to_a;
   // The worse direction's figure (pc_error's "Final (symmetric)").
   MpegDirection symmetric() const;
+};
+
+// pc_error's options that change a figure, with its defaults (docs/mpeg.md's table). Under the
+// defaults point_cloud_psnr's own search answers; under any other (and where A has NaN normals, which
+// pc_error computes on with) pc_error's loop does, as it is written (pc_error_loop.h).
+struct PcErrorOptions {
+  // --dropdups: points at one position 0 all kept, 1 the first kept, 2 merged into one, colours
+  // averaged. Applied as the clouds are read (mpeg_points.h).
+  int dropdups = 2;
+  // --neighborsProc: the colour of the points tied nearest: 0 the first the search finds, 1 their
+  // mean (rounded), 2 their mean weighted by how many points each merged (with dropdups 2), 3 the
+  // one nearest in RGB, 4 the one farthest in RGB.
+  int neighbors_proc = 1;
+  // --averageNormals: D2 averaged over the tied nearest points and A's normals carried onto all of
+  // B's tied points; false: the first found alone, from a search of 10 points that does not grow.
+  bool average_normals = true;
+  bool ycocg = false;  // --mseSpace=8: YCoCg-R's colour figures too (RGB's and Y'CbCr's are always given)
+  bool defaults() const { return dropdups == 2 && neighbors_proc == 1 && average_normals; }
 };
 
 // Where mmetric's `compare --mode pcc` (meshes sampled by mmetric_sampling.h) differs from pc_error.
 struct MpegRules {
   std::optional<double> resolution;  // the peak; unset: the tool's default below
   bool mmetric = false;
+  PcErrorOptions options;
+  // mmetric's --normalCalcModificationEnable: A -> B's D2 along B's own normals where it has them.
+  bool b_own_normals = true;
   // pc_error: ties are consecutive squared distances within 1e-8; mmetric passes 1e-20.
   double tie_threshold() const { return mmetric ? 1e-20 : 1e-8; }
-  // mmetric: A -> B's D2 uses B's own normals where B has them (its default
+  // mmetric: A -> B's D2 uses B's own normals where B has them (b_own_normals, its default
   // --normalCalcModificationEnable), and the default peak is the diagonal of A's box.
+  bool b_normals_own() const { return mmetric && b_own_normals; }
 };
 
 // PSNR of a squared-distance figure with pc_error's geometry formula, 10 log10(3 p^2 / mse);

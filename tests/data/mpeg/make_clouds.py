@@ -11,6 +11,7 @@
 - sphere10's A once more, without normals (sphere10_a_bare), and its normals in a file of their own
   (sphere10_a_normals, pc_error's --inputNorm): A's points shuffled, with other normals (A's
   tilted at random), so that which normal a merged point keeps is the file's own.
+- sphere10_a_nan_normals: sphere10's A with 60 of its normals NaN.
 """
 import os
 import numpy as np
@@ -95,3 +96,10 @@ a, normals, colours = sphere
 lengths = rng.uniform(0.25, 3.0, size=(len(a), 1))
 lengths[rng.choice(len(a), size=40, replace=False)] = 0
 write_ply("sphere10_a_scaled_normals.ply", a, (normals * lengths).astype(np.float32), colours)
+
+# sphere10's A with 60 normals NaN, as a failed normal estimation writes them: pc_error computes on
+# (D2 adds the coordinates' differences, unsquared, for a nearest point with a NaN normal); drawn last.
+a, normals, colours = sphere
+broken = normals.copy()
+broken[rng.choice(len(a), size=60, replace=False)] = np.nan
+write_ply("sphere10_a_nan_normals.ply", a, broken, colours)

@@ -23,3 +23,6 @@ record mmetric_fandisk10_r1023 fandisk10_a.ply fandisk10_b.ply --resolution=1023
 record mmetric_rocker8 rocker8_a.ply rocker8_b.ply
 # A mesh against a point cloud: mmetric samples the mesh and passes the cloud through.
 record mmetric_fandisk10_points fandisk10_a.ply fandisk10_points_b.ply
+# mmetric's --normalCalcModificationEnable=false: A -> B's D2 along A's normals carried onto B, as
+# pc_error carries them, instead of B's own.
+record mmetric_fandisk10_carried fandisk10_a.ply fandisk10_b.ply --normalCalcModificationEnable=false
