@@ -770,6 +770,16 @@ TEST(PcErrorFigures, BadInputIsOneLine) {
                {"--pcc-normals", "fandisk10_a.ply is a mesh"});
   expect_error("measure " + kData + "fandisk10_a.ply " + kData + "fandisk10_b.ply --pcc-normals " + two,
                {"--pcc-normals", "two point clouds"});
+  // A folder for the normals file: named as a folder, before anything is read.
+  expect_error("measure " + a + " " + b + normals + folder.string(), {"--pcc-normals", "directory", "roving-mpeg-test"});
+  // pc_error's options where they do not apply, and out of range.
+  const std::string meshes = "measure " + kData + "fandisk10_a.ply " + kData + "fandisk10_b.ply --pcc";
+  expect_error(meshes + " --pcc-neighbors-proc 3", {"--pcc-neighbors-proc", "two point clouds", "mmetric"});
+  expect_error("measure " + a + " " + b + " --pcc --pcc-normal-calc-modification false",
+               {"--pcc-normal-calc-modification", "mmetric's option", "points and points"});
+  expect_error("measure " + a + " " + b + " --pcc --pcc-neighbors-proc 5", {"--pcc-neighbors-proc", "5"});
+  expect_error("measure " + a + " " + b + " --pcc --pcc-mse-space 2", {"--pcc-mse-space", "2"});
+  expect_error("measure " + a + " " + b + " --pcc --pcc-dropdups -1", {"--pcc-dropdups", "-1"});
   testing::cli::fs::remove_all(folder);
 }
 

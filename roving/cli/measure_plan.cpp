@@ -346,6 +346,7 @@ MeasurePlan plan_measurement(const MeasureArguments& args) {
                             *args.pcc_resolution));
   }
   plan.pcc_resolution = default_peak ? std::nullopt : args.pcc_resolution;
+  if (!args.pcc_normals.empty()) require_readable_file("--pcc-normals", args.pcc_normals);
   plan.pcc_normals = args.pcc_normals;
   plan.pcc_options.dropdups = args.pcc_dropdups;
   plan.pcc_options.neighbors_proc = args.pcc_neighbors_proc;
