@@ -25,6 +25,7 @@
 #include "cli_support.h"
 #include "roving/core/error.h"
 #include "roving/formats/outputs/distance_cloud_writer.h"
+#include "roving/formats/points_voxels_patches/point_cloud_io.h"
 #include "roving/formats/files/file_hash.h"
 #include "roving/reconstruction/correspondence_ransac.h"
 #include "roving/reconstruction/crop_volume.h"
@@ -473,6 +474,41 @@ TEST(TanksAndTemplesProtocol, DistanceColoursAreHotR) {
     const std::array<std::uint8_t, 3> a = hot_r_colour(t), b = hot_r_colour(t + 1.0 / 512);
     for (int c = 0; c < 3; ++c) EXPECT_LE(b[c], a[c]) << t;
   }
+}
+
+// NaN and infinite points in the ground truth (or the reconstruction): the toolbox crops every cloud
+// before it uses it, and Open3D's crop leaves them out, so the figures are those without them,
+// with a warning naming the file and how many. DTU's script crashes on them: refused, naming the
+// file and the first.
+TEST(TanksAndTemplesProtocol, NonFinitePointsAreCroppedAwayAsTheToolboxCropsThem) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "roving-tnt-nan";
+  std::filesystem::create_directories(dir);
+  PointCloud truth = read_point_cloud(kTruth, false);
+  const double nan = std::nan(""), inf = std::numeric_limits<double>::infinity();
+  for (std::size_t at : {std::size_t{0}, truth.positions.size() / 3, truth.positions.size() / 2}) {
+    truth.positions.insert(truth.positions.begin() + std::ptrdiff_t(at), Vec3(nan, 0, 0));
+  }
+  truth.positions.push_back(Vec3(1, inf, 2));
+  truth.normals.clear();
+  truth.colours.clear();
+  const std::string broken = (dir / "Bench_nan.ply").string();
+  write_point_cloud_ply(truth, broken);
+  const std::string options = " --protocol tanks-and-temples" + kScene + " --tnt-tau 0.01 --json - ";
+  const CliRun with = run_cli("measure " + broken + " " + kData + "Bench_points.ply" + options);
+  ASSERT_EQ(with.exit_code, 0) << with.err;
+  EXPECT_NE(with.err.find("Bench_nan.ply: 4 points with a NaN or infinite coordinate left out"), std::string::npos)
+      << with.err;
+  const nlohmann::json t = nlohmann::json::parse(with.out)["tanks_and_temples_protocol"];
+  const std::vector<std::vector<double>> rows = golden_rows("points.txt");
+  EXPECT_EQ(t["fscore"].get<double>(), rows[0].at(2));
+  EXPECT_EQ(t["ground_truth_cropped"].get<double>(), rows[1].at(2));
+  EXPECT_EQ(t["ground_truth_thinned"].get<double>(), rows[1].at(3));
+  EXPECT_EQ(t["cumulative_recall"].get<std::vector<double>>(), rows[4]);
+  const std::string dtu = std::string(ROVING_SOURCE_DIR) + "/tests/data/dtu/ObsMask/";
+  expect_error("measure " + broken + " " + kData + "Bench_points.ply --protocol dtu --dtu-obs-mask " + dtu +
+                   "ObsMask1_10.mat --dtu-plane " + dtu + "Plane1.mat",
+               {"Bench_nan.ply", "vertex 0", "non-finite"});
+  std::filesystem::remove_all(dir);
 }
 
 TEST(TanksAndTemplesProtocol, BadInputGetsOneLine) {

@@ -300,6 +300,12 @@ const FigureFamily kTanksAndTemples = {
       in.stage = fmt::format("running the Tanks and Temples protocol on {} (ground truth) and {}",
                              in.a.path(), in.b.path());
       in.progress.stage("Tanks and Temples protocol");
+      for (const Model* model : {&in.a, &in.b}) {
+        if (model->non_finite_dropped == 0) continue;
+        in.warn({fmt::format("{}: {} points with a NaN or infinite coordinate left out, as the Tanks and Temples "
+                             "toolbox's crop leaves them out",
+                             model->path(), model->non_finite_dropped)});
+      }
       report.tnt = tanks_and_temples_report(in.a, in.b, *in.plan.tnt, *protocol.tnt, in.progress.callback());
       in.progress.clear();
       if (!protocol.tnt_registrations.empty()) {

@@ -239,6 +239,11 @@ Model load_for(const MeasurePlan& plan, const std::string& path, std::optional<M
   model.mesh.path = path;
   if (plan.pcc_only) {
     model.points_in_file = true;  // read by MPEG's figures, straight into their single precision
+  } else if (plan.tnt) {
+    // The toolbox crops every cloud before it uses it, and its crop leaves out NaN and infinite
+    // points (Open3D's polygon test fails on them): so does its protocol here. DTU's script
+    // crashes on them, and is refused with the first one named.
+    model.points = read_point_cloud_finite(path, model.non_finite_dropped);
   } else {
     model.points = load_point_cloud(path, type);
   }

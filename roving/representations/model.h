@@ -37,6 +37,9 @@ struct Model {
   // A protocol's model (load_for): a mesh file read as its vertices alone, its faces left unread, as
   // Open3D's read_point_cloud reads a mesh; `points` holds the vertices, `type` is Points.
   bool mesh_vertices_only = false;
+  // A Tanks and Temples model (load_for): points with a non-finite coordinate left out, as the
+  // toolbox's crop leaves them out; how many.
+  std::size_t non_finite_dropped = 0;
   // A point cloud's surfels, made the first time it is the test model (test_surface).
   mutable std::optional<SurfelSurface> surfels;
 

@@ -271,7 +271,7 @@ float colour_code(const std::string& path, const Element& element, unsigned long
 }
 
 template <class Body>
-void read_body(const std::string& path, const Header& header, Body& body, PlyContents& out) {
+void read_body(const std::string& path, const Header& header, Body& body, PlyContents& out, bool drop_non_finite) {
   std::vector<Vec3> positions;
   std::vector<Triangle> triangles;
   std::vector<long long> corners;
@@ -364,7 +364,9 @@ void read_body(const std::string& path, const Header& header, Body& body, PlyCon
         }
       }
       if constexpr (std::is_same_v<Body, AsciiBody>) body.end_item();
-      if (is_vertex) {
+      if (is_vertex && drop_non_finite && !position.allFinite()) {
+        ++out.non_finite_dropped;
+      } else if (is_vertex) {
         positions.push_back(position);
         if (have_normals) out.normals.push_back(normal);
         if (have_colours) colours.push_back(colour);
@@ -385,18 +387,22 @@ void read_body(const std::string& path, const Header& header, Body& body, PlyCon
 
 }  // namespace
 
-PlyContents read_ply(const std::string& path) {
+PlyContents read_ply(const std::string& path, bool drop_non_finite_points) {
   const FileBytes file(path, "a .ply model");
   const Header header = checked_header(path, file.bytes());
   const std::string_view body_bytes = file.bytes().substr(header.body_offset);
   PlyContents out;
+  // Vertices are left out only where no face numbers them.
+  for (const Element& element : header.elements) {
+    if (element.name == "face" && element.count > 0) drop_non_finite_points = false;
+  }
   if (header.encoding == Encoding::Ascii) {
     AsciiBody body(path, body_bytes, header.lines);
-    read_body(path, header, body, out);
+    read_body(path, header, body, out, drop_non_finite_points);
   } else {
     const bool big_endian_host = false;  // x86-64 and arm64 Linux
     BinaryBody body(path, body_bytes, (header.encoding == Encoding::BinaryBig) != big_endian_host);
-    read_body(path, header, body, out);
+    read_body(path, header, body, out, drop_non_finite_points);
   }
   return out;
 }

@@ -19,13 +19,15 @@ struct PlyContents {
   LoadedMesh mesh;
   std::vector<Vec3> normals;  // nx, ny, nz per vertex when the header declares them
   bool declares_faces = false;
+  std::size_t non_finite_dropped = 0;  // vertices left out (read_ply's drop_non_finite_points)
 };
 
 // Reads a whole PLY file. Every count in the header is checked against the bytes the file
 // holds before anything is allocated; the body must match the header exactly (no missing,
 // stray or trailing values). Throws roving::Error naming the file, the header line or element
-// and what was expected and found.
-PlyContents read_ply(const std::string& path);
+// and what was expected and found. With `drop_non_finite_points`, a file without faces (a point
+// cloud) has its vertices with a NaN or infinite coordinate left out, and counted, instead.
+PlyContents read_ply(const std::string& path, bool drop_non_finite_points = false);
 
 // Reads only the header: true when it declares no face (or zero faces): a point cloud.
 bool ply_declares_no_faces(const std::string& path);

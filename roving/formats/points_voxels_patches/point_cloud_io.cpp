@@ -124,8 +124,9 @@ PointCloud read_xyz(const std::string& path) {
   return cloud;
 }
 
-PointCloud read_ply_points(const std::string& path) {
-  PlyContents ply = read_ply(path);
+PointCloud read_ply_points(const std::string& path, std::size_t* non_finite_dropped = nullptr) {
+  PlyContents ply = read_ply(path, non_finite_dropped != nullptr);
+  if (non_finite_dropped) *non_finite_dropped = ply.non_finite_dropped;
   if (ply.declares_faces) {
     throw Error(fmt::format("{}: declares faces; expected a point cloud (read it as a mesh)", path));
   }
@@ -150,6 +151,28 @@ bool read_as_ply(const std::string& path) {
 PointCloud read_point_cloud(const std::string& path, bool unit_normals) {
   PointCloud cloud = read_as_ply(path) ? read_ply_points(path) : read_xyz(path);
   validate(cloud, path, unit_normals);
+  return cloud;
+}
+
+PointCloud read_point_cloud_finite(const std::string& path, std::size_t& dropped) {
+  std::size_t dropped_as_read = 0;
+  PointCloud cloud = read_as_ply(path) ? read_ply_points(path, &dropped_as_read) : read_xyz(path);
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < cloud.positions.size(); ++i) {
+    if (!cloud.positions[i].allFinite()) continue;
+    cloud.positions[kept] = cloud.positions[i];
+    if (!cloud.normals.empty()) cloud.normals[kept] = cloud.normals[i];
+    if (!cloud.colours.empty()) cloud.colours[kept] = cloud.colours[i];
+    ++kept;
+  }
+  dropped = dropped_as_read + cloud.positions.size() - kept;
+  cloud.positions.resize(kept);
+  if (!cloud.normals.empty()) cloud.normals.resize(kept);
+  if (!cloud.colours.empty()) cloud.colours.resize(kept);
+  if (kept == 0 && dropped > 0) {
+    throw Error(fmt::format("{}: none of its {} points has finite coordinates; expected a point cloud", path, dropped));
+  }
+  validate(cloud, path, false);
   return cloud;
 }
 

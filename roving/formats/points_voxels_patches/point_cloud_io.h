@@ -14,6 +14,10 @@ namespace roving {
 // `unit_normals`, normals are made unit and one of zero length or not finite is an error; without,
 // they are kept as the file has them (MPEG's figures use them so) and left to the caller to check.
 PointCloud read_point_cloud(const std::string& path, bool unit_normals = true);
+// The same, except that points with a NaN or infinite coordinate are left out (with their normals
+// and colours), as the Tanks and Temples toolbox's Open3D reads or crops them away; `dropped`
+// counts them. A file none of whose points is finite has no points (an error).
+PointCloud read_point_cloud_finite(const std::string& path, std::size_t& dropped);
 // True when read_point_cloud reads `path` as a PLY (by its extension), else as XYZ.
 bool read_as_ply(const std::string& path);
 
