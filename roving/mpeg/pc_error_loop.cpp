@@ -54,20 +54,32 @@ struct Tree {
 // points' normals in A (or the first found's).
 std::vector<Point> carried_normals(const MpegPoints& a, const Tree& a_tree, const MpegPoints& b, const Tree& b_tree,
                                    bool average) {
-  std::vector<Search> found(a.size());
-  tbb::parallel_for(std::size_t{0}, a.size(), [&](std::size_t i) {
-    found[i] = average ? b_tree.find(a.positions[i], kGrowth, true) : b_tree.find(a.positions[i], 1, false);
+  // Each A point's B points exactly as near, found block by block on all cores and kept compactly
+  // (a count and the indices), then added in A's order.
+  constexpr std::size_t kBlock = 4096;
+  const std::size_t blocks = (a.size() + kBlock - 1) / kBlock;
+  std::vector<std::vector<std::uint32_t>> tied(blocks);
+  std::vector<std::uint8_t> tied_count(a.size());
+  tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t block) {
+    for (std::size_t i = block * kBlock; i < std::min(a.size(), (block + 1) * kBlock); ++i) {
+      const Search s = average ? b_tree.find(a.positions[i], kGrowth, true) : b_tree.find(a.positions[i], 1, false);
+      std::size_t k = 0;
+      for (; k < s.found && s.squared[k] == s.squared[0]; ++k) tied[block].push_back(s.index[k]);
+      tied_count[i] = std::uint8_t(k);
+    }
   });
   std::vector<Point> normals(b.size(), Point{0, 0, 0});
   std::vector<int> count(b.size(), 0);
-  for (std::size_t i = 0; i < a.size(); ++i) {  // in A's order: the sums round as pc_error's
-    const Search& s = found[i];
-    for (std::size_t k = 0; k < s.found && s.squared[k] == s.squared[0]; ++k) {
-      for (int c = 0; c < 3; ++c) normals[s.index[k]][c] += a.normals[i][c];
-      ++count[s.index[k]];
+  for (std::size_t block = 0; block < blocks; ++block) {  // in A's order: the sums round as pc_error's
+    const std::uint32_t* run = tied[block].data();
+    for (std::size_t i = block * kBlock; i < std::min(a.size(), (block + 1) * kBlock); run += tied_count[i++]) {
+      for (std::size_t k = 0; k < tied_count[i]; ++k) {
+        for (int c = 0; c < 3; ++c) normals[run[k]][c] += a.normals[i][c];
+        ++count[run[k]];
+      }
     }
+    tied[block] = {};
   }
-  found = {};
   tbb::parallel_for(std::size_t{0}, b.size(), [&](std::size_t j) {
     Point& n = normals[j];
     if (count[j] > 0) {
