@@ -208,8 +208,9 @@ def write_markdown(out, rows, version, runs):
         "resident set (os.wait4). Checked first: |d| on every vertex the same within CloudCompare's float rounding; "
         f"on pairs of more than {PER_VERTEX_LIMIT:,} vertices (marked *figures*), where a CSV row per vertex would "
         "take 15 GB, the mean, largest and 50th to 99th percentiles of |d| over every vertex instead (each within "
-        "the rounding were every vertex). Vertex samples read REF whole (streaming is for face samples: "
-        "docs/measuring.md), so at 10^8 triangles roving holds the whole mesh too.",
+        "the rounding were every vertex). A REF of more than 2^20 faces is streamed (docs/measuring.md's "
+        "`--chunk`): its faces read a block at a time for the vertex normals, then its vertices measured a block "
+        "at a time; roving does not hold its faces.",
         "",
         f"Machine: {platform.machine()}, {os.cpu_count()} cores, {platform.platform()}.",
         "",

@@ -314,6 +314,39 @@ void expect_same_bounded_report(const nlohmann::json& one, nlohmann::json other,
   expect_same_report(without, other);
 }
 
+// Vertex samples with REF streamed: its faces read a block at a time for the vertex normals and
+// areas (summed in the file's order, as the whole mesh sums them), then its vertices measured a
+// block at a time: the whole report, the same bits.
+TEST(CliStreamed, VertexSamplesGiveTheWholeReport) {
+  const Folder folder;
+  const Igea igea;
+  const std::string test = igea.moved(folder);
+  for (const char* options : {"--semantics closest --hausdorff-bound none", "--hausdorff-bound none",
+                              "--method cgal --semantics closest --hausdorff-bound 1e-5"}) {
+    SCOPED_TRACE(options);
+    const std::string pair = fmt::format("measure {} {} --samples vertices {} --quiet --json -", igea.path, test, options);
+    const CliRun whole = run_cli(pair + " --chunk 0");
+    ASSERT_EQ(whole.exit_code, 0) << whole.err;
+    const nlohmann::json one = nlohmann::json::parse(whole.out);
+    const std::size_t chunk = 3 * 4096 + 1;
+    const CliRun run = run_cli(fmt::format("{} --chunk {}", pair, chunk));
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    nlohmann::json streamed = nlohmann::json::parse(run.out);
+    ASSERT_TRUE(streamed["samples"].contains("streamed"));
+    const std::size_t vertices = one["samples"]["count"].get<std::size_t>() +
+                                 one["samples"]["skipped_unreferenced_vertices"].get<std::size_t>() +
+                                 one["samples"]["skipped_zero_normal_vertices"].get<std::size_t>();
+    EXPECT_EQ(streamed["samples"]["streamed"]["chunks"], (vertices + chunk - 1) / chunk);
+    streamed["samples"].erase("streamed");
+    EXPECT_EQ(streamed["statistics"], one["statistics"]);
+    expect_same_bounded_report(one, streamed, 1e-5);
+  }
+  const CliRun text = run_cli(fmt::format("measure {} {} --samples vertices --chunk 100000", igea.path, test));
+  EXPECT_NE(text.out.find("REF read 100000 faces at a time for its vertex normals, then measured 100000 vertices"),
+            std::string::npos)
+      << text.out;
+}
+
 TEST(CliStreamed, ReferenceReadInChunksGivesTheWholeReport) {
   const Folder folder;
   const Igea igea;
@@ -347,8 +380,10 @@ TEST(CliStreamed, ReferenceReadInChunksGivesTheWholeReport) {
     }
   }
   // More faces per block than Igea has, or what needs REF whole: read whole.
-  for (const char* options : {"--chunk 300000", "--chunk 1000 --symmetric", "--chunk 1000 --samples vertices",
-                              "--chunk 1000 --method viewpoint", "--chunk 1000 --method cooperative"}) {
+  for (const std::string& options :
+       {std::string("--chunk 300000"), std::string("--chunk 1000 --symmetric"),
+        "--chunk 1000 --samples vertices --samples-out " + folder.file("samples.csv"),
+        std::string("--chunk 1000 --method viewpoint"), std::string("--chunk 1000 --method cooperative")}) {
     const CliRun run = run_cli(fmt::format("measure {} {} {} --quiet --json -", igea.path, test, options));
     ASSERT_EQ(run.exit_code, 0) << options << run.err;
     EXPECT_EQ(run.out.find("\"streamed\""), std::string::npos) << options;

@@ -82,7 +82,9 @@ bool reference_only_sampled(const MeasureArguments& args, const MeasurePlan& pla
 std::unique_ptr<TriangleStream> reference_stream(const MeasureArguments& args, const MeasurePlan& plan) {
   const bool wanted = plan.chunk_faces > 0 && reference_only_sampled(args, plan, true) && !plan.pcc_only && !plan.dtu &&
                       !plan.tnt && !plan.correspondences && plan.thresholds.empty() &&
-                      args.samples_csv_path.empty() && plan.sample_spec.kind == SampleSpec::Kind::Faces &&
+                      args.samples_csv_path.empty() &&
+                      (plan.sample_spec.kind == SampleSpec::Kind::Faces ||
+                       (plan.sample_spec.kind == SampleSpec::Kind::Vertices && !plan.shard)) &&
                       plan.method->independent_run() > 0 &&
                       (!plan.reference_type || *plan.reference_type == ModelType::Mesh);
   return wanted ? open_triangle_stream(args.reference_path, plan.chunk_faces) : nullptr;

@@ -30,16 +30,20 @@ std::vector<Colour> reference_colours(const Model& reference, const SampleSet& s
 void measure_streamed_direction(const Model& a, const TriangleMesh& test_mesh, TriangleStream& stream,
                                 MeasurePlan& plan, double hausdorff_bound, const std::optional<SampleRange>& slice,
                                 Progress& progress, std::string& stage, DirectionReport& d) {
-  stage = fmt::format("measuring {} {} faces at a time against {} triangles with {}", a.path(), plan.chunk_faces,
+  stage = fmt::format("measuring {} {} {} at a time against {} triangles with {}", a.path(), plan.chunk_faces,
+                      plan.sample_spec.kind == SampleSpec::Kind::Vertices ? "vertices" : "faces",
                       test_mesh.triangle_count(), plan.method->name());
   progress.stage("measuring");
   validate_options(*plan.method, plan.options);
   d.result.build_seconds = plan.method->build(test_mesh);
   const TriangleMesh& m = a.mesh.mesh;
-  StreamedResult streamed = measure_streamed(
-      stream, *plan.method, plan.options, plan.histogram_bins, plan.chunk_faces,
-      slice ? slice->last - slice->first : m.triangle_count() - m.degenerate_triangle_count(), progress.callback(),
-      slice);
+  StreamedResult streamed =
+      plan.sample_spec.kind == SampleSpec::Kind::Vertices
+          ? measure_streamed_vertices(stream, *plan.method, plan.options, plan.histogram_bins, plan.chunk_faces,
+                                      m.vertex_count() - m.unreferenced_vertex_count(), progress.callback())
+          : measure_streamed(stream, *plan.method, plan.options, plan.histogram_bins, plan.chunk_faces,
+                             slice ? slice->last - slice->first : m.triangle_count() - m.degenerate_triangle_count(),
+                             progress.callback(), slice);
   plan.method->release();
   d.samples = std::move(streamed.samples);
   if (slice) {  // what the part holds: the slice's figures, and the count of the whole's skipped faces

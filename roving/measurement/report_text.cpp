@@ -248,9 +248,13 @@ std::string format_body(const MeasureReport& r) {
   for (const DirectionReport& d : r.directions) {
     out += fmt::format("{:<10} {}{}{}\n", "samples", d.label.empty() ? "" : d.label + ": ",
                        samples_line(d.samples, d.statistics.sample_count, r.seed),
-                       d.chunks ? fmt::format(" (REF read and measured {} faces at a time, {} blocks)", d.chunk_faces,
-                                              d.chunks)
-                                : "");
+                       !d.chunks ? ""
+                       : d.samples.kind == "vertices"
+                           ? fmt::format(" (REF read {} faces at a time for its vertex normals, then measured {} "
+                                         "vertices at a time, {} blocks)",
+                                         d.chunk_faces, d.chunk_faces, d.chunks)
+                           : fmt::format(" (REF read and measured {} faces at a time, {} blocks)", d.chunk_faces,
+                                         d.chunks));
   }
   out += "\n";
   // A column pair per direction: model units and / diagonal.

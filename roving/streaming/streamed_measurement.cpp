@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <cmath>
@@ -61,6 +62,68 @@ std::size_t degenerate_count(const TriangleStream& stream, const std::vector<Tri
   return std::size_t(std::count_if(shapes.begin(), shapes.end(), [](const auto& s) { return s.degenerate; }));
 }
 
+// A measured block's samples folded into the figures, in order, as one call for them all would.
+void fold(const SampleSet& samples, const DistanceResult& measured, StatisticsAccumulator& statistics,
+          StreamedResult& result) {
+  result.query_seconds += measured.query_seconds;
+  if (measured.gl) {
+    if (!result.gl) result.gl.emplace();
+    result.gl->add_block(*measured.gl);
+  }
+  for (std::size_t k = 0; k < samples.size(); ++k) {
+    const double d = measured.signed_distance[k];
+    statistics.add(d, measured.hit[k], samples.weights[k]);
+    if (!measured.hit[k]) continue;
+    ++(d > 0 ? result.signs.positive : d < 0 ? result.signs.negative : result.signs.zero);
+  }
+}
+
+// Each vertex's sums over the faces that use it, in the file's order, and whether any does.
+struct VertexSums {
+  std::vector<Vec3> normals;       // made unit (or zero) at the end, as TriangleMesh::vertex_normals'
+  std::vector<double> third_areas;
+  std::vector<std::uint8_t> referenced;
+};
+
+VertexSums vertex_sums(TriangleStream& stream, std::size_t chunk_faces, const ProgressFn& progress) {
+  const std::size_t n = stream.position_count();
+  VertexSums sums{std::vector<Vec3>(n, Vec3::Zero()), std::vector<double>(n, 0.0), std::vector<std::uint8_t>(n, 0)};
+  // As vertex_normals: each thread owns a range of vertices and scans the block's faces for its
+  // corners, so that each vertex adds its faces in the file's order on any number of threads.
+  const std::size_t parts = std::size_t(std::max(1, tbb::this_task_arena::max_concurrency()));
+  const std::size_t per_part = (n + parts - 1) / parts;
+  std::vector<Triangle> triangles;
+  stream.rewind();
+  for (std::size_t read = 0; stream.next(chunk_faces, triangles);) {
+    read = std::min(read + chunk_faces, stream.face_count());
+    if (progress) progress("faces", read, stream.face_count());
+    tbb::parallel_for(std::size_t{0}, parts, [&](std::size_t part) {
+      const auto low = static_cast<int>(part * per_part);
+      const auto high = static_cast<int>(std::min(n, (part + 1) * per_part));
+      for (const Triangle& t : triangles) {
+        const auto mine = [&](int corner) { return corner >= low && corner < high; };
+        if (!mine(t[0]) && !mine(t[1]) && !mine(t[2])) continue;
+        const Vec3 p0 = stream.position(t[0]);
+        const Vec3 cross = (stream.position(t[1]) - p0).cross(stream.position(t[2]) - p0);
+        const double third_area = 0.5 * cross.norm() / 3.0;
+        for (int corner : t) {
+          if (!mine(corner)) continue;
+          sums.normals[corner] += cross;
+          sums.third_areas[corner] += third_area;
+          sums.referenced[corner] = 1;
+        }
+      }
+    });
+  }
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 65536), [&](const tbb::blocked_range<std::size_t>& range) {
+    for (std::size_t v = range.begin(); v != range.end(); ++v) {
+      const double length = sums.normals[v].norm();
+      sums.normals[v] = length > 0 ? Vec3(sums.normals[v] / length) : Vec3::Zero();
+    }
+  });
+  return sums;
+}
+
 }  // namespace
 
 StreamedReference summarise(TriangleStream& stream, std::size_t chunk_faces, const ProgressFn& progress) {
@@ -106,11 +169,8 @@ StreamedResult measure_streamed(TriangleStream& stream, DistanceMethod& method, 
   const auto measure = [&](SampleSet& samples) {
     samples.kind = result.samples.kind;
     const DistanceResult measured = method.measure(samples, options);
-    result.query_seconds += measured.query_seconds;
-    if (measured.gl) {
-      if (!result.gl) result.gl.emplace();
-      result.gl->add_block(*measured.gl);
-    }
+    fold(samples, measured, statistics, result);
+    done += samples.size();
     if (slice) {
       std::vector<double>& weights = result.samples.weights;
       weights.insert(weights.end(), samples.weights.begin(), samples.weights.end());
@@ -118,13 +178,6 @@ StreamedResult measure_streamed(TriangleStream& stream, DistanceMethod& method, 
                                           measured.signed_distance.end());
       result.slice.hit.insert(result.slice.hit.end(), measured.hit.begin(), measured.hit.end());
     }
-    for (std::size_t k = 0; k < samples.size(); ++k) {
-      const double d = measured.signed_distance[k];
-      statistics.add(d, measured.hit[k], samples.weights[k]);
-      if (!measured.hit[k]) continue;
-      ++(d > 0 ? result.signs.positive : d < 0 ? result.signs.negative : result.signs.zero);
-    }
-    done += samples.size();
   };
   const std::size_t first = slice ? slice->first : 0, last = slice ? slice->last : SIZE_MAX;
   if (slice) {
@@ -161,6 +214,60 @@ StreamedResult measure_streamed(TriangleStream& stream, DistanceMethod& method, 
   if (statistics.count() == 0) {
     throw Error(fmt::format("reference model gives no 'faces' samples ({} triangles, all degenerate?)",
                             result.samples.skipped_degenerate_faces));
+  }
+  result.statistics = statistics.finish();
+  result.heatmap_range = default_heatmap_range(statistics, result.statistics.hit_count, options.max_error);
+  return result;
+}
+
+StreamedResult measure_streamed_vertices(TriangleStream& stream, DistanceMethod& method,
+                                         const DistanceOptions& options, std::size_t histogram_bins,
+                                         std::size_t chunk_faces, std::size_t expected_samples,
+                                         const ProgressFn& progress) {
+  const std::size_t run = method.independent_run();
+  if (run == 0) throw Error(method.name() + ": answers every sample from them all; REF cannot be streamed");
+  const VertexSums sums = vertex_sums(stream, chunk_faces, progress);
+  StreamedResult result;
+  result.samples.kind = SampleSpec{SampleSpec::Kind::Vertices}.to_string();
+  StatisticsAccumulator statistics(options.max_error, histogram_bins, expected_samples);
+  std::size_t done = 0;
+  method.set_progress([&](const char* stage, std::size_t block_done, std::size_t) {
+    if (progress) progress(stage, done + block_done, expected_samples);
+  });
+  SampleSet pending;
+  const auto measure = [&](SampleSet& samples) {
+    samples.kind = result.samples.kind;
+    fold(samples, method.measure(samples, options), statistics, result);
+    done += samples.size();
+  };
+  // sample_vertices' choice (sample_set.cpp), a block of vertices at a time.
+  const std::size_t n = stream.position_count();
+  for (std::size_t first = 0; first < n; first += chunk_faces) {
+    ++result.chunks;
+    SampleSet samples;
+    for (std::size_t v = first; v < std::min(n, first + chunk_faces); ++v) {
+      if (!sums.referenced[v]) {
+        ++result.samples.skipped_unreferenced_vertices;
+      } else if (sums.normals[v].isZero()) {
+        ++result.samples.skipped_zero_normal_vertices;
+      } else {
+        samples.positions.push_back(stream.position(static_cast<int>(v)));
+        samples.normals.push_back(sums.normals[v]);
+        samples.weights.push_back(sums.third_areas[v]);
+      }
+    }
+    pending.append(std::move(samples));
+    const std::size_t ready = pending.size() / run * run;
+    if (ready == 0) continue;
+    SampleSet rest = pending.split_off(ready);
+    measure(pending);
+    pending = std::move(rest);
+  }
+  if (pending.size() > 0) measure(pending);
+  method.set_progress({});
+  if (statistics.count() == 0) {
+    throw Error(fmt::format("reference model gives no 'vertices' samples ({} triangles, all degenerate?)",
+                            stream.face_count()));
   }
   result.statistics = statistics.finish();
   result.heatmap_range = default_heatmap_range(statistics, result.statistics.hit_count, options.max_error);

@@ -59,4 +59,17 @@ StreamedResult measure_streamed(TriangleStream& stream, DistanceMethod& method, 
                                 std::size_t histogram_bins, std::size_t chunk_faces, std::size_t expected_samples,
                                 const ProgressFn& progress = {}, const std::optional<SampleRange>& slice = {});
 
+// Measures REF's vertex samples (make_samples' "vertices": each vertex a kept face uses whose
+// normal is not zero, at its position, with the unit sum of its faces' cross products and a third of
+// their area, in vertex order) against the TEST `method` was built for, as measure_streamed does
+// its faces: one pass over the file's faces sums each vertex's in the file's order, as
+// TriangleMesh::vertex_normals sums them (the same bits), then the vertices are measured
+// `chunk_faces` at a time. Beside the stream's positions it holds 33 bytes a vertex, not REF's
+// faces; the figures are the whole reference's, bit for bit. `progress` hears of the faces read,
+// then of the samples done of `expected_samples`. Throws roving::Error where REF gives no sample.
+StreamedResult measure_streamed_vertices(TriangleStream& stream, DistanceMethod& method,
+                                         const DistanceOptions& options, std::size_t histogram_bins,
+                                         std::size_t chunk_faces, std::size_t expected_samples,
+                                         const ProgressFn& progress = {});
+
 }  // namespace roving
