@@ -688,7 +688,8 @@ TEST(CliReport, JsonLayoutIsTheDocumentedOne) {
         cubes.pair + " --method cooperative --views 4x2 --resolution 64",
         teapot + " " + teapot + " --samples area:100", points + " " + cubes.small,
         cubes.small + " " + grid, grid + " " + grid + " --samples vertices", points + " " + grid + " --pcc",
-        coloured + " --pcc --samples area:500", dtu_protocol, dtu_protocol + " --symmetric", tnt_protocol,
+        points + " " + grid + " --pcc --pcc-neighbors-proc 3 --pcc-mse-space 8", coloured + " --pcc --samples area:500",
+        coloured + " --pcc --samples area:500 --pcc-normal-calc-modification false", dtu_protocol, dtu_protocol + " --symmetric", tnt_protocol,
         tnt_protocol + " --symmetric", igea + " " + igea + " --chunk 100000"}) {
     check_layout(arguments, run_cli("measure " + arguments + " --json -"));
   }
