@@ -302,10 +302,8 @@ MpegPoints sorted_and_merged(const Cloud& cloud, const Codec& codec, const MpegR
       } else if (normals) {
         normals_out[out] = normal_at(run);
       }
-      if (colours && end == run + 1) {  // most points: their own colour, without three divisions
-        const std::uint32_t i = keys.index(sorted[run]);
-        colours_out[out] = {source.colour(i, 0), source.colour(i, 1), source.colour(i, 2)};
-      } else if (colours && reading.dropdups == 1) {  // the first's colour
+      // Most points: their own colour, without three divisions; under --dropdups 1 the first's.
+      if (colours && (end == run + 1 || reading.dropdups == 1)) {
         const std::uint32_t i = keys.index(sorted[run]);
         colours_out[out] = {source.colour(i, 0), source.colour(i, 1), source.colour(i, 2)};
       } else if (colours) {
