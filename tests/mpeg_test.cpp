@@ -279,6 +279,9 @@ TEST(MmetricGolden, MeshesSampledAsMmetricSamplesThem) {
   expect_equal_to_pc_error("mmetric_fandisk10_points", 3 * 8 + 3 * 12);
   // --normalCalcModificationEnable=false: A -> B's D2 along A's normals carried onto B, as pc_error's.
   expect_equal_to_pc_error("mmetric_fandisk10_carried", 3 * 8 + 3 * 12);
+  // Its --neighborsProc (the tied nearest points' colour: the nearest and the farthest in RGB).
+  expect_equal_to_pc_error("mmetric_fandisk10_neighbors3", 3 * 8 + 3 * 12);
+  expect_equal_to_pc_error("mmetric_fandisk10_neighbors4", 3 * 8 + 3 * 12);
   const nlohmann::json ours = measure_pcc(read_golden("mmetric_fandisk10"));
   std::ifstream golden(kData + "golden/mmetric_fandisk10.txt");
   const std::string text((std::istreambuf_iterator<char>(golden)), std::istreambuf_iterator<char>());
@@ -774,7 +777,8 @@ TEST(PcErrorFigures, BadInputIsOneLine) {
   expect_error("measure " + a + " " + b + normals + folder.string(), {"--pcc-normals", "directory", "roving-mpeg-test"});
   // pc_error's options where they do not apply, and out of range.
   const std::string meshes = "measure " + kData + "fandisk10_a.ply " + kData + "fandisk10_b.ply --pcc";
-  expect_error(meshes + " --pcc-neighbors-proc 3", {"--pcc-neighbors-proc", "two point clouds", "mmetric"});
+  expect_error(meshes + " --pcc-average-normals 0", {"--pcc-average-normals", "two point clouds", "mmetric"});
+  expect_error(meshes + " --pcc-dropdups 1", {"--pcc-dropdups", "two point clouds", "mmetric"});
   expect_error("measure " + a + " " + b + " --pcc --pcc-normal-calc-modification false",
                {"--pcc-normal-calc-modification", "mmetric's option", "points and points"});
   expect_error("measure " + a + " " + b + " --pcc --pcc-neighbors-proc 5", {"--pcc-neighbors-proc", "5"});

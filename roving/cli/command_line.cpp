@@ -151,7 +151,8 @@ void add_measurement_options(CLI::App& app, MeasureArguments& args, bool& trust_
       ->check(CLI::Range(0, 2))
       ->capture_default_str();
   app.add_option("--pcc-neighbors-proc", args.pcc_neighbors_proc,
-                 "pc_error's --neighborsProc: the colour of the other cloud's points tied nearest, 0 the first its "
+                 "pc_error's (and, on meshes, mmetric's) --neighborsProc: the colour of the other cloud's points "
+                 "tied nearest, 0 the first its "
                  "search finds, 1 their mean, 2 their mean weighted by the points each merged, 3 the nearest in RGB, "
                  "4 the farthest in RGB")
       ->check(CLI::Range(0, 4))

@@ -46,16 +46,22 @@ bool has_colour(const Model& model) {
 
 namespace {
 
-// pc_error's options apply to MPEG's figures of two point clouds; mmetric's, to those of a mesh
-// (measured by mmetric's rules, whose pc_error-like options are not compared with mmetric here).
+// pc_error's options apply to MPEG's figures of two point clouds; of them, mmetric 1.1.7 offers
+// --neighborsProc on meshes too (its others are not offered or not compared with mmetric here), and
+// its own --normalCalcModificationEnable.
 void require_mpeg_options_apply(const MeasurePlan& plan, const Model& a, const Model& b) {
   const bool mesh = a.type == ModelType::Mesh || b.type == ModelType::Mesh;
   const bool mpeg = plan.pcc_only || (a.type == ModelType::Points && b.type == ModelType::Points);
-  if ((!plan.pcc_options.defaults() || plan.pcc_options.ycocg) && (!mpeg || mesh)) {
-    throw Error(fmt::format("--pcc-dropdups, --pcc-neighbors-proc, --pcc-average-normals, --pcc-mse-space: "
-                            "pc_error's options, for MPEG's figures of two point clouds; found {} and {}{}",
-                            to_string(a.type), to_string(b.type),
-                            mesh ? " (a mesh is measured as mmetric's compare --mode pcc measures it)" : ""));
+  // mmetric 1.1.7 offers its own --neighborsProc (compared with its output); not the others.
+  const PcErrorOptions& o = plan.pcc_options;
+  const bool pc_error_only = o.dropdups != 2 || !o.average_normals || o.ycocg;
+  if ((!mpeg && (pc_error_only || o.neighbors_proc != 1)) || (mesh && pc_error_only)) {
+    throw Error(fmt::format("--pcc-dropdups, --pcc-average-normals, --pcc-mse-space{}: pc_error's options, for "
+                            "MPEG's figures of two point clouds; found {} and {}{}",
+                            mesh ? "" : ", --pcc-neighbors-proc", to_string(a.type), to_string(b.type),
+                            mesh ? " (a mesh is measured as mmetric's compare --mode pcc measures it, whose only "
+                                   "one of them is --neighborsProc)"
+                                 : ""));
   }
   if (!plan.pcc_b_own_normals && (!mpeg || !mesh)) {
     throw Error(fmt::format("--pcc-normal-calc-modification: mmetric's option, for MPEG's figures of a mesh "

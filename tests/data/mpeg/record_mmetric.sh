@@ -26,3 +26,7 @@ record mmetric_fandisk10_points fandisk10_a.ply fandisk10_points_b.ply
 # mmetric's --normalCalcModificationEnable=false: A -> B's D2 along A's normals carried onto B, as
 # pc_error carries them, instead of B's own.
 record mmetric_fandisk10_carried fandisk10_a.ply fandisk10_b.ply --normalCalcModificationEnable=false
+# mmetric's --neighborsProc (its pc_error's): the colour of the tied nearest points, the nearest and
+# the farthest in RGB.
+record mmetric_fandisk10_neighbors3 fandisk10_a.ply fandisk10_b.ply --neighborsProc=3
+record mmetric_fandisk10_neighbors4 fandisk10_a.ply fandisk10_b.ply --neighborsProc=4
