@@ -3,17 +3,21 @@
 
 For each pair (the bunny against itself and against its 10,459-triangle mesh; the scaling pairs
 of about 1 M and, with --large, 10 M samples) and each GL backend given, runs `roving measure`
-once per method: exact roving with its cameras' triangles built on the CPU and on the GPU
-(`--camera-geometry`), cooperative 24x12 and 72x36, `--views auto`, viewpoint 24x12; and Embree.
+once per method: exact roving with its cameras' triangles built on the CPU and on the GPU, and
+with its cameras computed (`--camera-geometry cpu|gpu|compute`), cooperative 24x12 and 72x36
+(24x12 also with cameras on the GPU and computed), `--views auto`, viewpoint 24x12; and Embree.
+With --huge, also 50 M area samples on the 10 M pair, exact roving drawn and computed alone.
 Each answer is checked against Embree's on the same samples before its time is reported: the
 share of samples with the same hit flag, the share of common hits within exact roving's depth
 tolerance (roving_tolerance in roving/gl_methods/agreement.h; for the view methods the share
-of all hits), USiAD against Embree's; and, for `--camera-geometry gpu`, the samples whose d
-differs at all from the CPU-built cameras'. Times are the report's: query, and for the cameras
+of all hits), USiAD against Embree's; and, for `--camera-geometry gpu` and `compute`, the
+samples whose hit or d differs at all from the CPU-built cameras' of the same method (computed
+cameras take the depth in double where drawn ones interpolate floats: their d differs by design,
+within the tolerance the Embree column checks). Times are the report's: query, and for the cameras
 their building (CPU threads) and rendering (GL thread: upload, compute, draw, read back).
 
     python3 bench/gl_timings.py --roving build/roving/roving --data build/datasets \
-        --backends osmesa,egl --out results/gpu.md [--large]
+        --backends osmesa,egl --out results/gpu.md [--large] [--huge]
 """
 import argparse
 import json
@@ -28,21 +32,32 @@ import numpy as np
 GL_METHODS = [
     ("roving, cameras on CPU", ["--method", "roving", "--camera-geometry", "cpu"]),
     ("roving, cameras on GPU", ["--method", "roving", "--camera-geometry", "gpu"]),
+    ("roving, cameras computed", ["--method", "roving", "--camera-geometry", "compute"]),
     ("cooperative 24x12", ["--method", "cooperative", "--views", "24x12"]),
     ("cooperative 24x12, cameras on GPU", ["--method", "cooperative", "--views", "24x12", "--camera-geometry", "gpu"]),
+    ("cooperative 24x12, cameras computed",
+     ["--method", "cooperative", "--views", "24x12", "--camera-geometry", "compute"]),
     ("cooperative 72x36", ["--method", "cooperative", "--views", "72x36"]),
     ("cooperative auto", ["--method", "cooperative", "--views", "auto"]),
     ("viewpoint 24x12", ["--method", "viewpoint", "--views", "24x12"]),
 ]
 
 
-def pairs(data, large):
-    yield "bunny / itself", f"{data}/bunny.ply", f"{data}/bunny.ply", "vertices"
-    yield "bunny / 10,459 triangles", f"{data}/bunny.ply", f"{data}/bunny-10459.ply", "vertices"
+# The methods of the --huge pair: exact roving's cameras drawn and computed.
+CAMERA_METHODS = [m for m in GL_METHODS if m[0] in ("roving, cameras on CPU", "roving, cameras computed")]
+
+
+def pairs(data, large, huge):
+    """(title, REF, TEST, samples, methods) of each pair."""
+    yield "bunny / itself", f"{data}/bunny.ply", f"{data}/bunny.ply", "vertices", GL_METHODS
+    yield "bunny / 10,459 triangles", f"{data}/bunny.ply", f"{data}/bunny-10459.ply", "vertices", GL_METHODS
     for n in [4, 12] if large else [4]:
         ref, test = f"{data}/scaling/ref-n{n}.ply", f"{data}/scaling/test-n{n}.ply"
         if os.path.exists(ref):
-            yield f"scaling n={n}", ref, test, "faces"
+            yield f"scaling n={n}", ref, test, "faces", GL_METHODS
+    ref, test = f"{data}/scaling/ref-n12.ply", f"{data}/scaling/test-n12.ply"
+    if huge and os.path.exists(ref):
+        yield "scaling n=12, 50 M area samples", ref, test, "area:50000000", CAMERA_METHODS
 
 
 def measure(roving, ref, test, samples, arguments, folder, name):
@@ -109,23 +124,24 @@ def main():
     parser.add_argument("--data", default="build/datasets")
     parser.add_argument("--backends", default="osmesa,egl")
     parser.add_argument("--large", action="store_true", help="also the 10 M pair")
+    parser.add_argument("--huge", action="store_true", help="also 50 M samples on the 10 M pair")
     parser.add_argument("--out", required=True)
     args = parser.parse_args()
 
     lines = []
     renderers = {}
     with tempfile.TemporaryDirectory() as folder:
-        for title, ref, test, samples in pairs(args.data, args.large):
+        for title, ref, test, samples, methods in pairs(args.data, args.large, args.huge):
             print(title, file=sys.stderr)
             exact = measure(args.roving, ref, test, samples, ["--method", "embree"], folder, "embree")
             lines += [f"### {title}: {len(exact[1]):,} {samples} samples", "",
                       "| method | GL | query s | M samples/s | cameras: build / render s | views: CPU / draw s | same hit as Embree | "
-                      "within the camera tolerance | USiAD vs Embree | d differs from CPU cameras |",
+                      "within the camera tolerance | USiAD vs Embree | hit or d differs from CPU cameras |",
                       "|---|---|---|---|---|---|---|---|---|---|",
                       row("embree", f"{os.cpu_count()} CPU threads", *exact, exact, None)]
             for backend in args.backends.split(","):
                 cpu = {}
-                for name, arguments in GL_METHODS:
+                for name, arguments in methods:
                     try:
                         result, d, hit = measure(args.roving, ref, test, samples, arguments + ["--backend", backend],
                                                  folder, "gl")
@@ -133,10 +149,12 @@ def main():
                         lines.append(f"| {name} | {backend} | failed | | | | | | | |")
                         continue
                     renderers[backend] = result["gl"]["renderer"]
-                    cpu_key = name.replace(", cameras on GPU", "").replace(", cameras on CPU", "")
-                    if "cameras on GPU" not in name:
+                    elsewhere = ", cameras on GPU" in name or ", cameras computed" in name
+                    cpu_key = name.replace(", cameras on GPU", "").replace(", cameras computed", "")
+                    cpu_key = cpu_key.replace(", cameras on CPU", "")
+                    if not elsewhere:
                         cpu[cpu_key] = (d, hit)
-                    lines.append(row(name, backend, result, d, hit, exact, cpu.get(cpu_key) if "GPU" in name else None))
+                    lines.append(row(name, backend, result, d, hit, exact, cpu.get(cpu_key) if elsewhere else None))
             lines.append("")
             write(args.out, renderers, lines)  # after each pair, so that a run cut short keeps what it measured
     print(f"wrote {args.out}", file=sys.stderr)
@@ -166,8 +184,10 @@ def write(path, renderers, lines):
         "with the same hit flag; for methods with per-sample cameras, the share of common hits within exact "
         "roving's depth tolerance (8 float depth steps plus subpixel snapping times a slope of 10: "
         "roving/gl_methods/agreement.h; view-resolved samples are held to their own, looser tolerance, so "
-        "the share is lower for the view methods); USiAD against Embree's; and for cameras built on the GPU, "
-        "how many samples' d differs at all from the CPU-built cameras' of the same method. "
+        "the share is lower for the view methods); USiAD against Embree's; and for cameras built on the GPU "
+        "or computed, how many samples' hit or d differs at all from the CPU-built cameras' of the same "
+        "method (computed cameras take the depth in double where drawn ones interpolate floats, so theirs "
+        "differ by design within the tolerance). "
         "`cameras: build / render` is the time spent building the cameras' batches on the CPU threads "
         "(beside the drawing) and rendering them on the GL thread (upload, compute stage, draw, read back); "
         "`views: CPU / draw` likewise for the views: preparing and reading them on the CPU threads, drawing "

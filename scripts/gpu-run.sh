@@ -6,7 +6,9 @@
 #   info      nvidia-smi, the EGL vendor files
 #   datasets  the scaling pairs (10 M triangles) beside the GL tests on EGL (every GL test binary,
 #             ROVING_GL_BACKEND=egl; OSMesa is not carried, so its cases skip, each saying why)
-#   timings   bench/gl_timings.py --backends egl --large into $OUT/gpu.md (written after each pair)
+#   timings   bench/gl_timings.py --backends egl --large --huge into $OUT/gpu.md (written after each
+#             pair): exact roving drawn and computed beside Embree at 1 M, 10 M and 50 M samples,
+#             the cooperative method on the bunny pairs
 # about 5 minutes in all on an H100 machine; `gpu-run.sh tests` reruns the tests alone, `gpu-run.sh
 # timings` the data sets and the timings alone.
 set -uo pipefail
@@ -55,6 +57,6 @@ step datasets 120 bash -c "for only in --quick --scaling; do LD_LIBRARY_PATH=$li
   build/datasets_gen/roving-datasets --data data --out build/datasets \$only || exit; done" &
 [ "${1:-}" = timings ] || step tests-egl 150 bash -c "$(declare -f gl_tests); out=$out libs=$libs; gl_tests egl"
 wait
-step timings 330 python3 bench/gl_timings.py --roving .gpu/roving --data build/datasets \
-  --backends egl --large --out "$out/gpu.md"
+step timings 400 python3 bench/gl_timings.py --roving .gpu/roving --data build/datasets \
+  --backends egl --large --huge --out "$out/gpu.md"
 echo "done at ${SECONDS} s"

@@ -270,14 +270,16 @@ TEST(SeamColour, GlMethodsTakeTheFaceTheRuleTakes) {
       auto embree = make_method("embree");
       const DistanceResult e = measure_distances(*embree, c.test, samples, {Semantics::FirstHit, h, true});
       const ColourPairs exact = colour_pairs(reference_colours, samples, c.test, e, Semantics::FirstHit);
-      // Every GL method, and exact roving with its cameras built on the GPU.
-      for (const auto& [method, gpu_cameras] :
-           {std::pair("roving", false), {"roving", true}, {"viewpoint", false}, {"cooperative", false}}) {
-        const std::string name = std::string(method) + (gpu_cameras ? " (GPU cameras), " : ", ") + c.name +
+      // Every GL method, and exact roving with its cameras built on the GPU or computed.
+      for (const auto& [method, geometry] :
+           {std::pair("roving", CameraGeometry::Cpu), {"roving", CameraGeometry::Gpu},
+            {"roving", CameraGeometry::Compute}, {"viewpoint", CameraGeometry::Cpu},
+            {"cooperative", CameraGeometry::Cpu}}) {
+        const std::string name = std::string(method) + " (cameras " + to_string(geometry) + "), " + c.name +
                                  ", " + spec.to_string() + ", h " + std::to_string(h_fraction);
         SCOPED_TRACE(name);
         GlMethodOptions gl;
-        gl.gpu_cameras = gpu_cameras;
+        gl.camera_geometry = geometry;
         auto m = make_method(method, gl);
         const DistanceResult d = measure_distances(*m, c.test, samples, {Semantics::FirstHit, h, true});
         const ColourAgreement a = colour_agreement(
@@ -288,7 +290,7 @@ TEST(SeamColour, GlMethodsTakeTheFaceTheRuleTakes) {
         EXPECT_GE(a.within_fraction(), 0.999) << a.within_a_step << " of " << a.both;
         EXPECT_NEAR(a.drawn.psnr_rgb, a.exact.psnr_rgb, 0.01);
         EXPECT_GT(a.both, samples.size() / 2);
-        if (gpu_cameras) EXPECT_TRUE(d.gl->gpu_cameras);
+        EXPECT_EQ(d.gl->camera_geometry, geometry);
         RecordProperty(name, std::to_string(a.within_a_step) + " of " + std::to_string(a.both));
       }
     }

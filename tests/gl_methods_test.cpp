@@ -631,8 +631,9 @@ namespace {
 // (where float coordinates would lose the camera's width).
 // Faces the rasteriser cannot follow (issue 79): a fin on a floor, edge-on to the cameras of the
 // samples at its foot (their normal lines run up it), and the same fin tilted by 1e-9 (a sliver
-// no pixel centre falls in). Exact roving, its cameras built on the CPU and on the GPU, gives
-// the rule's first crossing as Embree does: the fin's top within the view volume, not the floor.
+// no pixel centre falls in). Exact roving, its cameras built on the CPU, on the GPU, or in the
+// compute pass, gives the rule's first crossing as Embree does: the fin's top within the view
+// volume, not the floor.
 TEST_P(EachBackend, ExactRovingFollowsTheRuleOnFacesEdgeOnToItsCameras) {
   REQUIRE_GL_CONTEXT(GetParam());
   for (const double tilt : {0.0, 1e-9}) {
@@ -648,28 +649,29 @@ TEST_P(EachBackend, ExactRovingFollowsTheRuleOnFacesEdgeOnToItsCameras) {
     }
     const DistanceOptions first_hit{Semantics::FirstHit, 0.2};
     const DistanceResult e = measure_distances(*make_method("embree"), test, samples, first_hit);
-    for (const bool gpu : {false, true}) {
+    for (const CameraGeometry geometry : {CameraGeometry::Cpu, CameraGeometry::Gpu, CameraGeometry::Compute}) {
       GlMethodOptions gl = options();
-      gl.gpu_cameras = gpu;
+      gl.camera_geometry = geometry;
       const DistanceResult r = measure_distances(*make_method("roving", gl), test, samples, first_hit);
       for (std::size_t k = 0; k < samples.size(); ++k) {
         ASSERT_TRUE(e.hit[k] && r.hit[k]);
         EXPECT_GT(e.signed_distance[k], 0.05) << k;  // the fin, above the floor
         EXPECT_NEAR(r.signed_distance[k], e.signed_distance[k], roving_tolerance(*r.gl))
-            << "tilt " << tilt << (gpu ? ", GPU cameras" : ", CPU cameras") << ", sample " << k;
+            << "tilt " << tilt << ", cameras " << to_string(geometry) << ", sample " << k;
       }
+      if (geometry == CameraGeometry::Compute) EXPECT_EQ(r.gl->thin_cameras, samples.size());
     }
   }
 }
 
-TEST_P(EachBackend, GpuCamerasGiveTheCpuCamerasAnswers) {
-  REQUIRE_GL_CONTEXT(GetParam());
-  struct Case {
-    std::string name, method;
-    TriangleMesh reference, test;
-    const char* samples;
-  };
-  std::vector<Case> cases;
+struct CameraCase {
+  std::string name, method;
+  TriangleMesh reference, test;
+  const char* samples;
+};
+
+std::vector<CameraCase> camera_cases() {
+  std::vector<CameraCase> cases;
   for (const char* file : {"stanford-bunny.obj", "fandisk.obj"}) {
     const TriangleMesh mesh = load_mesh(testing::data_file(file)).mesh;
     cases.push_back({std::string(file) + " itself", "roving", mesh, mesh, "vertices"});
@@ -689,18 +691,22 @@ TEST_P(EachBackend, GpuCamerasGiveTheCpuCamerasAnswers) {
       smoothly_perturbed(decimate_quadric(bunny, 10459), 0.01 * diagonal, 0.5 * diagonal);
   cases.push_back({"bunny far from the origin", "roving", far_away(bunny), far_away(decimated), "area:6000"});
   cases.push_back({"bunny, cooperative", "cooperative", bunny, decimated, "area:6000"});
+  return cases;
+}
 
+TEST_P(EachBackend, GpuCamerasGiveTheCpuCamerasAnswers) {
+  REQUIRE_GL_CONTEXT(GetParam());
   const bool llvmpipe =
       make_depth_renderer(GetParam())->info().renderer.find("llvmpipe") != std::string::npos;
-  for (const Case& c : cases) {
+  for (const CameraCase& c : camera_cases()) {
     const SampleSet samples = make_samples(c.reference, parse_sample_spec(c.samples));
     const DistanceOptions options{Semantics::FirstHit, 0.02 * c.test.bounding_box().diagonal()};
     GlMethodOptions gl = EachBackend::options();
     gl.views_h = 12, gl.views_v = 6, gl.resolution = 512;
     const DistanceResult cpu = measure_distances(*make_method(c.method, gl), c.test, samples, options);
-    gl.gpu_cameras = true;
+    gl.camera_geometry = CameraGeometry::Gpu;
     const DistanceResult gpu = measure_distances(*make_method(c.method, gl), c.test, samples, options);
-    ASSERT_TRUE(gpu.gl->gpu_cameras);
+    ASSERT_EQ(gpu.gl->camera_geometry, CameraGeometry::Gpu);
     EXPECT_GT(gpu.gl->sample_cameras, samples.size() / 20) << c.name;
     EXPECT_EQ(cpu.hit, gpu.hit) << c.name;
     EXPECT_EQ(cpu.gl->resolved_by, gpu.gl->resolved_by) << c.name;
@@ -711,6 +717,41 @@ TEST_P(EachBackend, GpuCamerasGiveTheCpuCamerasAnswers) {
       differ += cpu.signed_distance[k] != gpu.signed_distance[k];
     if (llvmpipe) {
       EXPECT_EQ(differ, 0u) << c.name << ": " << differ << " of " << samples.size();
+    }
+  }
+}
+
+
+// --camera-geometry compute evaluates each camera in a compute pass over TEST's grid on the GPU,
+// nothing drawn: the drawn cameras' coverage (triangle, strips, octagons) tested at the pixel
+// centre in double, where the rasteriser interpolates rounded floats. On the same pairs: the same
+// hits as the drawn cameras and as Embree (the method's tolerance, per sample), and every sample's
+// d within the method's tolerance of both. Samples go in Morton order: the answers are each
+// sample's own.
+TEST_P(EachBackend, ComputedCamerasGiveTheDrawnCamerasAnswers) {
+  REQUIRE_GL_CONTEXT(GetParam());
+  for (const CameraCase& c : camera_cases()) {
+    const SampleSet samples = make_samples(c.reference, parse_sample_spec(c.samples));
+    const DistanceOptions options{Semantics::FirstHit, 0.02 * c.test.bounding_box().diagonal()};
+    GlMethodOptions gl = EachBackend::options();
+    gl.views_h = 12, gl.views_v = 6, gl.resolution = 512;
+    const DistanceResult drawn = measure_distances(*make_method(c.method, gl), c.test, samples, options);
+    gl.camera_geometry = CameraGeometry::Compute;
+    const DistanceResult computed = measure_distances(*make_method(c.method, gl), c.test, samples, options);
+    const DistanceResult embree = measure_distances(*make_method("embree"), c.test, samples, options);
+    ASSERT_EQ(computed.gl->camera_geometry, CameraGeometry::Compute);
+    EXPECT_GT(computed.gl->sample_cameras, samples.size() / 20) << c.name;
+    EXPECT_EQ(drawn.gl->resolved_by, computed.gl->resolved_by) << c.name;
+    const double tolerance = roving_tolerance(*computed.gl);
+    const Agreement with_drawn = agreement(drawn, computed, tolerance);
+    EXPECT_EQ(with_drawn.same_flag, with_drawn.samples) << c.name;
+    EXPECT_EQ(with_drawn.close, with_drawn.common_hits) << c.name;
+    for (std::size_t k = 0; k < samples.size(); ++k) {
+      if (computed.gl->resolved_by[k] != Resolution::Camera) continue;
+      ASSERT_EQ(embree.hit[k], computed.hit[k]) << c.name << ", sample " << k;
+      if (embree.hit[k]) {
+        ASSERT_NEAR(computed.signed_distance[k], embree.signed_distance[k], tolerance) << c.name << ", sample " << k;
+      }
     }
   }
 }

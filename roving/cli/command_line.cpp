@@ -104,7 +104,8 @@ void add_measurement_options(CLI::App& app, MeasureArguments& args, bool& trust_
   app.add_option(
          "--camera-geometry", args.camera_geometry,
          "roving and cooperative: where each per-sample camera's triangles are put in its frame and their "
-         "edges widened: cpu, or gpu (in a compute shader; the same answers)")
+         "edges widened: cpu, or gpu (in a compute shader; the same answers); or compute (each camera's "
+         "depth in a compute pass over TEST's grid, nothing drawn)")
       ->capture_default_str();
   app.add_option(
          "--hausdorff-bound", args.hausdorff_bound,

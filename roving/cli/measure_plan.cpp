@@ -234,10 +234,7 @@ MeasurePlan plan_measurement(const MeasureArguments& args) {
   MeasurePlan plan;
   parse_views(args.views, plan.gl);
   plan.gl.backend = parse_gl_backend(args.backend);
-  if (args.camera_geometry != "cpu" && args.camera_geometry != "gpu") {
-    throw Error(fmt::format("--camera-geometry: expected cpu or gpu, found '{}'", args.camera_geometry));
-  }
-  plan.gl.gpu_cameras = args.camera_geometry == "gpu";
+  plan.gl.camera_geometry = parse_camera_geometry(args.camera_geometry);
   plan.gl.resolution = args.resolution;
   plan.method = make_method(args.method, plan.gl);
   if (args.ibsm)

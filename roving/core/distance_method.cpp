@@ -26,6 +26,22 @@ Semantics parse_semantics(const std::string& text) {
   throw Error(fmt::format("--semantics: expected first-hit, nearest or closest, found '{}'", text));
 }
 
+const char* to_string(CameraGeometry geometry) {
+  switch (geometry) {
+    case CameraGeometry::Cpu: return "cpu";
+    case CameraGeometry::Gpu: return "gpu";
+    case CameraGeometry::Compute: return "compute";
+  }
+  return "?";
+}
+
+CameraGeometry parse_camera_geometry(const std::string& text) {
+  for (CameraGeometry g : {CameraGeometry::Cpu, CameraGeometry::Gpu, CameraGeometry::Compute}) {
+    if (text == to_string(g)) return g;
+  }
+  throw Error(fmt::format("--camera-geometry: expected cpu, gpu or compute, found '{}'", text));
+}
+
 std::string MaxErrorSpec::to_string() const {
   return percent_of_diagonal ? fmt::format("{}% of diagonal", value) : fmt::format("{}", value);
 }
@@ -68,7 +84,8 @@ void GlReport::add_block(const GlReport& block) {
   axis_views = block.axis_views;
   view_pixel_size = block.view_pixel_size, view_depth_step = block.view_depth_step;
   camera_half_width = block.camera_half_width, camera_depth_step = block.camera_depth_step;
-  gpu_cameras = block.gpu_cameras;
+  camera_geometry = block.camera_geometry;
+  thin_cameras += block.thin_cameras;
   views_rendered += block.views_rendered;
   sample_cameras += block.sample_cameras;
   camera_build_seconds += block.camera_build_seconds;

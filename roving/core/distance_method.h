@@ -35,6 +35,14 @@ enum class Semantics {
 };
 
 const char* to_string(Semantics semantics);
+
+// Where exact roving's per-sample cameras are made (--camera-geometry): their triangles put in
+// the camera's frame on the CPU threads, or in a compute shader, and drawn (the paper's raster
+// pipeline); or each camera's depth evaluated in a compute pass, nothing drawn.
+enum class CameraGeometry { Cpu, Gpu, Compute };
+const char* to_string(CameraGeometry geometry);
+// Parses "cpu", "gpu" or "compute"; throws roving::Error naming --camera-geometry otherwise.
+CameraGeometry parse_camera_geometry(const std::string& text);
 // Parses "first-hit", "nearest", "closest"; throws roving::Error naming `--semantics` otherwise.
 Semantics parse_semantics(const std::string& text);
 
@@ -87,7 +95,8 @@ struct GlReport {
   double view_depth_step = 0;    // model units per ulp of float depth near 1 in a view
   double camera_half_width = 0;  // half-width of a roving camera's view volume (one pixel)
   double camera_depth_step = 0;  // model units per ulp of float depth near 1 in a roving camera
-  bool gpu_cameras = false;      // the cameras' triangles were built on the GPU (compute shader)
+  CameraGeometry camera_geometry = CameraGeometry::Cpu;  // where the cameras were made
+  std::size_t thin_cameras = 0;  // compute pass: cameras whose thin faces the CPU's rule decided
   // Where the cameras' time went: building their batches (CPU threads, beside the draws) and
   // rendering them (GL thread: upload, any compute stage, draw, read back).
   double camera_build_seconds = 0, camera_render_seconds = 0;

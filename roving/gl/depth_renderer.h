@@ -71,6 +71,24 @@ struct PixelRect {
   bool empty() const { return x1 <= x0 || y1 <= y0; }
 };
 
+// TEST's triangles bucketed in a uniform grid (surface roving's TriangleGrid), for
+// DepthRenderer::rove_samples(): cell (x, y, z) of dims, at origin + cell * (x, y, z), lists
+// entries[offsets[c] .. offsets[c + 1]) with c = (z dims[1] + y) dims[0] + x.
+struct GridBuckets {
+  Vec3 origin = Vec3::Zero();
+  double cell = 1;
+  int dims[3] = {1, 1, 1};
+  const std::vector<std::uint32_t>* offsets = nullptr;
+  const std::vector<std::uint32_t>* entries = nullptr;
+};
+
+// A roving camera's answer from the compute pass: the depth of its pixel centre (1: nothing
+// there), and whether a candidate face thin across the camera was left to the CPU's rule.
+struct ComputedTile {
+  float depth;
+  std::uint32_t thin;
+};
+
 struct RendererInfo {
   std::string backend, vendor, renderer, version;
 };
@@ -134,11 +152,22 @@ class DepthRenderer {
   // Needs upload_model(mesh, true).
   virtual void render_tile_faces(const std::vector<OrthoCamera>& cameras, const std::vector<TileFace>& faces,
                                  std::vector<float>& depth) = 0;
+
+  // Uploads the grid that rove_samples() walks, once (not held after).
+  virtual void upload_grid(const GridBuckets& grid) = 0;
+  // Exact roving's cameras with nothing drawn: for each sample (six doubles: position, normal),
+  // the camera surface_roving.cpp makes for it (half-width `half_width`, half-depth
+  // `half_depth`), and in a compute pass over the grid's candidates the depth at its pixel
+  // centre of what the raster path draws for them (compute_roving_shader.h), in double. Needs
+  // upload_model(mesh, true) and upload_grid().
+  virtual void rove_samples(const std::vector<double>& samples, double half_width, double half_depth,
+                            std::vector<ComputedTile>& answers) = 0;
 };
 
 // Creates an offscreen context and its renderer. OSMesa gives Mesa's llvmpipe; EGL tries the
 // device platform (a real GPU where a driver exists), then Mesa's surfaceless platform.
 // Throws roving::Error saying what failed when no context with float depth can be made.
-std::unique_ptr<DepthRenderer> make_depth_renderer(GlBackend backend);
+// `gl_works_alone`: see gl::make_context().
+std::unique_ptr<DepthRenderer> make_depth_renderer(GlBackend backend, bool gl_works_alone = false);
 
 }  // namespace roving

@@ -54,6 +54,11 @@ namespace roving::gl {
   X(PFNGLUNIFORM2IPROC, Uniform2i)                             \
   X(PFNGLUNIFORM3FPROC, Uniform3f)                             \
   X(PFNGLUNIFORM2DVPROC, Uniform2dv)                           \
+  X(PFNGLUNIFORM1DPROC, Uniform1d)                             \
+  X(PFNGLUNIFORM3DPROC, Uniform3d)                             \
+  X(PFNGLUNIFORM3IPROC, Uniform3i)                             \
+  X(PFNGLMAPBUFFERRANGEPROC, MapBufferRange)                   \
+  X(PFNGLUNMAPBUFFERPROC, UnmapBuffer)                         \
   X(PFNGLGENVERTEXARRAYSPROC, GenVertexArrays)                 \
   X(PFNGLBINDVERTEXARRAYPROC, BindVertexArray)                 \
   X(PFNGLDELETEVERTEXARRAYSPROC, DeleteVertexArrays)           \

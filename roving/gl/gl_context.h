@@ -19,7 +19,9 @@ class Context {
 };
 
 // Creates the context and makes it current on the calling thread; throws roving::Error with the
-// step that failed.
-std::unique_ptr<Context> make_context(GlBackend backend);
+// step that failed. `gl_works_alone`: the CPU threads wait while the GL works (the compute path),
+// so llvmpipe keeps its own threads on any machine (see gl_context.cpp); only the process's
+// first context decides.
+std::unique_ptr<Context> make_context(GlBackend backend, bool gl_works_alone = false);
 
 }  // namespace roving::gl

@@ -8,6 +8,7 @@
 #include <optional>
 #include <utility>
 
+#include "compute_roving.h"
 #include "depth_renderer_shaders.h"
 #include "gl_api.h"
 #include "gl_context.h"
@@ -25,7 +26,7 @@ enum class Outputs { Depth, Colour };
 
 class GlDepthRenderer final : public DepthRenderer {
  public:
-  explicit GlDepthRenderer(GlBackend backend) : context_(gl::make_context(backend)) {
+  GlDepthRenderer(GlBackend backend, bool gl_works_alone) : context_(gl::make_context(backend, gl_works_alone)) {
     gl_.load([this](const char* name) { return context_->proc_address(name); }, context_->platform());
     info_.backend = context_->platform();
     info_.vendor = text(GL_VENDOR);
@@ -94,8 +95,10 @@ class GlDepthRenderer final : public DepthRenderer {
     try {
       context_->make_current();
     } catch (const Error&) {
+      compute_roving_.release();  // its GL objects go with the context
       return;  // nothing can be freed without the context; destroying it frees all
     }
+    compute_roving_.reset();
     gl_.DeleteBuffers(1, &model_vertices_);
     gl_.DeleteBuffers(1, &model_indices_);
     gl_.DeleteBuffers(1, &tile_vertices_);
@@ -462,6 +465,21 @@ class GlDepthRenderer final : public DepthRenderer {
     check("rendering a tile batch built on the GPU");
   }
 
+  void upload_grid(const GridBuckets& grid) override {
+    context_->make_current();
+    if (!compute_roving_) compute_roving_ = std::make_unique<gl::ComputeRoving>(gl_, info_.backend);
+    compute_roving_->upload_grid(grid);
+  }
+
+  void rove_samples(const std::vector<double>& samples, double half_width, double half_depth,
+                    std::vector<ComputedTile>& answers) override {
+    context_->make_current();
+    if (model_triangle_count_ == 0) throw Error("gl: rove_samples() before upload_model(mesh, true)");
+    if (!compute_roving_) throw Error("gl: rove_samples() before upload_grid()");
+    compute_roving_->run(tile_face_buffers_[kPositions], tile_face_buffers_[kCorners], samples, half_width,
+                         half_depth, answers);
+  }
+
  private:
   static constexpr long long kMaxFloatTexels = 1LL << 24;
   static std::vector<float> as_fractions(const std::uint8_t* codes, std::size_t count) {
@@ -631,6 +649,7 @@ class GlDepthRenderer final : public DepthRenderer {
   GLuint far_vao_ = 0, far_vertices_ = 0;
   GLuint tile_face_program_ = 0, tile_face_vao_ = 0, tile_face_buffers_[kStorageBuffers] = {};
   bool face_vertices_ready_ = false;
+  std::unique_ptr<gl::ComputeRoving> compute_roving_;  // made by upload_grid()
   std::size_t model_triangle_count_ = 0;  // with positions in double, for render_tile_faces()
   GLsizei model_index_count_ = 0;
   std::size_t model_vertex_count_ = 0;
@@ -643,8 +662,8 @@ class GlDepthRenderer final : public DepthRenderer {
 
 }  // namespace
 
-std::unique_ptr<DepthRenderer> make_depth_renderer(GlBackend backend) {
-  return std::make_unique<GlDepthRenderer>(backend);
+std::unique_ptr<DepthRenderer> make_depth_renderer(GlBackend backend, bool gl_works_alone) {
+  return std::make_unique<GlDepthRenderer>(backend, gl_works_alone);
 }
 
 }  // namespace roving

@@ -115,11 +115,12 @@ std::uint32_t nearest_direction(const std::vector<Vec3>& directions, int h, int 
   return best;
 }
 
-void GlScene::build(GlBackend backend, const TriangleMesh& test_model, bool cameras_on_gpu) {
-  if (!renderer) renderer = make_depth_renderer(backend);
-  renderer->upload_model(test_model, cameras_on_gpu);
-  gpu_cameras = cameras_on_gpu;
+void GlScene::build(GlBackend backend, const TriangleMesh& test_model, CameraGeometry camera_geometry) {
+  if (!renderer) renderer = make_depth_renderer(backend, camera_geometry == CameraGeometry::Compute);
+  renderer->upload_model(test_model, camera_geometry != CameraGeometry::Cpu);
+  cameras = camera_geometry;
   grid = std::make_unique<TriangleGrid>(test_model);
+  if (cameras == CameraGeometry::Compute) renderer->upload_grid(grid->buckets());
   clusters.reset();
   shades = {};
   test = &test_model;
@@ -149,7 +150,7 @@ double GlMethod::build(const TriangleMesh& test) {
         fmt::format("--resolution: expected a positive number of pixels, found {}", options_.resolution));
   }
   const Stopwatch watch;
-  scene_.build(options_.backend, test, options_.gpu_cameras);
+  scene_.build(options_.backend, test, options_.camera_geometry);
   if (options_.resolution > scene_.renderer->max_framebuffer_size()) {
     throw Error(fmt::format("--resolution: expected at most {} (this GL's largest framebuffer), found {}",
                             scene_.renderer->max_framebuffer_size(), options_.resolution));
@@ -167,7 +168,7 @@ DistanceResult GlMethod::measure(const SampleSet& samples, const DistanceOptions
   report.views_h = options_.views_h;
   report.views_v = options_.views_v;
   report.resolution = options_.resolution;
-  report.gpu_cameras = options_.gpu_cameras;
+  report.camera_geometry = options_.camera_geometry;
   DistanceResult result;
   result.signed_distance.assign(samples.size(), 0.0);
   result.hit.assign(samples.size(), 0);

@@ -41,7 +41,10 @@ struct GlMethodOptions {
   // invocation per candidate triangle) rather than on the CPU; the CPU only finds the
   // candidates. The same geometry either way (tests/gl_methods_test.cpp); which is faster
   // depends on the hardware (results/gpu-cameras.md).
-  bool gpu_cameras = false;
+  // `--camera-geometry compute`: nothing drawn; each camera's depth is evaluated in a compute
+  // pass, one invocation per sample walking TEST's grid on the GPU (compute_roving_shader.h),
+  // under the raster path's coverage; faces thin across a camera go to the CPU's rule.
+  CameraGeometry camera_geometry = CameraGeometry::Cpu;
 };
 
 // Parses "HxV" (each 1..720); throws roving::Error naming `--views` otherwise.

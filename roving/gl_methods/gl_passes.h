@@ -27,9 +27,9 @@ struct GlScene {
   std::unique_ptr<TriangleClusters> clusters;
   std::unique_ptr<BlindFaces> blind;  // the views' (viewpoint_sampling.cpp), made by the first
   const TriangleMesh* test = nullptr;
-  bool gpu_cameras = false;  // GlMethodOptions::gpu_cameras
+  CameraGeometry cameras = CameraGeometry::Cpu;  // GlMethodOptions::camera_geometry
   SurfaceShades shades;      // colour (prepare_colour()); empty corners: none drawn
-  void build(GlBackend backend, const TriangleMesh& test_model, bool cameras_on_gpu);
+  void build(GlBackend backend, const TriangleMesh& test_model, CameraGeometry camera_geometry);
   // Uploads M_C's materials and makes its shades, once: then the passes can draw colour.
   // Requires test->has_colour().
   void prepare_colour();

@@ -3,11 +3,13 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <optional>
 
 #include "gl_passes.h"
 #include "hit_colour.h"
+#include "roving/core/geometry.h"
 #include "roving/core/normal_line.h"
 #include "roving/core/stopwatch.h"
 #include "roving/gl_methods/agreement.h"
@@ -69,6 +71,9 @@ void widen_edge(const Vec3& p, const Vec3& q, const Emit& emit) {
 // enough that the per-draw cost (clear, flush, read back) is spread over many cameras.
 constexpr std::size_t kTilesPerBatch = 64 * 64;
 constexpr std::size_t kSamplesPerChunk = 512;
+// Cameras per batch in the compute pass: one dispatch of 1,024 work groups, while the next
+// batch's samples are packed.
+constexpr std::size_t kComputedPerBatch = 1 << 16;
 
 // A face less than one camera half-width wide across the camera (edge-on to the line, degenerate
 // to a segment or a point, or nearly so) covers no pixel centre by itself, and the strips along
@@ -138,12 +143,16 @@ void for_each_candidate(const TriangleMesh& test, const TriangleGrid& grid, cons
 }
 
 // One batch of cameras, as the renderer takes it: built on the CPU, the tiles' vertices; built
-// on the GPU, each tile's camera and its candidate triangles. Beside them, the tiles whose lines
-// meet a face too thin across the camera to be drawn, with the highest d the rule gives there.
+// on the GPU, each tile's camera and its candidate triangles; for the compute pass, the samples
+// themselves (position, normal), in Morton order: `order` gives each tile's sample. Beside them,
+// the tiles whose lines meet a face too thin across the camera to be drawn, with the highest d
+// the rule gives there.
 struct TileBatch {
   std::vector<TileVertex> vertices;
   std::vector<OrthoCamera> cameras;
   std::vector<TileFace> faces;
+  std::vector<std::uint32_t> order;
+  std::vector<double> samples;
   std::vector<std::pair<std::uint32_t, double>> thin_tops;
 };
 
@@ -180,8 +189,11 @@ class SurfaceRoving final : public GlMethod {
  public:
   using GlMethod::GlMethod;
   std::string name() const override { return "roving"; }
-  // A camera's answer is its tile's depth: rasterised at the tile's place in its batch's grid.
-  std::size_t independent_run() const override { return kTilesPerBatch; }
+  // A drawn camera's answer is its tile's depth: rasterised at the tile's place in its batch's
+  // grid. A computed one's is its own.
+  std::size_t independent_run() const override {
+    return options_.camera_geometry == CameraGeometry::Compute ? 1 : kTilesPerBatch;
+  }
 
   void resolve(const SampleSet& samples, double max_error, GlReport& report, const Record& record,
                const Coloured& coloured) override {
@@ -210,13 +222,37 @@ std::size_t rove(GlScene& scene, const SampleSet& samples, const std::vector<std
   const double half_depth = max_error + half_width;
   report.camera_depth_step = 2 * half_depth * std::ldexp(1.0, -24);
 
-  // The batch `first` .. first + kTilesPerBatch of `indices`, tile by tile: chunks of tiles in
+  // The batch `first` .. first + batch_size of `indices`, tile by tile: chunks of tiles in
   // parallel, then joined in order.
-  const bool on_gpu = scene.gpu_cameras;
-  report.gpu_cameras = on_gpu;
-  const auto emit_batch = [&](std::size_t first, TileBatch& batch) {
+  const bool on_gpu = scene.cameras == CameraGeometry::Gpu;
+  const bool computed = scene.cameras == CameraGeometry::Compute;
+  report.camera_geometry = scene.cameras;
+  const std::size_t batch_size = computed ? kComputedPerBatch : kTilesPerBatch;
+  // Camera at x + h n looking along -n; its box spans t in [0, 2h] (depth 0 at x + h n).
+  const auto camera_of = [&](std::uint32_t k) {
+    return OrthoCamera::looking_along(-samples.normals[k], samples.positions[k], half_width, half_width,
+                                      half_depth);
+  };
+  const auto pack_batch = [&](std::size_t first, TileBatch& batch) {
     const Stopwatch building;
-    const std::size_t count = std::min(kTilesPerBatch, indices.size() - first);
+    const std::size_t count = std::min(batch_size, indices.size() - first);
+    batch.order.assign(indices.begin() + first, indices.begin() + first + count);
+    const BoundingBox& box = test.bounding_box();
+    std::vector<std::pair<std::uint64_t, std::uint32_t>> keyed(count);
+    for (std::size_t i = 0; i < count; ++i) keyed[i] = {morton_code(samples.positions[batch.order[i]], box), batch.order[i]};
+    std::sort(keyed.begin(), keyed.end());
+    batch.samples.resize(6 * count);
+    for (std::size_t i = 0; i < count; ++i) {
+      const std::uint32_t k = batch.order[i] = keyed[i].second;
+      const Vec3 &p = samples.positions[k], &n = samples.normals[k];
+      std::copy_n(std::array<double, 6>{p.x(), p.y(), p.z(), n.x(), n.y(), n.z()}.data(), 6, &batch.samples[6 * i]);
+    }
+    report.camera_build_seconds += building.seconds();
+  };
+  const auto emit_batch = [&](std::size_t first, TileBatch& batch) {
+    if (computed) return pack_batch(first, batch);
+    const Stopwatch building;
+    const std::size_t count = std::min(batch_size, indices.size() - first);
     const std::size_t chunks = (count + kSamplesPerChunk - 1) / kSamplesPerChunk;
     std::vector<TileBatch> chunk_batches(chunks);
     batch.cameras.resize(on_gpu ? count : 0);
@@ -230,10 +266,7 @@ std::size_t rove(GlScene& scene, const SampleSet& samples, const std::vector<std
             for (std::size_t tile = chunk * kSamplesPerChunk; tile < end; ++tile) {
               const std::uint32_t k = indices[first + tile];
               if (++mark == 0) std::fill(stamp.begin(), stamp.end(), mark++);  // wrapped: start afresh
-              // Camera at x + h n looking along -n; its box spans t in [0, 2h] (depth 0 at x +
-              // h n).
-              const OrthoCamera camera = OrthoCamera::looking_along(-samples.normals[k], samples.positions[k],
-                                                                    half_width, half_width, half_depth);
+              const OrthoCamera camera = camera_of(k);
               const auto t = static_cast<std::uint32_t>(tile);
               ThinFaces thin(samples, k, max_error, half_width);
               if (on_gpu) {
@@ -264,7 +297,36 @@ std::size_t rove(GlScene& scene, const SampleSet& samples, const std::vector<std
 
   // A pipeline of two batches: while the GL thread (this one) draws a batch, the other cores
   // build the next one.
+  // The compute pass leaves faces thin across a camera to the rule: the tiles it flagged, decided
+  // here on the CPU threads, into the batch's thin_tops.
+  const auto decide_thin = [&](TileBatch& batch, const std::vector<ComputedTile>& answers) {
+    const Stopwatch deciding;
+    std::vector<std::uint32_t> flagged;
+    for (std::uint32_t tile = 0; tile < answers.size(); ++tile)
+      if (answers[tile].thin) flagged.push_back(tile);
+    std::vector<std::optional<double>> tops(flagged.size());
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, flagged.size(), 16),
+                      [&](const tbb::blocked_range<std::size_t>& range) {
+                        thread_local std::vector<std::uint32_t> stamp;
+                        thread_local std::uint32_t mark = 0;
+                        if (stamp.size() < test.triangle_count()) stamp.assign(test.triangle_count(), mark = 0);
+                        for (std::size_t i = range.begin(); i != range.end(); ++i) {
+                          const std::uint32_t k = batch.order[flagged[i]];
+                          if (++mark == 0) std::fill(stamp.begin(), stamp.end(), mark++);
+                          ThinFaces thin(samples, k, max_error, half_width);
+                          for_each_candidate(test, *scene.grid, camera_of(k), stamp, mark, thin, [](std::uint32_t) {});
+                          tops[i] = thin.top();
+                        }
+                      });
+    batch.thin_tops.clear();
+    for (std::size_t i = 0; i < flagged.size(); ++i)
+      if (tops[i]) batch.thin_tops.emplace_back(flagged[i], *tops[i]);
+    report.thin_cameras += flagged.size();
+    report.camera_build_seconds += deciding.seconds();
+  };
+
   TileBatch batch[2];
+  std::vector<ComputedTile> answers;  // the compute pass's, per tile
   std::vector<float> depth;
   std::vector<std::optional<double>> tile_d;  // a batch's d per tile, drawn and thin faces
   std::vector<std::pair<std::uint32_t, double>> resolved;  // a batch's hits (k, d), for colour
@@ -273,8 +335,8 @@ std::size_t rove(GlScene& scene, const SampleSet& samples, const std::vector<std
   CameraCost cost;
   std::size_t end = indices.size();  // where last_batch stops it
   if (!indices.empty()) emit_batch(0, batch[0]);
-  for (std::size_t first = 0, b = 0; first < end; first += kTilesPerBatch, ++b) {
-    const std::size_t count = std::min(kTilesPerBatch, end - first);
+  for (std::size_t first = 0, b = 0; first < end; first += batch_size, ++b) {
+    const std::size_t count = std::min(batch_size, end - first);
     if (b > 0 && last_batch && last_batch(first + count, cost)) end = first + count;
     const Stopwatch step;
     double draw_seconds = 0;
@@ -285,7 +347,11 @@ std::size_t rove(GlScene& scene, const SampleSet& samples, const std::vector<std
         [&] {
           const Stopwatch draw;
           const TileBatch& drawn = batch[b % 2];
-          if (on_gpu) {
+          if (computed) {
+            scene.renderer->rove_samples(drawn.samples, half_width, half_depth, answers);
+            depth.resize(count);
+            for (std::size_t tile = 0; tile < count; ++tile) depth[tile] = answers[tile].depth;
+          } else if (on_gpu) {
             scene.renderer->render_tile_faces(drawn.cameras, drawn.faces, depth);
           } else {
             scene.renderer->render_tiles(drawn.vertices, count, depth);
@@ -300,13 +366,15 @@ std::size_t rove(GlScene& scene, const SampleSet& samples, const std::vector<std
       if (depth[tile] < 1.0f)
         tile_d[tile] = std::clamp(half_depth - double(depth[tile]) * 2 * half_depth, -max_error, max_error);
     }
+    if (computed) decide_thin(batch[b % 2], answers);
+    const auto sample_of = [&](std::size_t tile) { return computed ? batch[b % 2].order[tile] : indices[first + tile]; };
     for (const auto& [tile, top] : batch[b % 2].thin_tops) {
       if (!tile_d[tile] || top > *tile_d[tile]) tile_d[tile] = top;
     }
     for (std::size_t tile = 0; tile < count; ++tile) {
       if (!tile_d[tile]) continue;
-      found(indices[first + tile], *tile_d[tile]);
-      if (coloured) resolved.emplace_back(indices[first + tile], *tile_d[tile]);
+      found(sample_of(tile), *tile_d[tile]);
+      if (coloured) resolved.emplace_back(sample_of(tile), *tile_d[tile]);
     }
     if (coloured) {
       // Which face each hit's colour comes from, by the exact rule near the cameras' d, then

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "roving/core/triangle_mesh.h"
+#include "roving/gl/depth_renderer.h"
 
 namespace roving {
 
@@ -20,6 +21,10 @@ class TriangleGrid {
   TriangleGrid(const TriangleMesh& mesh, const std::vector<std::uint32_t>& faces, double reach);
 
   double cell_size() const { return cell_; }
+  // The buckets as the compute pass walks them (DepthRenderer::upload_grid()); they point into this grid.
+  GridBuckets buckets() const {
+    return {origin_, cell_, {dims_[0], dims_[1], dims_[2]}, &offsets_, &entries_};
+  }
 
   // Calls visit(triangle) for every triangle listed in a cell that the segment a -> b passes
   // through; a triangle can be visited more than once.

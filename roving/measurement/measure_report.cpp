@@ -198,7 +198,8 @@ nlohmann::json gl_json(const GlReport& g) {
           {"view_depth_step", g.view_depth_step},
           {"camera_half_width", g.camera_half_width},
           {"camera_depth_step", g.camera_depth_step},
-          {"camera_geometry", g.gpu_cameras ? "gpu" : "cpu"},
+          {"camera_geometry", to_string(g.camera_geometry)},
+          {"thin_cameras", g.thin_cameras},
           {"camera_build_seconds", g.camera_build_seconds},
           {"camera_render_seconds", g.camera_render_seconds},
           {"view_cpu_seconds", g.view_cpu_seconds},
@@ -225,7 +226,8 @@ GlReport gl_report_of(const nlohmann::json& json) {
   g.view_depth_step = json.at("view_depth_step").get<double>();
   g.camera_half_width = json.at("camera_half_width").get<double>();
   g.camera_depth_step = json.at("camera_depth_step").get<double>();
-  g.gpu_cameras = json.at("camera_geometry").get<std::string>() == "gpu";
+  g.camera_geometry = parse_camera_geometry(json.at("camera_geometry").get<std::string>());
+  g.thin_cameras = json.value("thin_cameras", std::size_t(0));  // absent before the compute path
   g.camera_build_seconds = json.at("camera_build_seconds").get<double>();
   g.camera_render_seconds = json.at("camera_render_seconds").get<double>();
   g.view_cpu_seconds = json.at("view_cpu_seconds").get<double>();

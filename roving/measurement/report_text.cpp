@@ -117,6 +117,16 @@ std::string wrapped(const std::string& text, std::size_t width = 100) {
   return out + line + "\n";
 }
 
+std::string camera_geometry_text(const GlReport& g) {
+  switch (g.camera_geometry) {
+    case CameraGeometry::Cpu: return "cameras built on the CPU";
+    case CameraGeometry::Gpu: return "cameras built on the GPU";
+    case CameraGeometry::Compute:
+      return fmt::format("cameras in a compute pass; {} with a thin face decided on the CPU", g.thin_cameras);
+  }
+  return "?";
+}
+
 std::string gl_lines(const GlReport& g) {
   std::string out = fmt::format("  GL: {}\n", g.renderer);
   if (g.views_h == 0 && !g.axis_views) {  // exact roving: cameras only
@@ -139,8 +149,8 @@ std::string gl_lines(const GlReport& g) {
   }
   if (g.sample_cameras) {
     precision.push_back(
-        fmt::format("camera half-width {:.3g}, camera depth step {:.3g} (cameras built on the {})",
-                    g.camera_half_width, g.camera_depth_step, g.gpu_cameras ? "GPU" : "CPU"));
+        fmt::format("camera half-width {:.3g}, camera depth step {:.3g} ({})", g.camera_half_width,
+                    g.camera_depth_step, camera_geometry_text(g)));
   }
   if (!precision.empty()) out += fmt::format("  precision (model units): {}\n", fmt::join(precision, "; "));
   return out;
