@@ -574,7 +574,7 @@ TEST(ViewCulling, EveryPixelReadHasTheWholeViewsDepth) {
         const std::vector<std::uint32_t> corners = footprint.corners_reaching(TriangleClusters(test));
         EXPECT_LT(corners.size() / 3, test.triangle_count() / 2) << "culling keeps most triangles";
         renderer->render_view_part(camera, resolution, footprint.rect(), footprint.read_squares(), corners,
-                                   part);
+                                   &part);
         for (int j = 0; j < resolution; ++j) {
           for (int i = 0; i < resolution; ++i) {
             if (!footprint.covers(i, j)) continue;
@@ -659,7 +659,9 @@ TEST_P(EachBackend, ExactRovingFollowsTheRuleOnFacesEdgeOnToItsCameras) {
         EXPECT_NEAR(r.signed_distance[k], e.signed_distance[k], roving_tolerance(*r.gl))
             << "tilt " << tilt << ", cameras " << to_string(geometry) << ", sample " << k;
       }
-      if (geometry == CameraGeometry::Compute) EXPECT_EQ(r.gl->thin_cameras, samples.size());
+      if (geometry == CameraGeometry::Compute) {
+        EXPECT_EQ(r.gl->thin_cameras, samples.size());
+      }
     }
   }
 }
@@ -747,10 +749,46 @@ TEST_P(EachBackend, ComputedCamerasGiveTheDrawnCamerasAnswers) {
     EXPECT_EQ(with_drawn.same_flag, with_drawn.samples) << c.name;
     EXPECT_EQ(with_drawn.close, with_drawn.common_hits) << c.name;
     for (std::size_t k = 0; k < samples.size(); ++k) {
+      if (computed.gl->resolved_by[k] == Resolution::View) {  // looked up in the same view, in double
+        ASSERT_NEAR(computed.signed_distance[k], drawn.signed_distance[k], 1e-12 * c.test.bounding_box().diagonal())
+            << c.name << ", sample " << k;
+      }
       if (computed.gl->resolved_by[k] != Resolution::Camera) continue;
       ASSERT_EQ(embree.hit[k], computed.hit[k]) << c.name << ", sample " << k;
       if (embree.hit[k]) {
         ASSERT_NEAR(computed.signed_distance[k], embree.signed_distance[k], tolerance) << c.name << ", sample " << k;
+      }
+    }
+  }
+}
+
+// With --camera-geometry compute the views' lookup runs in a compute pass too, on the view as
+// drawn (nothing read back but each sample's answer): ViewLine's march, operation for operation
+// in double. Viewpoint sampling alone, its views culled and whole: the same samples resolved as
+// the CPU's lookup, with the same d (to rounding: the CPU takes the march's length by hypot, the
+// pass by a square root).
+TEST_P(EachBackend, ViewLookupsInAComputePassGiveTheCpusAnswers) {
+  REQUIRE_GL_CONTEXT(GetParam());
+  const TriangleMesh bunny = normalised(testing::bunny());
+  const double diagonal = bunny.bounding_box().diagonal();
+  const TriangleMesh test =
+      smoothly_perturbed(decimate_quadric(bunny, 10459), 0.01 * diagonal, 0.5 * diagonal);
+  const SampleSet samples = make_samples(bunny, parse_sample_spec("area:6000"));
+  const DistanceOptions options{Semantics::FirstHit, 0.05 * diagonal};
+  for (const bool cull : {true, false}) {
+    GlMethodOptions gl = EachBackend::options();
+    gl.views_h = 12, gl.views_v = 6, gl.resolution = 512, gl.cull_views = cull;
+    const DistanceResult cpu = measure_distances(*make_method("viewpoint", gl), test, samples, options);
+    gl.camera_geometry = CameraGeometry::Compute;
+    const DistanceResult gpu = measure_distances(*make_method("viewpoint", gl), test, samples, options);
+    EXPECT_EQ(cpu.gl->resolved_by, gpu.gl->resolved_by) << "cull " << cull;
+    EXPECT_EQ(cpu.hit, gpu.hit);
+    // The views resolve a good share (2,739 of 6,000 here), the rest is left to cameras.
+    EXPECT_GT(std::count(gpu.gl->resolved_by.begin(), gpu.gl->resolved_by.end(), Resolution::View),
+              samples.size() / 3);
+    for (std::size_t k = 0; k < samples.size(); ++k) {
+      if (cpu.hit[k] && gpu.hit[k]) {
+        ASSERT_NEAR(gpu.signed_distance[k], cpu.signed_distance[k], 1e-12 * diagonal) << "sample " << k;
       }
     }
   }

@@ -35,9 +35,10 @@ template <class T>
 void ComputeRoving::upload(Buffer buffer, const std::vector<T>& data, const char* what) {
   const std::size_t bytes = std::max<std::size_t>(data.size() * sizeof(T), sizeof(T));
   if (max_block_ > 0 && bytes > static_cast<std::size_t>(max_block_)) {
-    throw Error(fmt::format("gl ({}): the roving compute pass's {} take {} bytes, more than this context's "
-                            "largest storage block ({} bytes); use --camera-geometry cpu or gpu",
-                            backend_, what, bytes, max_block_));
+    throw Error(
+        fmt::format("gl ({}): the roving compute pass's {} take {} bytes, more than this context's "
+                    "largest storage block ({} bytes); use --camera-geometry cpu or gpu",
+                    backend_, what, bytes, max_block_));
   }
   gl_.BindBuffer(GL_SHADER_STORAGE_BUFFER, buffers_[buffer]);
   gl_.BufferData(GL_SHADER_STORAGE_BUFFER, bytes, data.empty() ? nullptr : data.data(),
@@ -53,8 +54,8 @@ void ComputeRoving::upload_grid(const GridBuckets& grid) {
   check_error(gl_, backend_, "uploading the triangle grid");
 }
 
-void ComputeRoving::run(GLuint positions, GLuint corners, const std::vector<double>& samples, double half_width,
-                        double half_depth, std::vector<ComputedTile>& answers) {
+void ComputeRoving::run(GLuint positions, GLuint corners, const std::vector<double>& samples,
+                        double half_width, double half_depth, std::vector<ComputedTile>& answers) {
   if (!grid_ready_) throw Error("gl: rove_samples() before upload_grid()");
   const std::size_t count = samples.size() / 6;
   answers.resize(count);
@@ -82,14 +83,16 @@ void ComputeRoving::run(GLuint positions, GLuint corners, const std::vector<doub
   for (std::size_t first = 0; first < count; first += chunk) {
     const std::size_t n = std::min(chunk, count - first);
     gl_.BindBuffer(GL_SHADER_STORAGE_BUFFER, buffers_[kSamples]);
-    gl_.BufferData(GL_SHADER_STORAGE_BUFFER, 6 * n * sizeof(double), samples.data() + 6 * first, GL_STREAM_DRAW);
+    gl_.BufferData(GL_SHADER_STORAGE_BUFFER, 6 * n * sizeof(double), samples.data() + 6 * first,
+                   GL_STREAM_DRAW);
     gl_.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, buffers_[kSamples]);
     gl_.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, buffers_[kAnswers]);
     gl_.Uniform1ui(location("sample_count"), GLuint(n));
     gl_.DispatchCompute(GLuint((n + 63) / 64), 1, 1);
     gl_.MemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     gl_.BindBuffer(GL_SHADER_STORAGE_BUFFER, buffers_[kAnswers]);
-    const void* mapped = gl_.MapBufferRange(GL_SHADER_STORAGE_BUFFER, 0, n * sizeof(ComputedTile), GL_MAP_READ_BIT);
+    const void* mapped =
+        gl_.MapBufferRange(GL_SHADER_STORAGE_BUFFER, 0, n * sizeof(ComputedTile), GL_MAP_READ_BIT);
     if (!mapped) {
       check_error(gl_, backend_, "mapping the roving compute pass's answers");
       throw Error(fmt::format("gl ({}): mapping the roving compute pass's answers failed", backend_));

@@ -89,6 +89,23 @@ struct ComputedTile {
   std::uint32_t thin;
 };
 
+// What viewpoint sampling's lookup of a sample's normal line in a view needs beside the view's
+// depth (viewpoint_sampling.cpp's ViewLine): the view's camera and size, the pixels drawn, h, and
+// the bounds it derives from the view's precision (normalised depth, but min_distance: model
+// units).
+struct ViewLineSetup {
+  OrthoCamera camera;
+  int resolution = 0;
+  PixelRect rect;
+  double h = 0, smooth_span = 0, depth_scale = 0, crease_limit = 0, min_distance = 0, noise = 0;
+};
+
+// Whether a view resolves a sample, and its d there.
+struct ViewLineAnswer {
+  double d;
+  std::uint32_t accepted, unused;
+};
+
 struct RendererInfo {
   std::string backend, vendor, renderer, version;
 };
@@ -126,10 +143,16 @@ class DepthRenderer {
   // vertices, three a triangle) `corners` lists, and only the pixels in `rect`: depth has
   // resolution^2 entries; at the pixels of the `wanted` rectangles (within `rect`) they are what
   // render_view() gives wherever no omitted triangle covers the pixel; elsewhere in `rect` they
-  // are undefined, and outside it left as they were.
+  // are undefined, and outside it left as they were. A null `depth`: nothing is read back; the
+  // view stays on the GPU for read_view_lines().
   virtual void render_view_part(const OrthoCamera& camera, int resolution, const PixelRect& rect,
                                 const std::vector<PixelRect>& wanted,
-                                const std::vector<std::uint32_t>& corners, std::vector<float>& depth) = 0;
+                                const std::vector<std::uint32_t>& corners, std::vector<float>* depth) = 0;
+  // Viewpoint sampling's lookup in a compute pass on the view last drawn (its `setup.rect`, as
+  // render_view_part() drew it, or the whole view): for each sample (six doubles: position,
+  // normal) whether the view resolves it, and its d (view_lines_shader.h).
+  virtual void read_view_lines(const ViewLineSetup& setup, const std::vector<double>& samples,
+                               std::vector<ViewLineAnswer>& answers) = 0;
 
   // Draws `vertices` (triangles, three consecutive vertices each) into a grid of one-pixel tiles,
   // tile k at column k % columns, row k / columns, each clipped to its own view volume, and

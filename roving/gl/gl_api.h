@@ -57,6 +57,7 @@ namespace roving::gl {
   X(PFNGLUNIFORM1DPROC, Uniform1d)                             \
   X(PFNGLUNIFORM3DPROC, Uniform3d)                             \
   X(PFNGLUNIFORM3IPROC, Uniform3i)                             \
+  X(PFNGLUNIFORM4IPROC, Uniform4i)                             \
   X(PFNGLMAPBUFFERRANGEPROC, MapBufferRange)                   \
   X(PFNGLUNMAPBUFFERPROC, UnmapBuffer)                         \
   X(PFNGLGENVERTEXARRAYSPROC, GenVertexArrays)                 \

@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "compute_roving.h"
+#include "view_lines.h"
 #include "depth_renderer_shaders.h"
 #include "gl_api.h"
 #include "gl_context.h"
@@ -95,10 +96,12 @@ class GlDepthRenderer final : public DepthRenderer {
     try {
       context_->make_current();
     } catch (const Error&) {
-      compute_roving_.release();  // its GL objects go with the context
+      compute_roving_.release();  // their GL objects go with the context
+      view_lines_.release();
       return;  // nothing can be freed without the context; destroying it frees all
     }
     compute_roving_.reset();
+    view_lines_.reset();
     gl_.DeleteBuffers(1, &model_vertices_);
     gl_.DeleteBuffers(1, &model_indices_);
     gl_.DeleteBuffers(1, &tile_vertices_);
@@ -291,7 +294,7 @@ class GlDepthRenderer final : public DepthRenderer {
 
   void render_view_part(const OrthoCamera& camera, int resolution, const PixelRect& rect,
                         const std::vector<PixelRect>& wanted, const std::vector<std::uint32_t>& corners,
-                        std::vector<float>& depth) override {
+                        std::vector<float>* depth) override {
     context_->make_current();
     require_view(resolution);
     const auto inside = [&](const PixelRect& r, const PixelRect& outer) {
@@ -310,7 +313,7 @@ class GlDepthRenderer final : public DepthRenderer {
       throw Error(fmt::format("gl: part of a view needs three corners a triangle, each below {} vertices",
                               model_vertex_count_));
     }
-    depth.resize(static_cast<std::size_t>(resolution) * resolution);
+    if (depth) depth->resize(static_cast<std::size_t>(resolution) * resolution);
     if (rect.empty()) return;
     // Only the rectangle is drawn and read (the scissor box bounds both), and only the wanted
     // pixels in it are cleared: a scissored clear costs as much as drawing the whole rectangle.
@@ -328,10 +331,12 @@ class GlDepthRenderer final : public DepthRenderer {
       gl_.BindBuffer(GL_ELEMENT_ARRAY_BUFFER, model_indices_);
     }
     // Read the rectangle straight into its place in the full-size image.
-    gl_.PixelStorei(GL_PACK_ROW_LENGTH, resolution);
-    gl_.ReadPixels(rect.x0, rect.y0, rect.x1 - rect.x0, rect.y1 - rect.y0, GL_DEPTH_COMPONENT, GL_FLOAT,
-                   depth.data() + static_cast<std::size_t>(rect.y0) * resolution + rect.x0);
-    gl_.PixelStorei(GL_PACK_ROW_LENGTH, 0);
+    if (depth) {
+      gl_.PixelStorei(GL_PACK_ROW_LENGTH, resolution);
+      gl_.ReadPixels(rect.x0, rect.y0, rect.x1 - rect.x0, rect.y1 - rect.y0, GL_DEPTH_COMPONENT, GL_FLOAT,
+                     depth->data() + static_cast<std::size_t>(rect.y0) * resolution + rect.x0);
+      gl_.PixelStorei(GL_PACK_ROW_LENGTH, 0);
+    }
     gl_.Disable(GL_SCISSOR_TEST);
     check("rendering part of a view");
   }
@@ -469,6 +474,15 @@ class GlDepthRenderer final : public DepthRenderer {
     context_->make_current();
     if (!compute_roving_) compute_roving_ = std::make_unique<gl::ComputeRoving>(gl_, info_.backend);
     compute_roving_->upload_grid(grid);
+  }
+
+  void read_view_lines(const ViewLineSetup& setup, const std::vector<double>& samples,
+                       std::vector<ViewLineAnswer>& answers) override {
+    context_->make_current();
+    if (!framebuffer_ || setup.resolution > fb_width_ || setup.resolution > fb_height_)
+      throw Error("gl: read_view_lines() before a view was drawn");
+    if (!view_lines_) view_lines_ = std::make_unique<gl::ViewLines>(gl_, info_.backend);
+    view_lines_->run(setup, samples, answers);
   }
 
   void rove_samples(const std::vector<double>& samples, double half_width, double half_depth,
@@ -650,6 +664,7 @@ class GlDepthRenderer final : public DepthRenderer {
   GLuint tile_face_program_ = 0, tile_face_vao_ = 0, tile_face_buffers_[kStorageBuffers] = {};
   bool face_vertices_ready_ = false;
   std::unique_ptr<gl::ComputeRoving> compute_roving_;  // made by upload_grid()
+  std::unique_ptr<gl::ViewLines> view_lines_;          // made by the first read_view_lines()
   std::size_t model_triangle_count_ = 0;  // with positions in double, for render_tile_faces()
   GLsizei model_index_count_ = 0;
   std::size_t model_vertex_count_ = 0;

@@ -236,11 +236,13 @@ std::size_t rove(GlScene& scene, const SampleSet& samples, const std::vector<std
   const auto pack_batch = [&](std::size_t first, TileBatch& batch) {
     const Stopwatch building;
     const std::size_t count = std::min(batch_size, indices.size() - first);
-    batch.order.assign(indices.begin() + first, indices.begin() + first + count);
-    const BoundingBox& box = test.bounding_box();
     std::vector<std::pair<std::uint64_t, std::uint32_t>> keyed(count);
-    for (std::size_t i = 0; i < count; ++i) keyed[i] = {morton_code(samples.positions[batch.order[i]], box), batch.order[i]};
+    for (std::size_t i = 0; i < count; ++i) {
+      const std::uint32_t k = indices[first + i];
+      keyed[i] = {morton_code(samples.positions[k], test.bounding_box()), k};
+    }
     std::sort(keyed.begin(), keyed.end());
+    batch.order.resize(count);
     batch.samples.resize(6 * count);
     for (std::size_t i = 0; i < count; ++i) {
       const std::uint32_t k = batch.order[i] = keyed[i].second;
@@ -295,8 +297,6 @@ std::size_t rove(GlScene& scene, const SampleSet& samples, const std::vector<std
     report.camera_build_seconds += building.seconds();
   };
 
-  // A pipeline of two batches: while the GL thread (this one) draws a batch, the other cores
-  // build the next one.
   // The compute pass leaves faces thin across a camera to the rule: the tiles it flagged, decided
   // here on the CPU threads, into the batch's thin_tops.
   const auto decide_thin = [&](TileBatch& batch, const std::vector<ComputedTile>& answers) {
@@ -325,6 +325,8 @@ std::size_t rove(GlScene& scene, const SampleSet& samples, const std::vector<std
     report.camera_build_seconds += deciding.seconds();
   };
 
+  // A pipeline of two batches: while the GL thread (this one) draws a batch, the other cores
+  // build the next one.
   TileBatch batch[2];
   std::vector<ComputedTile> answers;  // the compute pass's, per tile
   std::vector<float> depth;

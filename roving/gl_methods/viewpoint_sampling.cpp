@@ -59,18 +59,34 @@ class ViewLine {
  public:
   static constexpr double kCreaseDegrees = 20;
 
-  // `depth_scale`: model units per unit of normalised depth; `pixel_size` and `depth_step` (one
-  // float step of depth near the far plane) in model units.
-  ViewLine(const OrthoCamera& camera, const std::vector<float>& depth, int resolution, double smooth_span,
-           double depth_scale, double pixel_size, double depth_step)
-      : camera_(camera),
+  // The view's setup (the camera and size; the pixels drawn are left whole): `depth_scale`:
+  // model units per unit of normalised depth; `pixel_size` and `depth_step` (one float step of
+  // depth near the far plane) in model units. The same bounds for the compute pass's lookup
+  // (DepthRenderer::read_view_lines()).
+  static ViewLineSetup setup(const OrthoCamera& camera, int resolution, double h, double smooth_span,
+                             double depth_scale, double pixel_size, double depth_step) {
+    ViewLineSetup s;
+    s.camera = camera;
+    s.resolution = resolution;
+    s.rect = {0, 0, resolution, resolution};
+    s.h = h;
+    s.smooth_span = smooth_span;
+    s.depth_scale = depth_scale;
+    s.crease_limit = std::tan(kCreaseDegrees * M_PI / 180) * pixel_size / depth_scale;
+    s.min_distance = 100 * 4 * depth_step;
+    s.noise = 16 * depth_step / depth_scale;
+    return s;
+  }
+
+  ViewLine(const ViewLineSetup& setup, const std::vector<float>& depth)
+      : camera_(setup.camera),
         depth_(depth),
-        resolution_(resolution),
-        smooth_span_(smooth_span),
-        depth_scale_(depth_scale),
-        crease_limit_(std::tan(kCreaseDegrees * M_PI / 180) * pixel_size / depth_scale),
-        min_distance_(100 * 4 * depth_step),
-        noise_(16 * depth_step / depth_scale) {}
+        resolution_(setup.resolution),
+        smooth_span_(setup.smooth_span),
+        depth_scale_(setup.depth_scale),
+        crease_limit_(setup.crease_limit),
+        min_distance_(setup.min_distance),
+        noise_(setup.noise) {}
 
   std::optional<double> first_crossing(const Vec3& x, const Vec3& n, double h) const {
     // Steps of at most half a pixel across the image, at least 2.
@@ -215,7 +231,7 @@ class ViewLine {
     return f_high - f_low > 0 ? t_high - f_high * (t_high - t_low) / (f_high - f_low) : t_low;
   }
 
-  const OrthoCamera& camera_;
+  OrthoCamera camera_;
   const std::vector<float>& depth_;
   int resolution_;
   double smooth_span_, depth_scale_, crease_limit_, min_distance_;
@@ -276,6 +292,18 @@ void view_sample(GlScene& scene, const SampleSet& samples, const std::vector<std
     std::vector<std::uint32_t> corners;
     std::vector<float> depth;
     std::unique_ptr<TriangleGrid> blind;  // the faces it cannot draw; null where there are none
+    // Looked up on the GPU: the group's samples (position, normal) and the pass's answers.
+    std::vector<double> packed;
+    std::vector<ViewLineAnswer> answers;
+  };
+  // `--camera-geometry compute`: the normal lines are looked up in a compute pass on the view
+  // as drawn, nothing read back but each sample's answer.
+  const bool lines_on_gpu = options.camera_geometry == CameraGeometry::Compute && options.normal_line;
+  const auto line_setup = [&](const View& view) {
+    ViewLineSetup s = ViewLine::setup(view.camera, resolution, max_error, smooth_span, 2 * radius,
+                                      report.view_pixel_size, report.view_depth_step);
+    if (options.cull_views) s.rect = view.rect;
+    return s;
   };
   const bool colour = static_cast<bool>(coloured);
   std::vector<SampleHit> hits;  // the accepted samples, to be shaded once the views are done
@@ -290,6 +318,13 @@ void view_sample(GlScene& scene, const SampleSet& samples, const std::vector<std
     view.camera = OrthoCamera::looking_along(-directions[d], box.centre(), radius, radius, radius);
     const std::vector<std::uint32_t> blind = scene.blind->for_view(directions[d]);
     view.blind = blind.empty() ? nullptr : std::make_unique<TriangleGrid>(*scene.test, blind, tolerance);
+    if (lines_on_gpu) {
+      view.packed.resize(6 * groups[d].size());
+      for (std::size_t i = 0; i < groups[d].size(); ++i) {
+        const Vec3 &x = samples.positions[groups[d][i]], &n = samples.normals[groups[d][i]];
+        std::copy_n(std::array<double, 6>{x.x(), x.y(), x.z(), n.x(), n.y(), n.z()}.data(), 6, &view.packed[6 * i]);
+      }
+    }
     if (!options.cull_views) return;
     const ViewFootprint footprint(view.camera, resolution, samples, groups[d],
                                   options.normal_line ? max_error : 0.0);
@@ -300,10 +335,11 @@ void view_sample(GlScene& scene, const SampleSet& samples, const std::vector<std
   const auto draw = [&](View& view) {
     if (options.cull_views) {
       scene.renderer->render_view_part(view.camera, resolution, view.rect, view.wanted, view.corners,
-                                       view.depth);
+                                       lines_on_gpu ? nullptr : &view.depth);
     } else {
       scene.renderer->render_view(view.camera, resolution, view.depth);
     }
+    if (lines_on_gpu) scene.renderer->read_view_lines(line_setup(view), view.packed, view.answers);
   };
   // Whether sample k's normal line meets one of `blind`'s faces, by the rule, at or above `from`.
   const auto meets_blind = [&](const TriangleGrid& blind, std::uint32_t k, double from) {
@@ -337,9 +373,15 @@ void view_sample(GlScene& scene, const SampleSet& samples, const std::vector<std
       const std::lock_guard<std::mutex> lock(hits_mutex);
       hits.push_back(hit);
     };
-    if (options.normal_line) {
-      const ViewLine line(camera, view.depth, resolution, smooth_span, 2 * radius, report.view_pixel_size,
-                          report.view_depth_step);
+    if (lines_on_gpu) {
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, group.size(), 256),
+                        [&](const tbb::blocked_range<std::size_t>& range) {
+                          for (std::size_t i = range.begin(); i != range.end(); ++i) {
+                            if (view.answers[i].accepted) accept(group[i], view.answers[i].d);
+                          }
+                        });
+    } else if (options.normal_line) {
+      const ViewLine line(line_setup(view), view.depth);
       tbb::parallel_for(tbb::blocked_range<std::size_t>(0, group.size(), 256),
                         [&](const tbb::blocked_range<std::size_t>& range) {
                           for (std::size_t i = range.begin(); i != range.end(); ++i) {
