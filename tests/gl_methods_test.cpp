@@ -794,5 +794,31 @@ TEST_P(EachBackend, ViewLookupsInAComputePassGiveTheCpusAnswers) {
   }
 }
 
+
+// A shader sees no more of a storage buffer than the context's largest block (128 MiB on
+// llvmpipe): a test model whose double positions exceed it is refused when the cameras need them
+// on the GPU, naming the sizes and the way out, not measured on a truncated buffer.
+TEST_P(EachBackend, ATestModelBeyondTheLargestStorageBlockIsRefused) {
+  REQUIRE_GL_CONTEXT(GetParam());
+  if (make_depth_renderer(GetParam())->info().renderer.find("llvmpipe") == std::string::npos)
+    GTEST_SKIP() << "the 128 MiB block is llvmpipe's";
+  const std::size_t vertices = (std::size_t(1) << 27) / 24 + 1;
+  std::vector<Vec3> positions(vertices, Vec3::Zero());
+  positions[1] = Vec3(1, 0, 0), positions[2] = Vec3(0, 1, 0);
+  const TriangleMesh test(positions, {{0, 1, 2}});
+  for (const CameraGeometry geometry : {CameraGeometry::Gpu, CameraGeometry::Compute}) {
+    GlMethodOptions gl = EachBackend::options();
+    gl.camera_geometry = geometry;
+    try {
+      make_method("roving", gl)->build(test);
+      ADD_FAILURE() << "accepted with cameras " << to_string(geometry);
+    } catch (const Error& e) {
+      const std::string message = e.what();
+      for (const char* part : {"5592406 vertices", "largest storage block (134217728 bytes)", "--camera-geometry cpu"})
+        EXPECT_NE(message.find(part), std::string::npos) << message;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace roving

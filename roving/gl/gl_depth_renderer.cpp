@@ -37,6 +37,9 @@ class GlDepthRenderer final : public DepthRenderer {
     gl_.GetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &renderbuffer);
     gl_.GetIntegerv(GL_MAX_VIEWPORT_DIMS, viewport);
     max_size_ = std::min({renderbuffer, viewport[0], viewport[1]});
+    GLint max_block = 0;
+    gl_.GetIntegerv(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
+    max_storage_block_ = max_block;
     view_program_ = link(kViewVertexShader, "view");
     const std::string tile_source = std::string("#version 450 core\n") + kTileVertexShader;
     const std::string shaded_tile_source =
@@ -133,6 +136,16 @@ class GlDepthRenderer final : public DepthRenderer {
 
   void upload_model(const TriangleMesh& mesh, bool for_tile_faces) override {
     context_->make_current();
+    if (for_tile_faces) {
+      // A shader sees no more of a buffer than the context's largest storage block.
+      const std::size_t bytes = std::max(24 * mesh.vertex_count(), 12 * mesh.triangle_count());
+      if (max_storage_block_ > 0 && bytes > static_cast<std::size_t>(max_storage_block_)) {
+        throw Error(fmt::format(
+            "gl ({}): the test model's {} vertices and {} triangles take {} bytes in a storage buffer, more than "
+            "this context's largest storage block ({} bytes); use --camera-geometry cpu",
+            info_.backend, mesh.vertex_count(), mesh.triangle_count(), bytes, max_storage_block_));
+      }
+    }
     model_origin_ = mesh.bounding_box().centre();
     std::vector<float> positions;
     positions.reserve(3 * mesh.vertex_count());
@@ -652,6 +665,7 @@ class GlDepthRenderer final : public DepthRenderer {
   gl::Api gl_;
   RendererInfo info_;
   int max_size_ = 0;
+  long long max_storage_block_ = 0;  // GL_MAX_SHADER_STORAGE_BLOCK_SIZE
   GLuint view_program_ = 0, tile_program_ = 0, tile_shade_program_ = 0, far_program_ = 0;
   GLuint tile_shade_vao_ = 0, tile_shades_ = 0;
   GLuint shaded_view_program_ = 0, shaded_model_vao_ = 0, shaded_model_ = 0;
