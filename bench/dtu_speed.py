@@ -10,12 +10,14 @@ a shuffle costs either side the same few seconds.
 
 The scene is made here, DTU-sized (millimetres): the ground truth, M points on a sphere; the
 reconstruction, a rippled sphere meshed so that eval.py's sampling makes about N points (mesh
-mode) or those points themselves (--mode pcd); the mask (observed where x < 0.65 R) and the
-ground plane, as .mat files. eval.py is not part of roving:
+mode) or N points on it (--mode pcd); the mask (observed where x < 0.65 R) and the ground plane,
+as .mat files. --order says how the files hold their points: `file` (a spiral, as made), `scan`
+(scan lines: rows of the x-y plane one after the other, as a scanner writes them) or `random` (a
+fixed shuffle, as many reconstruction pipelines write them); both tools read the same files. eval.py is not part of roving:
 https://github.com/jzhangbs/DTUeval-python (Debian's python3-open3d, -sklearn, -scipy, -tqdm).
 
     /usr/bin/python3 bench/dtu_speed.py --roving build/roving/roving --dtueval /path/to/DTUeval-python \\
-        --points 1000000 10000000 30000000 --out results
+        --points 1000000 10000000 30000000 [--mode pcd] [--order random] --out results
 """
 import argparse
 import json
@@ -80,9 +82,24 @@ def write_ply(path, vertices, faces=None):
             f.write(rows.tobytes())
 
 
-def make_scene(folder, points, truth, density, triangles=0):
+def ordered(points, order, density):
+    """The points as a file in `order` holds them (see the module's text)."""
+    if order == "random":
+        return points[np.random.default_rng(1).permutation(len(points))]
+    if order == "scan":  # rows 2 density apart along y, each along x; rows of z slices
+        cells = np.floor(points / (2 * density)).astype(np.int64)
+        return points[np.lexsort((points[:, 0], cells[:, 1], cells[:, 2]))]
+    return points
+
+
+def rippled(t, p, radius):
+    rr = radius + 0.5 * np.sin(7 * t) * np.sin(5 * p)
+    return np.stack([rr * np.sin(t) * np.cos(p), rr * np.sin(t) * np.sin(p), rr * np.cos(t)], -1)
+
+
+def make_scene(folder, points, truth, density, triangles=0, mode="mesh", order="file"):
     """Files laid out as DTU's data set (scan 1), and the reconstruction (about `triangles` faces
-    where given); returns its path."""
+    where given, or `points` points in pcd mode)."""
     # eval.py makes about one point per density^2 of area: a sphere of that area.
     radius = float(np.sqrt(points * density * density / (4 * np.pi)))
     i = np.arange(truth) + 0.5
@@ -91,14 +108,18 @@ def make_scene(folder, points, truth, density, triangles=0):
     r = np.sqrt(1 - z * z)
     os.makedirs(f"{folder}/Points/stl", exist_ok=True)
     os.makedirs(f"{folder}/ObsMask", exist_ok=True)
-    write_ply(f"{folder}/Points/stl/stl001_total.ply", radius * np.stack([r * np.cos(phi), r * np.sin(phi), z], 1))
+    write_ply(f"{folder}/Points/stl/stl001_total.ply",
+              ordered(radius * np.stack([r * np.cos(phi), r * np.sin(phi), z], 1), order, density))
+    if mode == "pcd":  # N points spread evenly over the rippled sphere
+        j = np.arange(points) + 0.5
+        write_ply(f"{folder}/recon_points.ply",
+                  ordered(rippled(np.arccos(1 - 2 * j / points), np.pi * (3 - np.sqrt(5)) * j, radius), order, density))
     # Faces about 10 density steps across (50 samples each), or as many as asked: 4 rings^2.
     rings = max(8, int(np.sqrt(triangles / 4)) if triangles else int(np.pi * radius / (10 * density)))
     segments = 2 * rings
     t, p = np.meshgrid(np.linspace(0, np.pi, rings + 1)[1:-1], np.linspace(0, 2 * np.pi, segments, endpoint=False),
                        indexing="ij")
-    rr = radius + 0.5 * np.sin(7 * t) * np.sin(5 * p)
-    vertices = np.stack([rr * np.sin(t) * np.cos(p), rr * np.sin(t) * np.sin(p), rr * np.cos(t)], -1).reshape(-1, 3)
+    vertices = rippled(t, p, radius).reshape(-1, 3)
     a = (np.arange(rings - 2)[:, None] * segments + np.arange(segments)[None, :]).ravel()
     b = (np.arange(rings - 2)[:, None] * segments + (np.arange(segments)[None, :] + 1) % segments).ravel()
     faces = np.concatenate([np.stack([a, a + segments, b], 1), np.stack([b, a + segments, b + segments], 1)])
@@ -111,7 +132,6 @@ def make_scene(folder, points, truth, density, triangles=0):
     scipy.io.savemat(f"{folder}/ObsMask/ObsMask1_10.mat",
                      {"ObsMask": observed, "BB": np.array([[-side] * 3, [side] * 3]), "Res": res}, do_compression=True)
     scipy.io.savemat(f"{folder}/ObsMask/Plane1.mat", {"P": np.array([[0.0], [0], [1], [0.9 * radius]])})
-    return f"{folder}/recon_mesh.ply", len(faces)
 
 
 def main():
@@ -124,18 +144,28 @@ def main():
     parser.add_argument("--triangles", type=int, default=0,
                         help="the reconstruction mesh's triangles (else faces 10 sampling steps across); "
                              "writes dtu-speed-dense-mesh.md")
+    parser.add_argument("--mode", choices=["mesh", "pcd"], default="mesh",
+                        help="the reconstruction a mesh eval.py samples, or N points (eval.py's --mode)")
+    parser.add_argument("--order", choices=["file", "scan", "random"], default="file",
+                        help="how the files hold their points (the module's text)")
     parser.add_argument("--out", help="a folder for dtu-speed.md; else stdout")
     args = parser.parse_args()
     density = 0.2
     mesh = f"a reconstruction mesh of about {args.triangles:,} triangles" if args.triangles else "a reconstruction mesh"
+    if args.mode == "pcd":
+        mesh = "a reconstruction of N points"
+    order = {"file": "in the points' own order (a spiral)", "scan": "the files in scan order (rows along x)",
+             "random": "the files in random order (a fixed shuffle)"}[args.order]
     lines = [
         "# The DTU protocol: roving against DTUeval-python",
         "",
         f"Written by `bench/dtu_speed.py --points {' '.join(map(str, args.points))}"
         + (f" --triangles {args.triangles} --truth-ratio {args.truth_ratio:g}" if args.triangles else "")
+        + (f" --mode {args.mode}" if args.mode != "mesh" else "") + (f" --order {args.order}" if args.order != "file" else "")
         + f"` on {platform.node()} ({os.cpu_count()} cores), {time.strftime('%Y-%m-%d')}. Each scene: {mesh} that eval.py samples "
-        f"into about N points, against a ground truth of N / {args.truth_ratio:g} points. One run each, in the points' "
-        "own order; the figures agree to 1e-9 relative before anything is timed.",
+        f"into about N points, against a ground truth of N / {args.truth_ratio:g} points. One run each, {order}, "
+        "eval.py's shuffle left out so that both visit them so; the figures agree to 1e-9 relative before anything "
+        "is timed.",
         "",
         "| points sampled | ground truth | tool | wall s | CPU s | peak RSS MiB | accuracy | completeness | overall |",
         "| ---: | ---: | --- | ---: | ---: | ---: | ---: | ---: | ---: |",
@@ -147,8 +177,8 @@ def main():
             # In a process of its own: a child's peak RSS counts its parent's at the fork (Linux copies
             # the high-water mark), so this process stays small while the scene's arrays are made.
             run([sys.executable, __file__, "--make-scene", folder, str(points), str(truth), str(density),
-                 str(args.triangles)])
-            recon = f"{folder}/recon_mesh.ply"
+                 str(args.triangles), args.mode, args.order])
+            recon = f"{folder}/recon_mesh.ply" if args.mode == "mesh" else f"{folder}/recon_points.ply"
             mask, plane = f"{folder}/ObsMask/ObsMask1_10.mat", f"{folder}/ObsMask/Plane1.mat"
             rows = []
             wall, cpu, rss, out = run([args.roving, "measure", f"{folder}/Points/stl/stl001_total.ply", recon,
@@ -162,7 +192,7 @@ def main():
                 source = open(os.path.join(args.dtueval, "eval.py")).read()
                 assert "shuffle_rng.shuffle(data_pcd, axis=0)" in source
                 open(script, "w").write(source.replace("shuffle_rng.shuffle(data_pcd, axis=0)", "pass"))
-                wall, cpu, rss, out = run([sys.executable, script, "--data", recon, "--scan", "1", "--mode", "mesh",
+                wall, cpu, rss, out = run([sys.executable, script, "--data", recon, "--scan", "1", "--mode", args.mode,
                                            "--dataset_dir", folder, "--vis_out_dir", folder])
                 theirs = [float(v) for v in out.strip().splitlines()[-1].split()]
                 for name, a, b in zip(("accuracy", "completeness", "overall"), ours, theirs):
@@ -171,11 +201,15 @@ def main():
                 rows.append(("DTUeval-python eval.py", wall, cpu, rss, theirs))
                 ratios.append((report["reconstruction_points"], rows[1][1] / rows[0][1], rows[1][3] / rows[0][3]))
         add_rows(lines, rows, report["reconstruction_points"], report["ground_truth_points"], "{:.9g}")
-    write_report(lines, ratios, args.out, "dtu-speed-dense-mesh.md" if args.triangles else "dtu-speed.md")
+    name = "dtu-speed-dense-mesh.md" if args.triangles else "dtu-speed.md"
+    if args.mode == "pcd" or args.order != "file":
+        name = f"dtu-speed-{args.mode}-{args.order}.md"
+    write_report(lines, ratios, args.out, name)
 
 
 if __name__ == "__main__":
     if sys.argv[1:2] == ["--make-scene"]:
-        make_scene(sys.argv[2], int(sys.argv[3]), int(sys.argv[4]), float(sys.argv[5]), int(sys.argv[6]))
+        make_scene(sys.argv[2], int(sys.argv[3]), int(sys.argv[4]), float(sys.argv[5]), int(sys.argv[6]),
+                   sys.argv[7], sys.argv[8])
     else:
         main()
