@@ -37,7 +37,7 @@ import time
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from dtu_speed import add_rows, run, write_ply, write_report  # noqa: E402
+from dtu_speed import add_rows, ordered, run, write_ply, write_report  # noqa: E402
 
 TAU = 0.01
 
@@ -118,10 +118,11 @@ def alignment():
     return t
 
 
-def make_scene(folder, points, truth, triangles=0):
+def make_scene(folder, points, truth, triangles=0, order="file"):
     """The scene's files; the reconstruction's spacing about tau / 5, so that tau / 2 thins it.
     With `triangles`, both are meshes (latitude-longitude spheres) of about `triangles` and
-    `truth` triangles, and `points` is ignored: the toolbox reads a mesh as its vertices."""
+    `truth` triangles, and `points` is ignored: the toolbox reads a mesh as its vertices. Clouds are
+    written in `order` (dtu_speed.py's ordered())."""
     if triangles:
         points = triangles // 2  # a closed mesh has about half as many vertices as triangles
     radius = float(np.sqrt(points * (TAU / 5) ** 2 / (4 * np.pi)))
@@ -143,9 +144,14 @@ def make_scene(folder, points, truth, triangles=0):
         b = (np.arange(rings - 2)[:, None] * segments + (np.arange(segments)[None, :] + 1) % segments).ravel()
         return vertices, np.concatenate([np.stack([a, a + segments, b], 1), np.stack([b, a + segments, b + segments], 1)])
     shape = lat_long if triangles else fibonacci
-    write_ply(f"{folder}/Scene.ply", *shape(truth, 0.0))
+    truth_points, truth_faces = shape(truth, 0.0)
+    if truth_faces is None:
+        truth_points = ordered(truth_points, order, TAU)
+    write_ply(f"{folder}/Scene.ply", truth_points, truth_faces)
     t = alignment()
     recon, faces = shape(triangles or points, 1.5 * TAU)
+    if faces is None:
+        recon = ordered(recon, order, TAU)
     inverse = np.linalg.inv(t)
     write_ply(f"{folder}/recon.ply", recon @ inverse[:3, :3].T + inverse[:3, 3], faces)
     np.savetxt(f"{folder}/Scene_trans.txt", t)
@@ -170,6 +176,8 @@ def main():
                         help="meshes instead of clouds: the reconstruction's triangles, one scene per number, against "
                              "a mesh of 1 / --truth-ratio as many (writes tnt-speed-mesh.md or tnt-registration-speed-mesh.md)")
     parser.add_argument("--out", help="a folder for tnt-speed.md (tnt-registration-speed.md); else stdout")
+    parser.add_argument("--order", choices=["file", "scan", "random"], default="file",
+                        help="how the clouds' files hold their points: as made (a spiral), in scan lines, or shuffled")
     parser.add_argument("--registration", action="store_true",
                         help="run.py's registration first, from the camera trajectories (roving: one run)")
     args = parser.parse_args()
@@ -184,7 +192,7 @@ def main():
         f"# The Tanks and Temples protocol: roving against the toolbox's {what}",
         "",
         f"Written by `bench/tnt_speed.py {sizes}"
-        f"{' --registration' if args.registration else ''}` on {platform.node()} "
+        f"{' --registration' if args.registration else ''}{f' --order {args.order}' if args.order != 'file' else ''}` on {platform.node()} "
         f"({os.cpu_count()} cores), {time.strftime('%Y-%m-%d')}. Each scene: {scene}, tau {TAU} m, cropped by "
         "a polygon and a height range. One run each; precision, recall and F equal before anything is timed"
         + (" (with the registration: or a few thinned points apart, as noted below the table)." if args.registration
@@ -200,7 +208,7 @@ def main():
             # In a process of its own: a child's peak RSS counts its parent's at the fork (Linux copies
             # the high-water mark), so this process stays small while the scene's arrays are made.
             run([sys.executable, __file__, "--make-scene", folder, str(points), str(truth),
-                 str(points if args.triangles else 0)])
+                 str(points if args.triangles else 0), args.order])
             rows = []
             registration = ["--tnt-trajectory", f"{folder}/recon.log", "--tnt-reference-trajectory",
                             f"{folder}/Scene_COLMAP_SfM.log", "--protocol-runs", "1"] if args.registration else []
@@ -252,11 +260,12 @@ def main():
                  "{:.8f}" if args.registration else "{:.6f}")
     lines += [""] + [f"- {note}." for note in notes] if notes else []
     name = ("tnt-registration-speed" if args.registration else "tnt-speed") + ("-mesh" if args.triangles else "")
+    name += f"-{args.order}" if args.order != "file" else ""
     write_report(lines, ratios, args.out, name + ".md")
 
 
 if __name__ == "__main__":
     if sys.argv[1:2] == ["--make-scene"]:
-        make_scene(sys.argv[2], int(sys.argv[3]), int(sys.argv[4]), int(sys.argv[5]))
+        make_scene(sys.argv[2], int(sys.argv[3]), int(sys.argv[4]), int(sys.argv[5]), sys.argv[6])
     else:
         main()
