@@ -35,6 +35,7 @@ struct PointQueryState {
   Vec3 query;  // in mesh coordinates (double)
   Vec3 closest;
   double distance = std::numeric_limits<double>::infinity();
+  double distance_squared_limit = std::numeric_limits<double>::infinity();
   std::uint32_t face = 0;
 };
 
@@ -49,10 +50,15 @@ bool closest_point_callback(RTCPointQueryFunctionArguments* args) {
   const Triangle& t = state->mesh->triangles()[args->primID];
   const auto& p = state->mesh->positions();
   const Vec3 c = closest_point_on_triangle(state->query, p[t[0]], p[t[1]], p[t[2]]);
-  const double distance = (c - state->query).norm();
+  const double distance_squared = (c - state->query).squaredNorm();
+  // Clearly farther than the best (its square root would exceed the best's by two units in the
+  // last place): rejected without the square root, the usual case among a query's candidates.
+  if (distance_squared > state->distance_squared_limit) return false;
+  const double distance = std::sqrt(distance_squared);
   // Equally near faces: the lowest, whatever order the traversal visits them in.
   if (distance < state->distance || (distance == state->distance && args->primID < state->face)) {
     state->distance = distance;
+    state->distance_squared_limit = distance_squared * (1 + 0x1p-50);
     state->closest = c;
     state->face = args->primID;
     args->query->radius = search_radius(distance);  // shrink the search sphere
