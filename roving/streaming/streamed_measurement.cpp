@@ -275,8 +275,12 @@ StreamedResult measure_streamed_vertices(TriangleStream& stream, DistanceMethod&
   const std::size_t n = stream.position_count();
   for (std::size_t first = 0; first < n; first += chunk_faces) {
     ++result.chunks;
-    SampleSet samples;
-    for (std::size_t v = first; v < std::min(n, first + chunk_faces); ++v) {
+    const std::size_t last = std::min(n, first + chunk_faces);
+    SampleSet samples;  // room for the block at once: growing by doubling wrote each array twice over
+    samples.positions.reserve(last - first);
+    samples.normals.reserve(last - first);
+    samples.weights.reserve(last - first);
+    for (std::size_t v = first; v < last; ++v) {
       if (!sums.referenced[v]) {
         ++result.samples.skipped_unreferenced_vertices;
       } else if (sums.normals[v].isZero()) {
@@ -287,7 +291,7 @@ StreamedResult measure_streamed_vertices(TriangleStream& stream, DistanceMethod&
         samples.weights.push_back(sums.third_areas[v]);
       }
     }
-    sums.release(first, std::min(n, first + chunk_faces));
+    sums.release(first, last);
     pending.append(std::move(samples));
     const std::size_t ready = pending.size() / run * run;
     if (ready == 0) continue;
