@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <tbb/parallel_for.h>
 
+#include <Eigen/Geometry>
 #include <Eigen/SVD>
 #include <algorithm>
 #include <cmath>
@@ -13,6 +14,9 @@
 namespace roving {
 
 namespace {
+
+// Pairs up to this many (6 MB of matrices) are solved in Open3D's own arithmetic.
+constexpr std::size_t kPairsInOpen3dsMatrices = std::size_t(1) << 16;
 
 // The registration of source points whose nearest target points are `nearest`, `squared` away.
 // In blocks on every core: each block's pairs counted, then listed in order, and its squared
@@ -123,10 +127,24 @@ PointRegistration evaluate_registration(const std::vector<Vec3>& source, const P
 Eigen::Matrix4d similarity_of_pairs(const std::vector<Vec3>& source, const std::vector<Vec3>& target,
                                     const PointPairs& pairs) {
   if (pairs.empty()) return Eigen::Matrix4d::Identity();
-  // Eigen's umeyama step for step, its 3 x n matrices (and their centred copies, 4 x 24 bytes a
-  // pair: 230 MB for the 2.4 M pairs of a 3 M-point cloud, each fresh allocation a page fault a
-  // page) replaced by sums over the pairs. Eigen's sums are blocked and vectorised, these are
-  // blocks of pairs summed on every core and added in order (the same bits on any number of
+  if (pairs.size() <= kPairsInOpen3dsMatrices) {
+    // Open3D's TransformationEstimationPointToPoint exactly: the pairs' points copied into two 3 x n
+    // matrices and Eigen's umeyama called on them, so its vectorised, blocked sums give the same
+    // bits as Open3D's (Debian's build of it on the same Eigen 3.4 with the same SSE2 code; the
+    // test compares with Open3D's own matrix). RANSAC's draws of 6 pairs decide the alignment's
+    // last bits, and with them which side of a voxel's boundary a point falls in ICP's rounds.
+    Eigen::MatrixXd source_matrix(3, static_cast<Eigen::Index>(pairs.size()));
+    Eigen::MatrixXd target_matrix(3, static_cast<Eigen::Index>(pairs.size()));
+    for (std::size_t k = 0; k < pairs.size(); ++k) {
+      source_matrix.col(static_cast<Eigen::Index>(k)) = source[pairs[k].first];
+      target_matrix.col(static_cast<Eigen::Index>(k)) = target[pairs[k].second];
+    }
+    return Eigen::umeyama(source_matrix, target_matrix, true);
+  }
+  // Above that, Eigen's umeyama step for step, its 3 x n matrices (and their centred copies, 4 x
+  // 24 bytes a pair: 230 MB for the 2.4 M pairs of a 3 M-point cloud, each fresh allocation a page
+  // fault a page) replaced by sums over the pairs. Eigen's sums are blocked and vectorised, these
+  // are blocks of pairs summed on every core and added in order (the same bits on any number of
   // cores): the last bits of the means and of sigma differ from Eigen's.
   const double one_over_n = 1.0 / static_cast<double>(pairs.size());
   const auto summed = [&](auto term, auto zero) {

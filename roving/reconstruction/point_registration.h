@@ -41,8 +41,9 @@ PointRegistration evaluate_registration(const std::vector<Vec3>& source, const P
 
 // The similarity (rotation, scale, shift) that takes the pairs' source points closest to their
 // target points in the least-squares sense: Umeyama's, as Eigen's umeyama with scaling computes it
-// for Open3D's TransformationEstimationPointToPoint(with_scaling=True), the pairs summed in order.
-// The identity for no pair.
+// for Open3D's TransformationEstimationPointToPoint(with_scaling=True). Up to 65,536 pairs by that
+// very call on the same matrices (Open3D's bits); above, its sums taken in blocks on every core and
+// added in order (its last bits). The identity for no pair.
 Eigen::Matrix4d similarity_of_pairs(const std::vector<Vec3>& source, const std::vector<Vec3>& target,
                                     const PointPairs& pairs);
 
