@@ -18,7 +18,7 @@ OTHER_PROGRAMS = {"--build", "--install", "--prefix", "--cflags", "--libs", "--d
                   # MPEG's pc_error (docs/mpeg.md; the regex stops at its options' capitals)
                   "--file", "--color", "--hausdorff", "--nb", "--mse", "--dropdups", "--neighbors", "--average",
                   "--input", "--single", "--lidar",
-                  "--mode", "--normal"}  # mmetric's compare --mode, --normalCalcModificationEnable
+                  "--mode", "--normal", "--drop"}  # mmetric's compare --mode, --normalCalcModificationEnable, --dropDuplicates
 
 
 def options_of(*command):

@@ -47,7 +47,8 @@ struct Golden {
 std::string translated(const std::string& command) {
   static const std::map<std::string, std::string> ours = {
       {"resolution", "--pcc-resolution"},        {"inputNorm", "--pcc-normals"},
-      {"dropdups", "--pcc-dropdups"},            {"neighborsProc", "--pcc-neighbors-proc"},
+      {"dropdups", "--pcc-dropdups"},            {"dropDuplicates", "--pcc-dropdups"},
+      {"neighborsProc", "--pcc-neighbors-proc"},
       {"averageNormals", "--pcc-average-normals"}, {"mseSpace", "--pcc-mse-space"},
       {"normalCalcModificationEnable", "--pcc-normal-calc-modification"}};
   // Files, and options whose figures roving always gives (colour, Hausdorff) or that change none.
@@ -282,6 +283,12 @@ TEST(MmetricGolden, MeshesSampledAsMmetricSamplesThem) {
   // Its --neighborsProc (the tied nearest points' colour: the nearest and the farthest in RGB).
   expect_equal_to_pc_error("mmetric_fandisk10_neighbors3", 3 * 8 + 3 * 12);
   expect_equal_to_pc_error("mmetric_fandisk10_neighbors4", 3 * 8 + 3 * 12);
+  // ... weighing a merged point by how many it merged (--neighborsProc=2), and its --dropDuplicates:
+  // every sample at one position kept (0), or the first (1), alone and with --neighborsProc.
+  expect_equal_to_pc_error("mmetric_fandisk10_neighbors2", 3 * 8 + 3 * 12);
+  expect_equal_to_pc_error("mmetric_fandisk10_dropdups0", 3 * 8 + 3 * 12);
+  expect_equal_to_pc_error("mmetric_fandisk10_dropdups1", 3 * 8 + 3 * 12);
+  expect_equal_to_pc_error("mmetric_fandisk10_dropdups0_neighbors4", 3 * 8 + 3 * 12);
   const nlohmann::json ours = measure_pcc(read_golden("mmetric_fandisk10"));
   std::ifstream golden(kData + "golden/mmetric_fandisk10.txt");
   const std::string text((std::istreambuf_iterator<char>(golden)), std::istreambuf_iterator<char>());
@@ -778,7 +785,9 @@ TEST(PcErrorFigures, BadInputIsOneLine) {
   // pc_error's options where they do not apply, and out of range.
   const std::string meshes = "measure " + kData + "fandisk10_a.ply " + kData + "fandisk10_b.ply --pcc";
   expect_error(meshes + " --pcc-average-normals 0", {"--pcc-average-normals", "two point clouds", "mmetric"});
-  expect_error(meshes + " --pcc-dropdups 1", {"--pcc-dropdups", "two point clouds", "mmetric"});
+  expect_error(meshes + " --pcc-mse-space 8", {"--pcc-mse-space", "two point clouds", "mmetric"});
+  expect_error("measure " + kData + "fandisk10_a.ply " + kData + "fandisk10_b.ply --pcc-dropdups 1",
+               {"--pcc-dropdups", "MPEG's figures", "--pcc"});
   expect_error("measure " + a + " " + b + " --pcc --pcc-normal-calc-modification false",
                {"--pcc-normal-calc-modification", "mmetric's option", "points and points"});
   expect_error("measure " + a + " " + b + " --pcc --pcc-neighbors-proc 5", {"--pcc-neighbors-proc", "5"});

@@ -147,8 +147,8 @@ void add_measurement_options(CLI::App& app, MeasureArguments& args, bool& trust_
                  "A's normals for D2 from this file, pc_error's --inputNorm: a point cloud of A's points "
                  "(in any order, duplicates merged as A's) with normals; they replace any A has");
   app.add_option("--pcc-dropdups", args.pcc_dropdups,
-                 "pc_error's --dropdups: points of one cloud at one position 0 all kept, 1 the first kept, 2 merged "
-                 "into one, their colours averaged")
+                 "pc_error's (and, on meshes, mmetric's --dropDuplicates): points of one cloud at one position 0 all "
+                 "kept, 1 the first kept, 2 merged into one, their colours averaged")
       ->check(CLI::Range(0, 2))
       ->capture_default_str();
   app.add_option("--pcc-neighbors-proc", args.pcc_neighbors_proc,

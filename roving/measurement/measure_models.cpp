@@ -47,21 +47,24 @@ bool has_colour(const Model& model) {
 namespace {
 
 // pc_error's options apply to MPEG's figures of two point clouds; of them, mmetric 1.1.7 offers
-// --neighborsProc on meshes too (its others are not offered or not compared with mmetric here), and
-// its own --normalCalcModificationEnable.
+// --dropDuplicates and --neighborsProc on meshes too (compared with its output; it has neither
+// --averageNormals nor --mseSpace), and its own --normalCalcModificationEnable.
 void require_mpeg_options_apply(const MeasurePlan& plan, const Model& a, const Model& b) {
   const bool mesh = a.type == ModelType::Mesh || b.type == ModelType::Mesh;
   const bool mpeg = plan.pcc_only || (a.type == ModelType::Points && b.type == ModelType::Points);
-  // mmetric 1.1.7 offers its own --neighborsProc (compared with its output); not the others.
   const PcErrorOptions& o = plan.pcc_options;
-  const bool pc_error_only = o.dropdups != 2 || !o.average_normals || o.ycocg;
-  if ((!mpeg && (pc_error_only || o.neighbors_proc != 1)) || (mesh && pc_error_only)) {
-    throw Error(fmt::format("--pcc-dropdups, --pcc-average-normals, --pcc-mse-space{}: pc_error's options, for "
-                            "MPEG's figures of two point clouds; found {} and {}{}",
-                            mesh ? "" : ", --pcc-neighbors-proc", to_string(a.type), to_string(b.type),
-                            mesh ? " (a mesh is measured as mmetric's compare --mode pcc measures it, whose only "
-                                   "one of them is --neighborsProc)"
-                                 : ""));
+  const bool pc_error_only = !o.average_normals || o.ycocg;
+  const bool mpeg_only = pc_error_only || o.dropdups != 2 || o.neighbors_proc != 1;
+  if (!mpeg && mpeg_only) {
+    throw Error(fmt::format("--pcc-dropdups, --pcc-neighbors-proc, --pcc-average-normals, --pcc-mse-space: "
+                            "pc_error's options, for MPEG's figures (--pcc, or two point clouds); found {} and {}",
+                            to_string(a.type), to_string(b.type)));
+  }
+  if (mesh && pc_error_only) {
+    throw Error(fmt::format("--pcc-average-normals, --pcc-mse-space: pc_error's options, for MPEG's figures of two "
+                            "point clouds; found {} and {} (a mesh is measured as mmetric's compare --mode pcc "
+                            "measures it, which has --dropDuplicates and --neighborsProc but neither of these)",
+                            to_string(a.type), to_string(b.type)));
   }
   if (!plan.pcc_b_own_normals && (!mpeg || !mesh)) {
     throw Error(fmt::format("--pcc-normal-calc-modification: mmetric's option, for MPEG's figures of a mesh "
@@ -148,8 +151,10 @@ MpegReport mpeg_report(const Model& a, const Model& b, const MeasurePlan& plan) 
     MpegReading r = reading;
     r.normals = normals;
     if (model.type == ModelType::Mesh) {
-      MpegReading samples;
+      MpegReading samples;  // mmetric's removeDuplicatePoints: pc_error's merging, normals averaged
       samples.average_normals = true;
+      samples.dropdups = reading.dropdups;
+      samples.merged_counts = reading.merged_counts;
       return mpeg_points(mmetric_samples(model.mesh.mesh, model.path()), model.path(), samples);
     }
     if (model.points_in_file) {

@@ -291,7 +291,8 @@ MpegPoints sorted_and_merged(const Cloud& cloud, const Codec& codec, const MpegR
       while (!keep_all && end < n && same_position(end, run)) ++end;
       positions_out[out] = keys.point(sorted[run]);
       if (reading.merged_counts) points.merged[out] = std::uint32_t(end - run);
-      if (normals && reading.average_normals) {
+      // mmetric averages the normals where it merges (--dropDuplicates 2); under 1 the first's is kept.
+      if (normals && reading.average_normals && reading.dropdups == 2) {
         std::array<float, 3> sum = {0, 0, 0};  // in single precision, in the sorted order, as mmetric
         for (std::size_t k = run; k < end; ++k) {
           const std::array<float, 3> normal = normal_at(k);

@@ -27,7 +27,7 @@ struct MpegPoints {
 // How mpeg_points holds a cloud.
 struct MpegReading {
   bool normals = true;           // the file's normals kept (pc_error's D2 uses A's alone)
-  bool average_normals = false;  // merged points take the mean of their normals (mmetric's merging), not the first's
+  bool average_normals = false;  // merged points (dropdups 2) take their normals' mean (mmetric's merging), not the first's
   int dropdups = 2;              // pc_error's --dropdups: points at one position 0 all kept, 1 the first, 2 merged
   bool merged_counts = false;    // MpegPoints::merged filled (pc_error's --neighborsProc 2 weighs by it)
   bool nan_normals = false;      // NaN normals kept (pc_error computes on with them), else refused

@@ -30,3 +30,10 @@ record mmetric_fandisk10_carried fandisk10_a.ply fandisk10_b.ply --normalCalcMod
 # the farthest in RGB.
 record mmetric_fandisk10_neighbors3 fandisk10_a.ply fandisk10_b.ply --neighborsProc=3
 record mmetric_fandisk10_neighbors4 fandisk10_a.ply fandisk10_b.ply --neighborsProc=4
+# mmetric's --dropDuplicates (its own removeDuplicatePoints, pc_error's with normals averaged) on
+# the samples of both meshes: 0 all kept, 1 the first kept; and --neighborsProc=2, which weighs a
+# merged point by how many it merged.
+record mmetric_fandisk10_dropdups0 fandisk10_a.ply fandisk10_b.ply --dropDuplicates=0
+record mmetric_fandisk10_dropdups1 fandisk10_a.ply fandisk10_b.ply --dropDuplicates=1
+record mmetric_fandisk10_neighbors2 fandisk10_a.ply fandisk10_b.ply --neighborsProc=2
+record mmetric_fandisk10_dropdups0_neighbors4 fandisk10_a.ply fandisk10_b.ply --dropDuplicates=0 --neighborsProc=4
