@@ -13,7 +13,8 @@ reconstruction, a rippled sphere meshed so that eval.py's sampling makes about N
 mode) or N points on it (--mode pcd); the mask (observed where x < 0.65 R) and the ground plane,
 as .mat files. --order says how the files hold their points: `file` (a spiral, as made), `scan`
 (scan lines: rows of the x-y plane one after the other, as a scanner writes them) or `random` (a
-fixed shuffle, as many reconstruction pipelines write them); both tools read the same files. eval.py is not part of roving:
+fixed shuffle, as many reconstruction pipelines write them; a mesh's vertices so, and its faces
+shuffled or by their first vertex); both tools read the same files. eval.py is not part of roving:
 https://github.com/jzhangbs/DTUeval-python (Debian's python3-open3d, -sklearn, -scipy, -tqdm).
 
     /usr/bin/python3 bench/dtu_speed.py --roving build/roving/roving --dtueval /path/to/DTUeval-python \\
@@ -82,14 +83,33 @@ def write_ply(path, vertices, faces=None):
             f.write(rows.tobytes())
 
 
-def ordered(points, order, density):
-    """The points as a file in `order` holds them (see the module's text)."""
+def order_of(points, order, density):
+    """The places of the points as a file in `order` holds them (see the module's text)."""
     if order == "random":
-        return points[np.random.default_rng(1).permutation(len(points))]
+        return np.random.default_rng(1).permutation(len(points))
     if order == "scan":  # rows 2 density apart along y, each along x; rows of z slices
         cells = np.floor(points / (2 * density)).astype(np.int64)
-        return points[np.lexsort((points[:, 0], cells[:, 1], cells[:, 2]))]
-    return points
+        return np.lexsort((points[:, 0], cells[:, 1], cells[:, 2]))
+    return np.arange(len(points))
+
+
+def ordered(points, order, density):
+    """The points as a file in `order` holds them."""
+    return points if order == "file" else points[order_of(points, order, density)]
+
+
+def ordered_mesh(vertices, faces, order, density):
+    """A mesh as a file in `order` holds it: its vertices in that order, the faces' corners
+    renumbered, and the faces shuffled (random) or by their first vertex in the new order (scan)."""
+    if order == "file":
+        return vertices, faces
+    by = order_of(vertices, order, density)
+    place = np.empty(len(by), dtype=np.int64)
+    place[by] = np.arange(len(by))
+    faces = place[faces]
+    faces = faces[np.random.default_rng(2).permutation(len(faces)) if order == "random"
+                  else np.argsort(faces.min(1), kind="stable")]
+    return vertices[by], faces
 
 
 def rippled(t, p, radius):
@@ -123,7 +143,7 @@ def make_scene(folder, points, truth, density, triangles=0, mode="mesh", order="
     a = (np.arange(rings - 2)[:, None] * segments + np.arange(segments)[None, :]).ravel()
     b = (np.arange(rings - 2)[:, None] * segments + (np.arange(segments)[None, :] + 1) % segments).ravel()
     faces = np.concatenate([np.stack([a, a + segments, b], 1), np.stack([b, a + segments, b + segments], 1)])
-    write_ply(f"{folder}/recon_mesh.ply", vertices, faces)
+    write_ply(f"{folder}/recon_mesh.ply", *ordered_mesh(vertices, faces, order, density))
     side = 1.1 * radius
     res = side / 64
     n = int(np.ceil(2 * side / res)) + 1

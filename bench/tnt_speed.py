@@ -37,7 +37,7 @@ import time
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from dtu_speed import add_rows, ordered, run, write_ply, write_report  # noqa: E402
+from dtu_speed import add_rows, ordered, ordered_mesh, run, write_ply, write_report  # noqa: E402
 
 TAU = 0.01
 
@@ -121,8 +121,8 @@ def alignment():
 def make_scene(folder, points, truth, triangles=0, order="file"):
     """The scene's files; the reconstruction's spacing about tau / 5, so that tau / 2 thins it.
     With `triangles`, both are meshes (latitude-longitude spheres) of about `triangles` and
-    `truth` triangles, and `points` is ignored: the toolbox reads a mesh as its vertices. Clouds are
-    written in `order` (dtu_speed.py's ordered())."""
+    `truth` triangles, and `points` is ignored: the toolbox reads a mesh as its vertices. Clouds and
+    meshes are written in `order` (dtu_speed.py's ordered() and ordered_mesh())."""
     if triangles:
         points = triangles // 2  # a closed mesh has about half as many vertices as triangles
     radius = float(np.sqrt(points * (TAU / 5) ** 2 / (4 * np.pi)))
@@ -147,11 +147,15 @@ def make_scene(folder, points, truth, triangles=0, order="file"):
     truth_points, truth_faces = shape(truth, 0.0)
     if truth_faces is None:
         truth_points = ordered(truth_points, order, TAU)
+    else:
+        truth_points, truth_faces = ordered_mesh(truth_points, truth_faces, order, TAU)
     write_ply(f"{folder}/Scene.ply", truth_points, truth_faces)
     t = alignment()
     recon, faces = shape(triangles or points, 1.5 * TAU)
     if faces is None:
         recon = ordered(recon, order, TAU)
+    else:
+        recon, faces = ordered_mesh(recon, faces, order, TAU)
     inverse = np.linalg.inv(t)
     write_ply(f"{folder}/recon.ply", recon @ inverse[:3, :3].T + inverse[:3, 3], faces)
     np.savetxt(f"{folder}/Scene_trans.txt", t)
@@ -177,7 +181,7 @@ def main():
                              "a mesh of 1 / --truth-ratio as many (writes tnt-speed-mesh.md or tnt-registration-speed-mesh.md)")
     parser.add_argument("--out", help="a folder for tnt-speed.md (tnt-registration-speed.md); else stdout")
     parser.add_argument("--order", choices=["file", "scan", "random"], default="file",
-                        help="how the clouds' files hold their points: as made (a spiral), in scan lines, or shuffled")
+                        help="how the files hold their points (a mesh its vertices): as made (a spiral), in scan lines, or shuffled")
     parser.add_argument("--registration", action="store_true",
                         help="run.py's registration first, from the camera trajectories (roving: one run)")
     args = parser.parse_args()
