@@ -25,9 +25,13 @@ using KdTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<
 
 }  // namespace
 
+// Leaves of up to 32 points (nanoflann's default is 10): a build with fewer levels, and searches
+// that scan a leaf's points in a row where they walked more nodes. Medians of interleaved runs:
+// Tanks and Temples at 3 M points in random order 0.555 -> 0.50 s wall, its registration 2.29 ->
+// 2.13 s, DTU at 3 M points in random order 2.01 -> 1.61 s; the same figures and alignments.
 struct PointTree::Index {
   explicit Index(const std::vector<Vec3>& points)
-      : adaptor{points}, tree(3, adaptor, {10, nanoflann::KDTreeSingleIndexAdaptorFlags::SkipInitialBuildIndex}) {
+      : adaptor{points}, tree(3, adaptor, {32, nanoflann::KDTreeSingleIndexAdaptorFlags::SkipInitialBuildIndex}) {
     tree.buildIndex();
   }
   PointsAdaptor adaptor;
