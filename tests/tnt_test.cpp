@@ -27,6 +27,7 @@
 #include "roving/formats/outputs/distance_cloud_writer.h"
 #include "roving/formats/points_voxels_patches/point_cloud_io.h"
 #include "roving/formats/files/file_hash.h"
+#include "roving/protocols/tanks_and_temples_evaluation.h"
 #include "roving/reconstruction/correspondence_ransac.h"
 #include "roving/reconstruction/crop_volume.h"
 #include "roving/core/geometry.h"
@@ -159,11 +160,41 @@ TEST(TanksAndTemplesGolden, RegistrationIsRunPys) {
     EXPECT_EQ(run["recall"].get<double>(), golden[5].at(1)) << k;
     EXPECT_EQ(run["fscore"].get<double>(), golden[5].at(2)) << k;
   }
-  // The first run is the one reported; the spread is over the five.
+  // Every run's figures differ: the first is the one reported (its own scoring and the report's
+  // agree); the spread is over the five.
   EXPECT_EQ(t["precision"], runs[0]["precision"]);
+  EXPECT_EQ(t["fscore"], runs[0]["fscore"]);
   EXPECT_EQ(t["alignment"], runs[0]["transformation"]);
+  for (std::size_t k = 0; k < 5; ++k) EXPECT_EQ(runs[k]["reported"], k == 0) << k;
   EXPECT_LT(t["registration"]["spread"]["fscore"]["min"].get<double>(),
             t["registration"]["spread"]["fscore"]["max"].get<double>());
+}
+
+// The run reported is the one whose figures the most runs give, the earliest of them; where every
+// run differs, the first.
+TEST(TanksAndTemplesProtocol, TheReportedRunIsTheModalOne) {
+  const auto runs_of = [](std::vector<double> fscores) {
+    std::vector<TanksAndTemplesRegistrationRun> runs(fscores.size());
+    for (std::size_t k = 0; k < runs.size(); ++k) runs[k].precision = runs[k].recall = runs[k].fscore = fscores[k];
+    return runs;
+  };
+  EXPECT_EQ(modal_run(runs_of({0.5})), 0u);
+  EXPECT_EQ(modal_run(runs_of({0.74336041, 0.74336030, 0.74336030, 0.74336030, 0.74336030})), 1u);
+  EXPECT_EQ(modal_run(runs_of({0.1, 0.2, 0.3})), 0u);
+  EXPECT_EQ(modal_run(runs_of({0.1, 0.2, 0.2, 0.1})), 0u);  // a tie: the earliest
+  EXPECT_EQ(modal_run(runs_of({0.3, 0.2, 0.1, 0.1, 0.2})), 1u);
+  // Equal F from other precision and recall is another result.
+  std::vector<TanksAndTemplesRegistrationRun> runs = runs_of({0.5, 0.5, 0.5});
+  runs[0].precision = runs[1].precision = 0.4;
+  runs[0].recall = runs[1].recall = 0.6;
+  EXPECT_EQ(modal_run(runs), 0u);
+  runs[1].recall = 0.61;
+  EXPECT_EQ(modal_run(runs), 0u);  // now each differs
+  runs[2].precision = 0.4;
+  runs[2].recall = 0.61;
+  EXPECT_EQ(modal_run(runs), 1u);
+  runs[1].reported = true;
+  EXPECT_EQ(&reported_run(runs), &runs[1]);
 }
 
 // A similarity of the unit sphere's Fibonacci points.

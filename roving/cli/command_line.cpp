@@ -220,8 +220,8 @@ void add_measurement_options(CLI::App& app, MeasureArguments& args, bool& trust_
                  "are unseeded)")
       ->capture_default_str();
   app.add_option("--protocol-runs", args.protocol_runs,
-                 "with --protocol dtu or --tnt-trajectory: runs with seeds --protocol-seed, +1, ...; the first is "
-                 "reported, the spread of all beside it")
+                 "with --protocol dtu or --tnt-trajectory: runs with seeds --protocol-seed, +1, ...; reported: "
+                 "DTU's first, the registration whose figures the most runs give; the spread of all beside it")
       ->check(CLI::Range(1, 1000))
       ->capture_default_str();
   app.add_option("--histogram-bins", args.histogram_bins, "bins of the signed-d histogram")

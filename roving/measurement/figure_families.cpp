@@ -309,10 +309,6 @@ const FigureFamily kTanksAndTemples = {
       report.tnt = tanks_and_temples_report(in.a, in.b, *in.plan.tnt, *protocol.tnt, in.progress.callback());
       in.progress.clear();
       if (!protocol.tnt_registrations.empty()) {
-        TanksAndTemplesRegistrationRun& first = protocol.tnt_registrations.front();
-        first.precision = report.tnt->figures.precision;
-        first.recall = report.tnt->figures.recall;
-        first.fscore = report.tnt->figures.fscore;
         report.tnt->registrations = std::move(protocol.tnt_registrations);
         report.tnt->registration_seconds = protocol.tnt_registration_seconds;
       }
