@@ -89,7 +89,7 @@ void fold(const SampleSet& samples, const DistanceResult& measured, StatisticsAc
 // one core) by both cores at once.
 struct VertexSums {
   explicit VertexSums(std::size_t n) : normals(new Vec3[n]), third_areas(new double[n]), referenced(new std::uint8_t[n]) {}
-  std::unique_ptr<Vec3[]> normals;  // made unit (or zero) at the end, as TriangleMesh::vertex_normals'
+  std::unique_ptr<Vec3[]> normals;  // summed cross products, made unit as each sample is made
   std::unique_ptr<double[]> third_areas;
   std::unique_ptr<std::uint8_t[]> referenced;
 
@@ -146,12 +146,6 @@ VertexSums vertex_sums(TriangleStream& stream, std::size_t chunk_faces, const Pr
       }
     });
   }
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 65536), [&](const tbb::blocked_range<std::size_t>& range) {
-    for (std::size_t v = range.begin(); v != range.end(); ++v) {
-      const double length = sums.normals[v].norm();
-      sums.normals[v] = length > 0 ? Vec3(sums.normals[v] / length) : Vec3::Zero();
-    }
-  });
   return sums;
 }
 
@@ -281,13 +275,18 @@ StreamedResult measure_streamed_vertices(TriangleStream& stream, DistanceMethod&
     samples.normals.reserve(last - first);
     samples.weights.reserve(last - first);
     for (std::size_t v = first; v < last; ++v) {
+      // The normal made unit as TriangleMesh::vertex_normals makes it (zero where its length is
+      // not > 0), here rather than in a pass of its own over the sums; a zero one skipped as
+      // sample_vertices skips it.
+      const double length = sums.normals[v].norm();
+      const Vec3 normal = length > 0 ? Vec3(sums.normals[v] / length) : Vec3::Zero();
       if (!sums.referenced[v]) {
         ++result.samples.skipped_unreferenced_vertices;
-      } else if (sums.normals[v].isZero()) {
+      } else if (normal.isZero()) {
         ++result.samples.skipped_zero_normal_vertices;
       } else {
         samples.positions.push_back(stream.position(static_cast<int>(v)));
-        samples.normals.push_back(sums.normals[v]);
+        samples.normals.push_back(normal);
         samples.weights.push_back(sums.third_areas[v]);
       }
     }
