@@ -43,6 +43,12 @@ GL_METHODS = [
 ]
 
 
+# With --whole-views (a GPU's run), the cooperative method computed with its views drawn whole:
+# no per-view footprint or culling on the CPU, all of each view on the GPU.
+WHOLE_VIEWS = ("cooperative 24x12, cameras computed, whole views",
+               ["--method", "cooperative", "--views", "24x12", "--camera-geometry", "compute", "--view-culling", "none"])
+
+
 # The methods of the --huge pair: exact roving's cameras drawn and computed.
 CAMERA_METHODS = [m for m in GL_METHODS if m[0] in ("roving, cameras on CPU", "roving, cameras computed")]
 
@@ -125,6 +131,8 @@ def main():
     parser.add_argument("--backends", default="osmesa,egl")
     parser.add_argument("--large", action="store_true", help="also the 10 M pair")
     parser.add_argument("--huge", action="store_true", help="also 50 M samples on the 10 M pair")
+    parser.add_argument("--whole-views", action="store_true",
+                        help="also cooperative 24x12 computed with its views drawn whole (--view-culling none)")
     parser.add_argument("--out", required=True)
     args = parser.parse_args()
 
@@ -132,6 +140,8 @@ def main():
     renderers = {}
     with tempfile.TemporaryDirectory() as folder:
         for title, ref, test, samples, methods in pairs(args.data, args.large, args.huge):
+            if args.whole_views and methods is GL_METHODS:
+                methods = GL_METHODS + [WHOLE_VIEWS]
             print(title, file=sys.stderr)
             exact = measure(args.roving, ref, test, samples, ["--method", "embree"], folder, "embree")
             lines += [f"### {title}: {len(exact[1]):,} {samples} samples", "",

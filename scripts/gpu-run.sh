@@ -6,9 +6,10 @@
 #   info      nvidia-smi, the EGL vendor files
 #   datasets  the scaling pairs (10 M triangles) beside the GL tests on EGL (every GL test binary,
 #             ROVING_GL_BACKEND=egl; OSMesa is not carried, so its cases skip, each saying why)
-#   timings   bench/gl_timings.py --backends egl --large --huge into $OUT/gpu.md (written after each
-#             pair): exact roving drawn and computed beside Embree at 1 M, 10 M and 50 M samples,
-#             the cooperative method on the bunny pairs
+#   timings   bench/gl_timings.py --backends egl --large --huge --whole-views into $OUT/gpu.md
+#             (written after each pair): exact roving drawn and computed beside Embree at 1 M, 10 M
+#             and 50 M samples, the cooperative method on the bunny pairs (also with its views
+#             drawn whole: nothing per view on the CPU)
 # about 5 minutes in all on an H100 machine; `gpu-run.sh tests` reruns the tests alone, `gpu-run.sh
 # timings` the data sets and the timings alone.
 set -uo pipefail
@@ -58,5 +59,5 @@ step datasets 120 bash -c "for only in --quick --scaling; do LD_LIBRARY_PATH=$li
 [ "${1:-}" = timings ] || step tests-egl 150 bash -c "$(declare -f gl_tests); out=$out libs=$libs; gl_tests egl"
 wait
 step timings 400 python3 bench/gl_timings.py --roving .gpu/roving --data build/datasets \
-  --backends egl --large --huge --out "$out/gpu.md"
+  --backends egl --large --huge --whole-views --out "$out/gpu.md"
 echo "done at ${SECONDS} s"

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -104,6 +105,7 @@ TEST(Cli, BadOptionsGiveOneLineErrors) {
   expect_error("measure " + pair + " --method roving --camera-geometry shader",
                {"--camera-geometry", "'shader'"});
   expect_error("measure " + pair + " --method viewpoint --resolution 0", {"--resolution"});
+  expect_error("measure " + pair + " --method viewpoint --view-culling some", {"--view-culling", "some"});
   expect_error("measure " + pair + " --method roving --semantics nearest", {"--semantics", "roving"});
 }
 
@@ -135,6 +137,42 @@ TEST(Cli, GlMethodsReportObservations) {
   EXPECT_EQ(json["gl"]["resolved_by_view"].get<int>() + json["gl"]["resolved_by_camera"].get<int>() +
                 json["gl"]["unresolved"].get<int>(),
             300);
+  EXPECT_EQ(json["gl"]["view_culling"], "footprint");
+}
+
+// Views drawn whole (--view-culling none) give the same answers as views culled to what their
+// samples' pixels can show, without the CPU's footprint of each view: the bunny against a copy
+// whose vertices are moved (a wave across it), so that the distances are not all zero.
+TEST(Cli, ViewsDrawnWholeGiveTheCulledViewsAnswers) {
+  const std::string moved = (fs::temp_directory_path() / "roving-cli-bunny-wave.obj").string();
+  {
+    std::ifstream in(bunny());
+    std::ofstream out(moved);
+    for (std::string line; std::getline(in, line);) {
+      double x, y, z;
+      if (line.rfind("v ", 0) == 0 && std::sscanf(line.c_str(), "v %lf %lf %lf", &x, &y, &z) == 3) {
+        out << "v " << x << " " << y + 0.002 * std::sin(60 * x) << " " << z << "\n";
+      } else {
+        out << line << "\n";
+      }
+    }
+  }
+  const std::string pair = bunny() + " " + moved;
+  const auto measured = [&](const std::string& culling) {
+    const CliRun run = run_cli("measure " + pair + " --samples area:2000 --method cooperative --views 12x6 "
+                               "--resolution 256 --view-culling " + culling + " --json -");
+    EXPECT_EQ(run.exit_code, 0) << run.err;
+    return nlohmann::json::parse(run.out);
+  };
+  const nlohmann::json culled = measured("footprint"), whole = measured("none");
+  EXPECT_EQ(culled["gl"]["view_culling"], "footprint");
+  EXPECT_EQ(whole["gl"]["view_culling"], "none");
+  EXPECT_GT(culled["statistics"]["usiad"].get<double>(), 0);
+  EXPECT_GT(culled["gl"]["resolved_by_view"].get<int>(), 100);  // the views answer some (202), the cameras the rest
+  EXPECT_EQ(whole["statistics"], culled["statistics"]);
+  EXPECT_EQ(whole["gl"]["resolved_by_view"], culled["gl"]["resolved_by_view"]);
+  EXPECT_EQ(whole["gl"]["resolved_by_camera"], culled["gl"]["resolved_by_camera"]);
+  fs::remove(moved);
 }
 
 TEST(Cli, PointCloudsAreReferencesNotTests) {

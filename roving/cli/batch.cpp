@@ -35,7 +35,7 @@ namespace fs = std::filesystem;
 // The manifest columns a pair may set, and the option each stands for.
 const std::vector<std::string> kPairColumns = {
     "method",     "semantics", "samples",  "seed",         "max_error",  "views",         "resolution",
-    "backend",    "camera_geometry",       "protocol",     "dtu_obs_mask", "dtu_plane",   "tnt_crop",
+    "backend",    "camera_geometry", "view_culling", "protocol",     "dtu_obs_mask", "dtu_plane",   "tnt_crop",
     "tnt_alignment", "tnt_scene", "tnt_tau", "tnt_trajectory", "tnt_reference_trajectory", "tnt_mapping",
     "pcc_normals"};
 // The columns that name a file: relative to the manifest, as the models are.
@@ -200,6 +200,7 @@ MeasureArguments arguments_for(const Pair& pair, const MeasureArguments& default
     if (column == "views") a.views = value;
     if (column == "backend") a.backend = value;
     if (column == "camera_geometry") a.camera_geometry = value;
+    if (column == "view_culling") a.view_culling = value;
     if (column == "protocol") {
       if (value != "dtu" && value != "tanks-and-temples") {
         throw Error(fmt::format("protocol: expected dtu or tanks-and-temples, found '{}'", value));
@@ -246,6 +247,7 @@ std::string pair_key(const MeasureArguments& a, const std::string& reference_sha
       a.symmetric, a.reference_type, a.test_type, a.histogram_bins, a.hausdorff_bound);
   // Added only when asked for, so that the keys of reports without it stay what they were.
   if (a.ibsm) identity += fmt::format("|ibsm={}x{}", a.ibsm_views, a.ibsm_resolution);
+  if (a.view_culling != "footprint") identity += "|view_culling=" + a.view_culling;
   if (a.pcc) identity += "|pcc";
   if (a.pcc_resolution) identity += fmt::format("|pcc_resolution={}", *a.pcc_resolution);
   if (!a.pcc_normals.empty()) identity += "|pcc_normals=" + other_files;

@@ -18,8 +18,9 @@ constexpr int kSomePairsFailedExitCode = 4;
 
 struct BatchArguments {
   // A manifest (.csv with a header naming `reference`, `test` and optional per-pair columns
-  // method, semantics, samples, seed, max_error, views, resolution, backend, camera_geometry; or
-  // .jsonl with those keys), or two folders whose files are paired by name.
+  // method, semantics, samples, seed, max_error, views, resolution, backend, camera_geometry,
+  // view_culling, a protocol's; or .jsonl with those keys), or two folders whose files are paired
+  // by name.
   std::vector<std::string> inputs;
   std::string out = "batch-results";
   std::string shard;  // "I/N": the I-th (0-based) of N contiguous slices of the pairs

@@ -107,6 +107,12 @@ void add_measurement_options(CLI::App& app, MeasureArguments& args, bool& trust_
          "edges widened: cpu, or gpu (in a compute shader; the same answers); or compute (each camera's "
          "depth in a compute pass over TEST's grid, nothing drawn)")
       ->capture_default_str();
+  app.add_option("--view-culling", args.view_culling,
+                 "viewpoint and cooperative: footprint (each view draws only the triangles that can cover the "
+                 "pixels its samples read, found on the CPU) or none (each view drawn whole: no per-view CPU "
+                 "work, the better trade on a GPU); the same answers")
+      ->check(CLI::IsMember({"footprint", "none"}))
+      ->capture_default_str();
   app.add_option(
          "--hausdorff-bound", args.hausdorff_bound,
          "with --symmetric or --semantics closest: the Hausdorff distance is also bounded over every point "
@@ -363,8 +369,8 @@ std::unique_ptr<CommandLine> make_command_line() {
   batch->add_option(
       "PAIRS", batch_args.inputs,
       "a manifest (.csv with a header naming reference, test and optional per-pair columns "
-      "method, semantics, samples, seed, max_error, views, resolution, backend, camera_geometry; or .jsonl "
-      "with those keys), or REF_FOLDER TEST_FOLDER paired by file name");
+      "method, semantics, samples, seed, max_error, views, resolution, backend, camera_geometry, "
+      "view_culling; or .jsonl with those keys), or REF_FOLDER TEST_FOLDER paired by file name");
   batch->add_option("--out", batch_args.out, "folder of the per-pair reports and summary.csv")
       ->capture_default_str();
   batch->add_option("--shard", batch_args.shard,

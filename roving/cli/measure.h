@@ -30,6 +30,7 @@ struct MeasureArguments {
   std::size_t histogram_bins = 64;
   std::string views = "24x12", backend;   // backend empty: default_gl_backend()
   std::string camera_geometry = "cpu";    // or "gpu", "compute": where exact roving's cameras are made
+  std::string view_culling = "footprint";  // or "none": each view drawn whole
   std::string reference_type, test_type;  // empty: by extension
   int resolution = 1024;
   bool ibsm = false;  // the image-based comparison (image_based.h) beside the sample-based one

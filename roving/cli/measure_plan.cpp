@@ -235,6 +235,7 @@ MeasurePlan plan_measurement(const MeasureArguments& args) {
   parse_views(args.views, plan.gl);
   plan.gl.backend = parse_gl_backend(args.backend);
   plan.gl.camera_geometry = parse_camera_geometry(args.camera_geometry);
+  plan.gl.cull_views = args.view_culling != "none";
   plan.gl.resolution = args.resolution;
   plan.method = make_method(args.method, plan.gl);
   if (args.ibsm)

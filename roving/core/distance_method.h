@@ -96,6 +96,7 @@ struct GlReport {
   double camera_half_width = 0;  // half-width of a roving camera's view volume (one pixel)
   double camera_depth_step = 0;  // model units per ulp of float depth near 1 in a roving camera
   CameraGeometry camera_geometry = CameraGeometry::Cpu;  // where the cameras were made
+  bool views_culled = true;      // each view drew only what its samples' pixels can show (else whole)
   std::size_t thin_cameras = 0;  // compute pass: cameras whose thin faces the CPU's rule decided
   // Where the cameras' time went: building their batches (CPU threads, beside the draws) and
   // rendering them (GL thread: upload, any compute stage, draw, read back).

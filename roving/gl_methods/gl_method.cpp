@@ -169,6 +169,7 @@ DistanceResult GlMethod::measure(const SampleSet& samples, const DistanceOptions
   report.views_v = options_.views_v;
   report.resolution = options_.resolution;
   report.camera_geometry = options_.camera_geometry;
+  report.views_culled = options_.cull_views;
   DistanceResult result;
   result.signed_distance.assign(samples.size(), 0.0);
   result.hit.assign(samples.size(), 0);

@@ -199,6 +199,7 @@ nlohmann::json gl_json(const GlReport& g) {
           {"camera_half_width", g.camera_half_width},
           {"camera_depth_step", g.camera_depth_step},
           {"camera_geometry", to_string(g.camera_geometry)},
+          {"view_culling", g.views_culled ? "footprint" : "none"},
           {"thin_cameras", g.thin_cameras},
           {"camera_build_seconds", g.camera_build_seconds},
           {"camera_render_seconds", g.camera_render_seconds},
@@ -228,6 +229,7 @@ GlReport gl_report_of(const nlohmann::json& json) {
   g.camera_depth_step = json.at("camera_depth_step").get<double>();
   g.camera_geometry = parse_camera_geometry(json.at("camera_geometry").get<std::string>());
   g.thin_cameras = json.value("thin_cameras", std::size_t(0));  // absent before the compute path
+  g.views_culled = json.value("view_culling", std::string("footprint")) != "none";  // absent before the option
   g.camera_build_seconds = json.at("camera_build_seconds").get<double>();
   g.camera_render_seconds = json.at("camera_render_seconds").get<double>();
   g.view_cpu_seconds = json.at("view_cpu_seconds").get<double>();

@@ -144,8 +144,8 @@ std::string gl_lines(const GlReport& g) {
   // Only what was rendered: views, cameras, or both.
   std::vector<std::string> precision;
   if (g.views_rendered) {
-    precision.push_back(
-        fmt::format("view pixel {:.4g}, view depth step {:.3g}", g.view_pixel_size, g.view_depth_step));
+    precision.push_back(fmt::format("view pixel {:.4g}, view depth step {:.3g}{}", g.view_pixel_size,
+                                    g.view_depth_step, g.views_culled ? "" : " (views drawn whole)"));
   }
   if (g.sample_cameras) {
     precision.push_back(
