@@ -281,6 +281,7 @@ TEST(MmetricGolden, MeshesSampledAsMmetricSamplesThem) {
   // --normalCalcModificationEnable=false: A -> B's D2 along A's normals carried onto B, as pc_error's.
   expect_equal_to_pc_error("mmetric_fandisk10_carried", 3 * 8 + 3 * 12);
   // Its --neighborsProc (the tied nearest points' colour: the nearest and the farthest in RGB).
+  expect_equal_to_pc_error("mmetric_fandisk10_neighbors0", 3 * 8 + 3 * 12);
   expect_equal_to_pc_error("mmetric_fandisk10_neighbors3", 3 * 8 + 3 * 12);
   expect_equal_to_pc_error("mmetric_fandisk10_neighbors4", 3 * 8 + 3 * 12);
   // ... weighing a merged point by how many it merged (--neighborsProc=2), and its --dropDuplicates:

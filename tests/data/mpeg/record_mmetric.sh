@@ -28,6 +28,7 @@ record mmetric_fandisk10_points fandisk10_a.ply fandisk10_points_b.ply
 record mmetric_fandisk10_carried fandisk10_a.ply fandisk10_b.ply --normalCalcModificationEnable=false
 # mmetric's --neighborsProc (its pc_error's): the colour of the tied nearest points, the nearest and
 # the farthest in RGB.
+record mmetric_fandisk10_neighbors0 fandisk10_a.ply fandisk10_b.ply --neighborsProc=0
 record mmetric_fandisk10_neighbors3 fandisk10_a.ply fandisk10_b.ply --neighborsProc=3
 record mmetric_fandisk10_neighbors4 fandisk10_a.ply fandisk10_b.ply --neighborsProc=4
 # mmetric's --dropDuplicates (its own removeDuplicatePoints, pc_error's with normals averaged) on
