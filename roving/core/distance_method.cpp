@@ -86,6 +86,8 @@ void GlReport::add_block(const GlReport& block) {
   camera_half_width = block.camera_half_width, camera_depth_step = block.camera_depth_step;
   camera_geometry = block.camera_geometry;
   thin_cameras += block.thin_cameras;
+  faces_chosen_in_pass += block.faces_chosen_in_pass;
+  faces_left_to_cpu += block.faces_left_to_cpu;
   views_rendered += block.views_rendered;
   sample_cameras += block.sample_cameras;
   camera_build_seconds += block.camera_build_seconds;

@@ -98,6 +98,9 @@ struct GlReport {
   CameraGeometry camera_geometry = CameraGeometry::Cpu;  // where the cameras were made
   bool views_culled = true;      // each view drew only what its samples' pixels can show (else whole)
   std::size_t thin_cameras = 0;  // compute pass: cameras whose thin faces the CPU's rule decided
+  // Compute pass, where each hit's face was asked (colour, the correspondences): hits whose face
+  // the pass chose by the rule, and hits it left to the CPU's (hit_colour.h).
+  std::size_t faces_chosen_in_pass = 0, faces_left_to_cpu = 0;
   // Where the cameras' time went: building their batches (CPU threads, beside the draws) and
   // rendering them (GL thread: upload, any compute stage, draw, read back).
   double camera_build_seconds = 0, camera_render_seconds = 0;

@@ -6,19 +6,20 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 
 #include "compute_roving_shader.h"
 #include "gl_program.h"
 #include "roving/core/error.h"
+#include "roving/core/geometry.h"
 
 namespace roving::gl {
 
 // Samples per dispatch: 1,024 work groups of 64, far below any context's work group count,
-// and a read-back of 512 KiB.
+// and a read-back of 1.5 MiB.
 constexpr std::size_t kSamplesPerDispatch = 1 << 16;
 
 ComputeRoving::ComputeRoving(const Api& gl, std::string backend) : gl_(gl), backend_(std::move(backend)) {
-  program_ = link_compute_program(gl_, backend_, "roving cameras", compute_shaders::kRovingComputeShader);
   gl_.GenBuffers(kBuffers, buffers_);
   GLint max_block = 0;
   gl_.GetIntegerv(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
@@ -28,7 +29,8 @@ ComputeRoving::ComputeRoving(const Api& gl, std::string backend) : gl_(gl), back
 
 ComputeRoving::~ComputeRoving() {
   gl_.DeleteBuffers(kBuffers, buffers_);
-  gl_.DeleteProgram(program_);
+  for (const GLuint program : programs_)
+    if (program) gl_.DeleteProgram(program);
 }
 
 template <class T>
@@ -55,18 +57,35 @@ void ComputeRoving::upload_grid(const GridBuckets& grid) {
 }
 
 void ComputeRoving::run(GLuint positions, GLuint corners, const std::vector<double>& samples,
-                        double half_width, double half_depth, std::vector<ComputedTile>& answers) {
+                        const RovingSetup& setup, std::vector<ComputedTile>& answers) {
   if (!grid_ready_) throw Error("gl: rove_samples() before upload_grid()");
   const std::size_t count = samples.size() / 6;
   answers.resize(count);
   if (count == 0) return;
-  gl_.UseProgram(program_);
-  const auto location = [&](const char* name) { return gl_.GetUniformLocation(program_, name); };
+  // The shader with or without the faces' choice, compiled when first asked.
+  const bool faces = setup.face_window > 0;
+  if (!programs_[faces]) {
+    const std::string source = fmt::format("#version 450 core\n#define CHOOSE_FACES {}\n{}", int(faces),
+                                           compute_shaders::kRovingComputeShader);
+    programs_[faces] = link_compute_program(gl_, backend_, faces ? "roving cameras and faces" : "roving cameras",
+                                            source.c_str());
+  }
+  const GLuint program = programs_[faces];
+  gl_.UseProgram(program);
+  const auto location = [&](const char* name) { return gl_.GetUniformLocation(program, name); };
   gl_.Uniform3d(location("grid_origin"), grid_.origin.x(), grid_.origin.y(), grid_.origin.z());
   gl_.Uniform1d(location("grid_cell"), grid_.cell);
   gl_.Uniform3i(location("grid_dims"), grid_.dims[0], grid_.dims[1], grid_.dims[2]);
-  gl_.Uniform1d(location("half_width"), half_width);
-  gl_.Uniform1d(location("half_depth"), half_depth);
+  gl_.Uniform1d(location("half_width"), setup.half_width);
+  gl_.Uniform1d(location("half_depth"), setup.half_depth);
+  gl_.Uniform1d(location("max_error"), setup.max_error);
+  gl_.Uniform1d(location("face_window"), setup.face_window);
+  // normal_line.cpp's and geometry.h's constants, rounded as the CPU rounds them.
+  gl_.Uniform1d(location("unit"), 0x1p-53);
+  gl_.Uniform1d(location("slack9"), 1 + 1e-9);
+  gl_.Uniform1d(location("slack12"), 1 + 1e-12);
+  gl_.Uniform1d(location("allowed_per_coordinate"), closest_point_error_bound(1.0));
+  gl_.Uniform1d(location("tiniest"), std::numeric_limits<double>::denorm_min());
   double ring[16];
   for (int i = 0; i < 8; ++i) {
     const double angle = 2 * M_PI * i / 8;  // as surface_roving.cpp's widen_edge()

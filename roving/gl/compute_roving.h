@@ -25,8 +25,8 @@ class ComputeRoving {
   // One dispatch per chunk of samples that the context's work group count allows, one mapped
   // read-back each; `positions` and `corners` are TEST's storage buffers (double positions,
   // three corners a triangle).
-  void run(GLuint positions, GLuint corners, const std::vector<double>& samples, double half_width,
-           double half_depth, std::vector<ComputedTile>& answers);
+  void run(GLuint positions, GLuint corners, const std::vector<double>& samples, const RovingSetup& setup,
+           std::vector<ComputedTile>& answers);
 
  private:
   enum Buffer { kOffsets, kEntries, kSamples, kAnswers, kBuffers };
@@ -35,7 +35,7 @@ class ComputeRoving {
 
   const Api& gl_;
   std::string backend_;
-  GLuint program_ = 0;
+  GLuint programs_[2] = {};  // without and with the faces' choice
   GLuint buffers_[kBuffers] = {};
   GridBuckets grid_;
   bool grid_ready_ = false;

@@ -83,10 +83,23 @@ struct GridBuckets {
 };
 
 // A roving camera's answer from the compute pass: the depth of its pixel centre (1: nothing
-// there), and whether a candidate face thin across the camera was left to the CPU's rule.
+// there), whether a candidate face thin across the camera was left to the CPU's rule, and where
+// asked the face its hit lies on by the rule with the rule's d there (kFaceLeft: left to the
+// CPU's hit_face()).
+constexpr std::uint32_t kFaceLeft = 0xFFFFFFFF;
 struct ComputedTile {
   float depth;
   std::uint32_t thin;
+  std::uint32_t face;
+  std::uint32_t unused;
+  double distance;
+};
+
+// The compute pass's cameras (surface_roving.cpp): half-width (the rule's tolerance), half-depth
+// (h and the tolerance), h; and where each hit's face is asked (face_window > 0), the window
+// around the cameras' d in which hit_face() looks for crossings (roving_tolerance()).
+struct RovingSetup {
+  double half_width = 0, half_depth = 0, max_error = 0, face_window = 0;
 };
 
 // What viewpoint sampling's lookup of a sample's normal line in a view needs beside the view's
@@ -179,11 +192,11 @@ class DepthRenderer {
   // Uploads the grid that rove_samples() walks, once (not held after).
   virtual void upload_grid(const GridBuckets& grid) = 0;
   // Exact roving's cameras with nothing drawn: for each sample (six doubles: position, normal),
-  // the camera surface_roving.cpp makes for it (half-width `half_width`, half-depth
-  // `half_depth`), and in a compute pass over the grid's candidates the depth at its pixel
-  // centre of what the raster path draws for them (compute_roving_shader.h), in double. Needs
-  // upload_model(mesh, true) and upload_grid().
-  virtual void rove_samples(const std::vector<double>& samples, double half_width, double half_depth,
+  // the camera surface_roving.cpp makes for it, and in a compute pass over the grid's candidates
+  // the depth at its pixel centre of what the raster path draws for them, in double; where
+  // asked, the hit's face (compute_roving_shader.h). Needs upload_model(mesh, true) and
+  // upload_grid().
+  virtual void rove_samples(const std::vector<double>& samples, const RovingSetup& setup,
                             std::vector<ComputedTile>& answers) = 0;
 };
 

@@ -498,13 +498,12 @@ class GlDepthRenderer final : public DepthRenderer {
     view_lines_->run(setup, samples, answers);
   }
 
-  void rove_samples(const std::vector<double>& samples, double half_width, double half_depth,
+  void rove_samples(const std::vector<double>& samples, const RovingSetup& setup,
                     std::vector<ComputedTile>& answers) override {
     context_->make_current();
     if (model_triangle_count_ == 0) throw Error("gl: rove_samples() before upload_model(mesh, true)");
     if (!compute_roving_) throw Error("gl: rove_samples() before upload_grid()");
-    compute_roving_->run(tile_face_buffers_[kPositions], tile_face_buffers_[kCorners], samples, half_width,
-                         half_depth, answers);
+    compute_roving_->run(tile_face_buffers_[kPositions], tile_face_buffers_[kCorners], samples, setup, answers);
   }
 
  private:

@@ -20,7 +20,9 @@ class Cooperative final : public GlMethod {
 
   void resolve(const SampleSet& samples, double max_error, GlReport& report, const Record& record,
                const Coloured& coloured) override {
-    const Found by_camera = [&](std::uint32_t k, double d) { record(k, d, Resolution::Camera); };
+    const Found by_camera = [&](std::uint32_t k, double d, std::uint32_t face) {
+      record(k, d, Resolution::Camera, face);
+    };
     std::vector<std::uint32_t> candidates;
     std::optional<ViewBudget> budget;
     if (options_.auto_views) {
@@ -33,9 +35,9 @@ class Cooperative final : public GlMethod {
     std::vector<std::uint8_t> viewed(samples.size(), 0);
     view_sample(
         scene_, samples, candidates, max_error, options_, report, progress_,
-        [&](std::uint32_t k, double d) {
+        [&](std::uint32_t k, double d, std::uint32_t face) {
           viewed[k] = 1;
-          record(k, d, Resolution::View);
+          record(k, d, Resolution::View, face);
         },
         coloured, budget ? &*budget : nullptr);
     scene_.clusters.reset();  // the views' culling structure; the cameras use the grid

@@ -181,25 +181,29 @@ DistanceResult GlMethod::measure(const SampleSet& samples, const DistanceOptions
     result.colour_source = "drawn in the frame buffer";
     coloured = [&](std::uint32_t k, const Colour& colour) { result.hit_colour[k] = colour; };
   }
+  if (options.faces) result.hit_face.assign(samples.size(), kFaceLeft);
+  scene_.faces_asked = options.faces;
   resolve(
       samples, options.max_error, report,
-      [&](std::uint32_t k, double d, Resolution how) {
+      [&](std::uint32_t k, double d, Resolution how, std::uint32_t face) {
         result.hit[k] = 1;
         result.signed_distance[k] = d;
         report.resolved_by[k] = how;
+        if (options.faces) result.hit_face[k] = face;
       },
       coloured);
   // The face at each hit where asked (normal consistency, the correspondences' barycentric
-  // coordinates): by the exact rule near the pass's d, as the colour's face is chosen
-  // (hit_colour.h). A camera's d is good to the cameras' bound; a view's bound depends on its
-  // angle, which is not kept, so a view's hit is looked for along the whole line (its first hit).
+  // coordinates) and the pass did not choose it: by the exact rule near the pass's d, as the
+  // colour's face is chosen (hit_colour.h). A camera's d is good to the cameras' bound; a view's
+  // bound depends on its angle, which is not kept, so a view's hit is looked for along the whole
+  // line (its first hit).
   if (options.faces) {
-    result.hit_face.assign(samples.size(), 0);
     const double camera_window = roving_tolerance(report);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, samples.size(), 256),
                       [&](const tbb::blocked_range<std::size_t>& range) {
                         for (std::size_t k = range.begin(); k != range.end(); ++k) {
-                          if (!result.hit[k]) continue;
+                          if (!result.hit[k]) result.hit_face[k] = 0;
+                          if (!result.hit[k] || result.hit_face[k] != kFaceLeft) continue;
                           const double window =
                               report.resolved_by[k] == Resolution::Camera ? camera_window : 2 * options.max_error;
                           result.hit_face[k] = hit_face(scene_, samples, static_cast<std::uint32_t>(k),

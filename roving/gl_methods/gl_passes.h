@@ -29,6 +29,7 @@ struct GlScene {
   const TriangleMesh* test = nullptr;
   CameraGeometry cameras = CameraGeometry::Cpu;  // GlMethodOptions::camera_geometry
   SurfaceShades shades;      // colour (prepare_colour()); empty corners: none drawn
+  bool faces_asked = false;  // this run asks each hit's face (DistanceOptions::faces)
   void build(GlBackend backend, const TriangleMesh& test_model, CameraGeometry camera_geometry);
   // Uploads M_C's materials and makes its shades, once: then the passes can draw colour.
   // Requires test->has_colour().
@@ -53,9 +54,11 @@ void run_beside(const Background& background, const Foreground& foreground) {
   others.wait();
 }
 
-// Where a pass hands each sample it resolves, k, and its d (first hit). Passed on at once
-// rather than gathered, so that no pass holds a value for every sample.
-using Found = std::function<void(std::uint32_t k, double d)>;
+// Where a pass hands each sample it resolves, k, its d (first hit), and the face of M_C the hit
+// lies on where the pass chose it by the exact rule (hit_colour.h; the compute pass's cameras
+// do), kFaceLeft where it did not. Passed on at once rather than gathered, so that no pass holds
+// a value for every sample.
+using Found = std::function<void(std::uint32_t k, double d, std::uint32_t face)>;
 // Where a pass hands TEST's colour at a sample it resolved, as the frame buffer gives it (code
 // values). An empty one: the pass draws depth alone.
 using Coloured = std::function<void(std::uint32_t k, const Colour& colour)>;
@@ -128,9 +131,10 @@ class GlMethod : public DistanceMethod {
   std::size_t independent_run() const override { return 0; }
 
  protected:
-  // Per-sample answers: record(k, d, how) marks sample k a hit with distance d; `coloured`, when
-  // not empty, takes TEST's colour there (DistanceOptions::colour).
-  using Record = std::function<void(std::uint32_t k, double d, Resolution how)>;
+  // Per-sample answers: record(k, d, how, face) marks sample k a hit with distance d, and its
+  // face where the pass chose it (Found); `coloured`, when not empty, takes TEST's colour there
+  // (DistanceOptions::colour).
+  using Record = std::function<void(std::uint32_t k, double d, Resolution how, std::uint32_t face)>;
   virtual void resolve(const SampleSet& samples, double max_error, GlReport& report, const Record& record,
                        const Coloured& coloured) = 0;
 

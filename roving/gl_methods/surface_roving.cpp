@@ -202,7 +202,7 @@ class SurfaceRoving final : public GlMethod {
     report.views_h = report.views_v = report.resolution = 0;  // cameras only: no view grid applies
     rove(
         scene_, samples, all, max_error, report, progress_,
-        [&](std::uint32_t k, double d) { record(k, d, Resolution::Camera); }, coloured);
+        [&](std::uint32_t k, double d, std::uint32_t face) { record(k, d, Resolution::Camera, face); }, coloured);
   }
 };
 
@@ -221,6 +221,7 @@ std::size_t rove(GlScene& scene, const SampleSet& samples, const std::vector<std
   // clamped into [-h, h].
   const double half_depth = max_error + half_width;
   report.camera_depth_step = 2 * half_depth * std::ldexp(1.0, -24);
+  const double window = roving_tolerance(report);  // the cameras' bound on their d
 
   // The batch `first` .. first + batch_size of `indices`, tile by tile: chunks of tiles in
   // parallel, then joined in order.
@@ -228,6 +229,10 @@ std::size_t rove(GlScene& scene, const SampleSet& samples, const std::vector<std
   const bool computed = scene.cameras == CameraGeometry::Compute;
   report.camera_geometry = scene.cameras;
   const std::size_t batch_size = computed ? kComputedPerBatch : kTilesPerBatch;
+  // The compute pass also chooses each hit's face where colour or the faces are asked: the rest
+  // (and every drawn camera's) is chosen on the CPU threads by hit_face().
+  const bool faces_in_pass = computed && (coloured || scene.faces_asked);
+  const RovingSetup setup{half_width, half_depth, max_error, faces_in_pass ? window : 0.0};
   // Camera at x + h n looking along -n; its box spans t in [0, 2h] (depth 0 at x + h n).
   const auto camera_of = [&](std::uint32_t k) {
     return OrthoCamera::looking_along(-samples.normals[k], samples.positions[k], half_width, half_width,
@@ -331,9 +336,9 @@ std::size_t rove(GlScene& scene, const SampleSet& samples, const std::vector<std
   std::vector<ComputedTile> answers;  // the compute pass's, per tile
   std::vector<float> depth;
   std::vector<std::optional<double>> tile_d;  // a batch's d per tile, drawn and thin faces
-  std::vector<std::pair<std::uint32_t, double>> resolved;  // a batch's hits (k, d), for colour
+  // A batch's hits for colour: the tile and its sample's d.
+  std::vector<std::pair<std::uint32_t, double>> resolved;
   std::vector<SampleHit> hits;
-  const double window = roving_tolerance(report);  // the cameras' bound on their d
   CameraCost cost;
   std::size_t end = indices.size();  // where last_batch stops it
   if (!indices.empty()) emit_batch(0, batch[0]);
@@ -350,7 +355,7 @@ std::size_t rove(GlScene& scene, const SampleSet& samples, const std::vector<std
           const Stopwatch draw;
           const TileBatch& drawn = batch[b % 2];
           if (computed) {
-            scene.renderer->rove_samples(drawn.samples, half_width, half_depth, answers);
+            scene.renderer->rove_samples(drawn.samples, setup, answers);
             depth.resize(count);
             for (std::size_t tile = 0; tile < count; ++tile) depth[tile] = answers[tile].depth;
           } else if (on_gpu) {
@@ -373,21 +378,31 @@ std::size_t rove(GlScene& scene, const SampleSet& samples, const std::vector<std
     for (const auto& [tile, top] : batch[b % 2].thin_tops) {
       if (!tile_d[tile] || top > *tile_d[tile]) tile_d[tile] = top;
     }
+    const auto face_of = [&](std::size_t tile) { return faces_in_pass ? answers[tile].face : kFaceLeft; };
     for (std::size_t tile = 0; tile < count; ++tile) {
       if (!tile_d[tile]) continue;
-      found(sample_of(tile), *tile_d[tile]);
-      if (coloured) resolved.emplace_back(sample_of(tile), *tile_d[tile]);
+      found(sample_of(tile), *tile_d[tile], face_of(tile));
+      if (coloured) resolved.emplace_back(static_cast<std::uint32_t>(tile), *tile_d[tile]);
+      if (faces_in_pass) ++(face_of(tile) == kFaceLeft ? report.faces_left_to_cpu : report.faces_chosen_in_pass);
     }
     if (coloured) {
-      // Which face each hit's colour comes from, by the exact rule near the cameras' d, then
-      // shaded there (hit_colour.h): a tile's own fragment may be any face meeting at the point.
+      // Which face each hit's colour comes from, by the exact rule near the cameras' d (the
+      // compute pass's choice, or hit_colour.h's), then shaded there: a tile's own fragment may
+      // be any face meeting at the point.
       const Stopwatch choosing;
       hits.resize(resolved.size());
       tbb::parallel_for(tbb::blocked_range<std::size_t>(0, resolved.size(), 256),
                         [&](const tbb::blocked_range<std::size_t>& range) {
                           for (std::size_t i = range.begin(); i != range.end(); ++i) {
-                            hits[i] = hit_face(scene, samples, resolved[i].first, resolved[i].second,
-                                               max_error, window);
+                            const auto [tile, d] = resolved[i];
+                            const std::uint32_t k = sample_of(tile);
+                            if (face_of(tile) != kFaceLeft) {
+                              const ComputedTile& answer = answers[tile];
+                              hits[i] = {k, answer.face,
+                                         samples.positions[k] + answer.distance * samples.normals[k]};
+                            } else {
+                              hits[i] = hit_face(scene, samples, k, d, max_error, window);
+                            }
                           }
                         });
       report.camera_build_seconds += choosing.seconds();

@@ -366,7 +366,7 @@ void view_sample(GlScene& scene, const SampleSet& samples, const std::vector<std
       const double alpha = std::acos(std::clamp(-camera.forward.dot(samples.normals[k]), -1.0, 1.0));
       const double window = alpha < 50 * M_PI / 180 ? view_tolerance(report, alpha, d) : 2 * max_error;
       if (view.blind && meets_blind(*view.blind, k, d - window)) return;
-      found(k, d);
+      found(k, d, kFaceLeft);
       ++resolved;
       if (!colour) return;
       const SampleHit hit = hit_face(scene, samples, k, d, max_error, window);
@@ -467,7 +467,7 @@ class ViewpointSampling final : public GlMethod {
     std::iota(all.begin(), all.end(), 0u);
     view_sample(
         scene_, samples, all, max_error, options_, report, progress_,
-        [&](std::uint32_t k, double d) { record(k, d, Resolution::View); }, coloured);
+        [&](std::uint32_t k, double d, std::uint32_t face) { record(k, d, Resolution::View, face); }, coloured);
   }
 };
 

@@ -201,6 +201,8 @@ nlohmann::json gl_json(const GlReport& g) {
           {"camera_geometry", to_string(g.camera_geometry)},
           {"view_culling", g.views_culled ? "footprint" : "none"},
           {"thin_cameras", g.thin_cameras},
+          {"faces_chosen_in_pass", g.faces_chosen_in_pass},
+          {"faces_left_to_cpu", g.faces_left_to_cpu},
           {"camera_build_seconds", g.camera_build_seconds},
           {"camera_render_seconds", g.camera_render_seconds},
           {"view_cpu_seconds", g.view_cpu_seconds},
@@ -229,6 +231,8 @@ GlReport gl_report_of(const nlohmann::json& json) {
   g.camera_depth_step = json.at("camera_depth_step").get<double>();
   g.camera_geometry = parse_camera_geometry(json.at("camera_geometry").get<std::string>());
   g.thin_cameras = json.value("thin_cameras", std::size_t(0));  // absent before the compute path
+  g.faces_chosen_in_pass = json.value("faces_chosen_in_pass", std::size_t(0));  // absent before the faces' choice
+  g.faces_left_to_cpu = json.value("faces_left_to_cpu", std::size_t(0));
   g.views_culled = json.value("view_culling", std::string("footprint")) != "none";  // absent before the option
   g.camera_build_seconds = json.at("camera_build_seconds").get<double>();
   g.camera_render_seconds = json.at("camera_render_seconds").get<double>();

@@ -121,8 +121,14 @@ std::string camera_geometry_text(const GlReport& g) {
   switch (g.camera_geometry) {
     case CameraGeometry::Cpu: return "cameras built on the CPU";
     case CameraGeometry::Gpu: return "cameras built on the GPU";
-    case CameraGeometry::Compute:
-      return fmt::format("cameras in a compute pass; {} with a thin face decided on the CPU", g.thin_cameras);
+    case CameraGeometry::Compute: {
+      std::string text = fmt::format("cameras in a compute pass; {} with a thin face decided on the CPU", g.thin_cameras);
+      if (g.faces_chosen_in_pass + g.faces_left_to_cpu > 0) {
+        text += fmt::format("; hits' faces: {} chosen in the pass, {} on the CPU", g.faces_chosen_in_pass,
+                            g.faces_left_to_cpu);
+      }
+      return text;
+    }
   }
   return "?";
 }
