@@ -826,7 +826,9 @@ TEST_P(EachBackend, TheComputePassChoosesTheRulesFaces) {
                                    {"itself at its vertices", coarse, coarse, "vertices"}};
   for (const Case& c : cases) {
     SCOPED_TRACE(c.name);
-    const SampleSet samples = make_samples(c.reference, parse_sample_spec(c.samples));
+    // Under the sanitizers 1,000 of them: the rule over all faces is the slow part.
+    const SampleSet samples =
+        testing::lighter_under_sanitizers(make_samples(c.reference, parse_sample_spec(c.samples)), 1000);
     const double h = 0.02 * diagonal;
     GlMethodOptions gl = EachBackend::options();
     gl.camera_geometry = CameraGeometry::Compute;
