@@ -14,7 +14,9 @@ of all hits), USiAD against Embree's; and, for `--camera-geometry gpu` and `comp
 samples whose hit or d differs at all from the CPU-built cameras' of the same method (computed
 cameras take the depth in double where drawn ones interpolate floats: their d differs by design,
 within the tolerance the Embree column checks). Times are the report's: query, and for the cameras
-their building (CPU threads) and rendering (GL thread: upload, compute, draw, read back).
+their building (CPU threads) and rendering (GL thread: upload, compute, draw, read back). The
+--samples-out each run writes for the checks asks each hit's face, chosen within the query (for
+computed cameras in the compute pass).
 
     python3 bench/gl_timings.py --roving build/roving/roving --data build/datasets \
         --backends osmesa,egl --out results/gpu.md [--large] [--huge]
@@ -202,6 +204,10 @@ def write(path, renderers, lines):
         "(beside the drawing) and rendering them on the GL thread (upload, compute stage, draw, read back); "
         "`views: CPU / draw` likewise for the views: preparing and reading them on the CPU threads, drawing "
         "and reading them back on the GL thread. "
+        "Each run writes every sample's row (`--samples-out`, for the checks), which asks each hit's face: "
+        "the query time includes choosing it, by the exact rule near d on the CPU threads after the pass, "
+        "or for computed cameras in the compute pass itself (its render time), the CPU choosing only what "
+        "the pass leaves (`gl.faces_left_to_cpu`). "
         "Viewpoint sampling alone leaves what its views cannot resolve with certainty as no hits (paper "
         "Section 4.2; distances within 100 float depth steps go to the cameras in the cooperative method, so "
         "a model against itself, d = 0 everywhere, is resolved by no view): its hit share and USiAD show how "
