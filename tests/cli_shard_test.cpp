@@ -420,6 +420,14 @@ TEST(CliStreamed, SummaryCountsWhatTheWholeMeshCounts) {
   EXPECT_GE(one["samples"]["skipped_degenerate_faces"], 2);  // and any other face on the edge 11-13
   EXPECT_LT(one["reference"]["diagonal"].get<double>(), 1);
   expect_same_report(one, streamed);
+  // Its vertices as samples: the unreferenced ones skipped alike, by blocks of vertices made in
+  // parts on every core (4095 is no multiple of the parts).
+  const auto [by_vertex, streamed_by_vertex] = whole_and_streamed(
+      fmt::format("measure {} {} --samples vertices --semantics closest --hausdorff-bound none --quiet --json -", ref,
+                  igea.path),
+      4095, 134347);
+  EXPECT_EQ(by_vertex["samples"]["skipped_unreferenced_vertices"], 2);
+  expect_same_report(by_vertex, streamed_by_vertex);
 }
 
 // A shard streams REF too: it reads the file only as far as its slice of the samples, measures

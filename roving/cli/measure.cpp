@@ -90,9 +90,13 @@ std::unique_ptr<TriangleStream> reference_stream(const MeasureArguments& args, c
   return wanted ? open_triangle_stream(args.reference_path, plan.chunk_faces) : nullptr;
 }
 
-// The model a streamed REF stands as in the report: what its whole mesh would say of itself.
-std::unique_ptr<Model> streamed_model(TriangleStream& stream, std::size_t chunk_faces, const ProgressFn& progress) {
-  StreamedReference summary = summarise(stream, chunk_faces, progress);
+// The model a streamed REF stands as in the report: what its whole mesh would say of itself; and,
+// from the same pass, its vertex sums in `streamed` where its vertices are the samples.
+std::unique_ptr<Model> streamed_model(ReferenceStream& streamed, std::size_t chunk_faces, const ProgressFn& progress,
+                                      bool with_vertex_sums) {
+  TriangleStream& stream = streamed.file;
+  StreamedReference summary = summarise(stream, chunk_faces, progress, with_vertex_sums);
+  streamed.vertex_sums = std::move(summary.vertex_sums);
   auto model = std::make_unique<Model>();
   model->type = ModelType::Mesh;
   model->mesh.path = stream.path();
@@ -150,12 +154,15 @@ MeasureRun measure_run(const MeasureArguments& args, std::string& stage, Progres
   }
   const Stopwatch watch;
   const std::unique_ptr<TriangleStream> stream = given_a ? nullptr : reference_stream(args, plan);
+  std::optional<ReferenceStream> streamed;
   if (given_a) {
     run.a = std::move(given_a);
   } else if (stream) {
     stage = fmt::format("reading the reference {} {} faces at a time", args.reference_path, plan.chunk_faces);
     progress.stage("reading " + file_name(args.reference_path));
-    run.a = streamed_model(*stream, plan.chunk_faces, progress.callback());
+    streamed.emplace(ReferenceStream{*stream, std::nullopt});
+    run.a = streamed_model(*streamed, plan.chunk_faces, progress.callback(),
+                           plan.sample_spec.kind == SampleSpec::Kind::Vertices);
   } else {
     stage = fmt::format("loading the reference {}", args.reference_path);
     progress.stage("loading " + file_name(args.reference_path));
@@ -229,7 +236,7 @@ MeasureRun measure_run(const MeasureArguments& args, std::string& stage, Progres
   describe_pair(a, b, plan, report);
   if (on_described) on_described(run);
   measure_models(a, b, plan, report, progress, stage, warn, nullptr,
-                 reference_only_sampled(args, plan) ? &a : nullptr, stream.get(), &protocol);
+                 reference_only_sampled(args, plan) ? &a : nullptr, streamed ? &*streamed : nullptr, &protocol);
   finish();
   return run;
 }

@@ -27,7 +27,7 @@ std::vector<Colour> reference_colours(const Model& reference, const SampleSet& s
 // One direction with REF read a block of faces at a time (streamed_measurement.h), `a` its summary.
 // A shard measures its slice of the samples (`slice`) and bounds its share of the triangles, as it
 // would with REF whole, keeping what its part holds.
-void measure_streamed_direction(const Model& a, const TriangleMesh& test_mesh, TriangleStream& stream,
+void measure_streamed_direction(const Model& a, const TriangleMesh& test_mesh, ReferenceStream& source,
                                 MeasurePlan& plan, double hausdorff_bound, const std::optional<SampleRange>& slice,
                                 Progress& progress, std::string& stage, DirectionReport& d) {
   stage = fmt::format("measuring {} {} {} at a time against {} triangles with {}", a.path(), plan.chunk_faces,
@@ -37,9 +37,10 @@ void measure_streamed_direction(const Model& a, const TriangleMesh& test_mesh, T
   validate_options(*plan.method, plan.options);
   d.result.build_seconds = plan.method->build(test_mesh);
   const TriangleMesh& m = a.mesh.mesh;
+  TriangleStream& stream = source.file;
   StreamedResult streamed =
       plan.sample_spec.kind == SampleSpec::Kind::Vertices
-          ? measure_streamed_vertices(stream, *plan.method, plan.options, plan.histogram_bins, plan.chunk_faces,
+          ? measure_streamed_vertices(stream, source.vertex_sums.value(), *plan.method, plan.options, plan.histogram_bins, plan.chunk_faces,
                                       m.vertex_count() - m.unreferenced_vertex_count(), progress.callback())
           : measure_streamed(stream, *plan.method, plan.options, plan.histogram_bins, plan.chunk_faces,
                              slice ? slice->last - slice->first : m.triangle_count() - m.degenerate_triangle_count(),

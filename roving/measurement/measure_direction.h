@@ -9,7 +9,7 @@
 #include "measure_plan.h"
 #include "measure_report.h"
 #include "progress.h"
-#include "roving/formats/meshes/triangle_stream.h"
+#include "roving/streaming/streamed_measurement.h"
 #include "roving/representations/model.h"
 
 namespace roving {
@@ -18,7 +18,7 @@ namespace roving {
 struct DirectionSource {
   const SampleSet* samples = nullptr;  // its samples already made (a batch reuses them)
   Model* releasable = nullptr;         // REF itself, whose geometry is released once sampled
-  TriangleStream* stream = nullptr;    // its file a block of faces at a time, REF its summary
+  ReferenceStream* stream = nullptr;   // its file a block of faces at a time, REF its summary
 };
 
 // Fills `d` (an entry of report.directions, its label set) for `reference` against `test`:

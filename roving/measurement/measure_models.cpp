@@ -286,7 +286,7 @@ void measure_point_clouds(const Model& a, const Model& b, const MeasurePlan& pla
 
 void measure_models(const Model& a, const Model& b, MeasurePlan& plan, MeasureReport& report,
                     Progress& progress, std::string& stage, const WarnFn& warn, const SampleSet* samples_of_a,
-                    Model* releasable_a, TriangleStream* streamed_a, ProtocolInputs* protocol) {
+                    Model* releasable_a, ReferenceStream* streamed_a, ProtocolInputs* protocol) {
   warn(a.mesh.warnings);
   if (&b != &a) warn(b.mesh.warnings);
   warn(alignment_warnings(a, b, plan.options.max_error));

@@ -8,7 +8,7 @@
 #include "measure_plan.h"
 #include "measure_report.h"
 #include "progress.h"
-#include "roving/formats/meshes/triangle_stream.h"
+#include "roving/streaming/streamed_measurement.h"
 #include "roving/representations/model.h"
 
 namespace roving {
@@ -43,9 +43,10 @@ void describe_pair(const Model& a, const Model& b, MeasurePlan& plan, MeasureRep
 // when given, are a's samples already made (a batch reuses them across pairs). `releasable_a`,
 // when given, is `a` itself, whose geometry nothing reads once it is sampled: it gives it up
 // then, so that the query runs without it. `streamed_a`, when given, is a's file read a block of
-// faces at a time, `a` its summary (streamed_model).
+// faces at a time (with its vertex sums where its vertices are the samples), `a` its summary
+// (streamed_model).
 void measure_models(const Model& a, const Model& b, MeasurePlan& plan, MeasureReport& report,
                     Progress& progress, std::string& stage, const WarnFn& warn, const SampleSet* samples_of_a,
-                    Model* releasable_a = nullptr, TriangleStream* streamed_a = nullptr,
+                    Model* releasable_a = nullptr, ReferenceStream* streamed_a = nullptr,
                     ProtocolInputs* protocol = nullptr);
 }  // namespace roving

@@ -13,6 +13,7 @@
 #include <cmath>
 #include <cstdint>
 #include <memory>
+#include <new>
 
 #include "roving/core/error.h"
 #include "roving/formats/outputs/heatmap.h"
@@ -83,75 +84,135 @@ void fold(const SampleSet& samples, const DistanceResult& measured, StatisticsAc
   }
 }
 
-// Each vertex's sums over the faces that use it, in the file's order, and whether any does.
-// Arrays left uninitialised by their allocation: each part of vertex_sums zeroes its own range,
-// so that the pages are first written (and faulted in, at 10^8 faces 1.6 GiB of them: seconds on
-// one core) by both cores at once.
-struct VertexSums {
-  explicit VertexSums(std::size_t n) : normals(new Vec3[n]), third_areas(new double[n]), referenced(new std::uint8_t[n]) {}
-  std::unique_ptr<Vec3[]> normals;  // summed cross products, made unit as each sample is made
-  std::unique_ptr<double[]> third_areas;
-  std::unique_ptr<std::uint8_t[]> referenced;
-
-  // Vertices [first, last) are no longer needed: their whole pages go back to the system, so
-  // that the sums shrink as the vertices' distances (the statistics) grow.
-  void release(std::size_t first, std::size_t last) {
-    release_pages(normals.get() + first, normals.get() + last);
-    release_pages(third_areas.get() + first, third_areas.get() + last);
-    release_pages(referenced.get() + first, referenced.get() + last);
-  }
-
- private:
-  static void release_pages(const void* from, const void* to) {
-    const auto page = static_cast<std::uintptr_t>(sysconf(_SC_PAGESIZE));
-    const std::uintptr_t low = (reinterpret_cast<std::uintptr_t>(from) + page - 1) / page * page;
-    const std::uintptr_t high = reinterpret_cast<std::uintptr_t>(to) / page * page;
-    if (low < high) madvise(reinterpret_cast<void*>(low), high - low, MADV_DONTNEED);
-  }
-};
-
-VertexSums vertex_sums(TriangleStream& stream, std::size_t chunk_faces, const ProgressFn& progress) {
+// Adds the block's faces to each vertex's sums. As vertex_normals: each thread owns a range of
+// vertices and scans the block's faces for its corners, so that each vertex adds its faces in the
+// file's order on any number of threads.
+void add_to_vertex_sums(const TriangleStream& stream, const std::vector<Triangle>& triangles, VertexSums& sums) {
   const std::size_t n = stream.position_count();
+  const std::size_t parts = std::size_t(std::max(1, tbb::this_task_arena::max_concurrency()));
+  const std::size_t per_part = (n + parts - 1) / parts;
+  tbb::parallel_for(std::size_t{0}, parts, [&](std::size_t part) {
+    const auto low = static_cast<int>(std::min(n, part * per_part));
+    const auto high = static_cast<int>(std::min(n, (part + 1) * per_part));
+    for (const Triangle& t : triangles) {
+      const auto mine = [&](int corner) { return corner >= low && corner < high; };
+      if (!mine(t[0]) && !mine(t[1]) && !mine(t[2])) continue;
+      const Vec3 p0 = stream.position(t[0]);
+      const Vec3 cross = (stream.position(t[1]) - p0).cross(stream.position(t[2]) - p0);
+      const double third_area = 0.5 * cross.norm() / 3.0;
+      for (int corner : t) {
+        if (!mine(corner)) continue;
+        sums.normals[corner] += cross;
+        sums.third_areas[corner] += third_area;
+        sums.referenced[corner] = 1;
+      }
+    }
+  });
+}
+
+// Zeroed sums for the stream's vertices. The kernel's pages are zero already; each thread writes
+// zeroes to its own range all the same, so that they are faulted in (at 10^8 faces 1.6 GiB of
+// them) by both cores at once, in order, not one by one in the face pass's scattered writes.
+VertexSums zeroed_vertex_sums(std::size_t n) {
   VertexSums sums(n);
-  // As vertex_normals: each thread owns a range of vertices and scans the block's faces for its
-  // corners, so that each vertex adds its faces in the file's order on any number of threads.
   const std::size_t parts = std::size_t(std::max(1, tbb::this_task_arena::max_concurrency()));
   const std::size_t per_part = (n + parts - 1) / parts;
   tbb::parallel_for(std::size_t{0}, parts, [&](std::size_t part) {
     const std::size_t low = std::min(n, part * per_part), high = std::min(n, (part + 1) * per_part);
-    std::fill(sums.normals.get() + low, sums.normals.get() + high, Vec3::Zero());
-    std::fill(sums.third_areas.get() + low, sums.third_areas.get() + high, 0.0);
-    std::fill(sums.referenced.get() + low, sums.referenced.get() + high, std::uint8_t{0});
+    std::fill(sums.normals + low, sums.normals + high, Vec3::Zero());
+    std::fill(sums.third_areas + low, sums.third_areas + high, 0.0);
+    std::fill(sums.referenced + low, sums.referenced + high, std::uint8_t{0});
   });
-  std::vector<Triangle> triangles;
-  stream.rewind();
-  for (std::size_t read = 0; stream.next(chunk_faces, triangles);) {
-    read = std::min(read + chunk_faces, stream.face_count());
-    if (progress) progress("faces", read, stream.face_count());
-    tbb::parallel_for(std::size_t{0}, parts, [&](std::size_t part) {
-      const auto low = static_cast<int>(part * per_part);
-      const auto high = static_cast<int>(std::min(n, (part + 1) * per_part));
-      for (const Triangle& t : triangles) {
-        const auto mine = [&](int corner) { return corner >= low && corner < high; };
-        if (!mine(t[0]) && !mine(t[1]) && !mine(t[2])) continue;
-        const Vec3 p0 = stream.position(t[0]);
-        const Vec3 cross = (stream.position(t[1]) - p0).cross(stream.position(t[2]) - p0);
-        const double third_area = 0.5 * cross.norm() / 3.0;
-        for (int corner : t) {
-          if (!mine(corner)) continue;
-          sums.normals[corner] += cross;
-          sums.third_areas[corner] += third_area;
-          sums.referenced[corner] = 1;
-        }
-      }
-    });
-  }
   return sums;
+}
+
+// Vertices [first, last)'s samples as sample_vertices makes them (sample_set.cpp), in order:
+// each vertex a kept face uses whose normal is not zero. On every core: a part of the range at a
+// time counts its samples, then writes them where the counts before it put them.
+SampleSet vertex_samples(const TriangleStream& stream, const VertexSums& sums, std::size_t first, std::size_t last) {
+  // The normal made unit as TriangleMesh::vertex_normals makes it (zero where its length is not
+  // > 0), here rather than in a pass of its own over the sums; a zero one skipped as
+  // sample_vertices skips it.
+  const auto unit_normal = [&](std::size_t v) {
+    const double length = sums.normals[v].norm();
+    return length > 0 ? Vec3(sums.normals[v] / length) : Vec3::Zero();
+  };
+  const std::size_t parts = 4 * std::size_t(std::max(1, tbb::this_task_arena::max_concurrency()));
+  const auto range = [&](std::size_t part) {
+    return std::pair{first + (last - first) * part / parts, first + (last - first) * (part + 1) / parts};
+  };
+  std::vector<std::size_t> unreferenced(parts), zero_normal(parts), kept(parts + 1);
+  tbb::parallel_for(std::size_t{0}, parts, [&](std::size_t part) {
+    const auto [low, high] = range(part);
+    for (std::size_t v = low; v < high; ++v) {
+      if (!sums.referenced[v]) {
+        ++unreferenced[part];
+      } else if (unit_normal(v).isZero()) {
+        ++zero_normal[part];
+      }
+    }
+    kept[part + 1] = high - low - unreferenced[part] - zero_normal[part];
+  });
+  SampleSet samples;
+  for (std::size_t part = 0; part < parts; ++part) {
+    kept[part + 1] += kept[part];
+    samples.skipped_unreferenced_vertices += unreferenced[part];
+    samples.skipped_zero_normal_vertices += zero_normal[part];
+  }
+  samples.positions.resize(kept[parts]);
+  samples.normals.resize(kept[parts]);
+  samples.weights.resize(kept[parts]);
+  tbb::parallel_for(std::size_t{0}, parts, [&](std::size_t part) {
+    const auto [low, high] = range(part);
+    std::size_t k = kept[part];
+    for (std::size_t v = low; v < high; ++v) {
+      if (!sums.referenced[v]) continue;
+      const Vec3 normal = unit_normal(v);
+      if (normal.isZero()) continue;
+      samples.positions[k] = stream.position(static_cast<int>(v));
+      samples.normals[k] = normal;
+      samples.weights[k] = sums.third_areas[v];
+      ++k;
+    }
+  });
+  return samples;
+}
+
+void release_pages(const void* from, const void* to) {
+  const auto page = static_cast<std::uintptr_t>(sysconf(_SC_PAGESIZE));
+  const std::uintptr_t low = (reinterpret_cast<std::uintptr_t>(from) + page - 1) / page * page;
+  const std::uintptr_t high = reinterpret_cast<std::uintptr_t>(to) / page * page;
+  if (low < high) madvise(reinterpret_cast<void*>(low), high - low, MADV_DONTNEED);
 }
 
 }  // namespace
 
-StreamedReference summarise(TriangleStream& stream, std::size_t chunk_faces, const ProgressFn& progress) {
+VertexSums::VertexSums(std::size_t n) {
+  const std::size_t bytes = std::max<std::size_t>(1, n * (sizeof(Vec3) + sizeof(double) + sizeof(std::uint8_t)));
+  void* pages = mmap(nullptr, bytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS | MAP_NORESERVE, -1, 0);
+  if (pages == MAP_FAILED) throw std::bad_alloc();
+  pages_ = std::unique_ptr<void, Unmap>(pages, Unmap{bytes});
+  normals = static_cast<Vec3*>(pages);
+  third_areas = reinterpret_cast<double*>(normals + n);
+  referenced = reinterpret_cast<std::uint8_t*>(third_areas + n);
+}
+
+void VertexSums::Unmap::operator()(void* pages) const {
+  munmap(pages, bytes);
+}
+
+void VertexSums::release(std::size_t first, std::size_t last) {
+  release_pages(normals + first, normals + last);
+  release_pages(third_areas + first, third_areas + last);
+  release_pages(referenced + first, referenced + last);
+}
+
+StreamedReference summarise(TriangleStream& stream, std::size_t chunk_faces, const ProgressFn& progress,
+                            bool with_vertex_sums) {
+  StreamedReference result;
+  // The vertex samples' sums from this same pass: reading and parsing the faces once, not twice
+  // (at 10^8 faces that pass is seconds).
+  if (with_vertex_sums) result.vertex_sums = zeroed_vertex_sums(stream.position_count());
   TriangleMesh::Summary summary;
   std::vector<Triangle> triangles;
   double block_area = 0;  // TriangleMesh's current block of kAreaBlock faces
@@ -159,6 +220,7 @@ StreamedReference summarise(TriangleStream& stream, std::size_t chunk_faces, con
   for (std::size_t read = 0; stream.next(chunk_faces, triangles);) {
     read = std::min(read + chunk_faces, stream.face_count());
     if (progress) progress("faces", read, stream.face_count());
+    if (with_vertex_sums) add_to_vertex_sums(stream, triangles, *result.vertex_sums);
     for (const TriangleMesh::FaceShape& shape : shapes_of(stream, triangles)) {
       summary.degenerate_triangles += shape.degenerate;
       block_area += shape.area();
@@ -173,7 +235,10 @@ StreamedReference summarise(TriangleStream& stream, std::size_t chunk_faces, con
   summary.vertices = vertices.vertices;
   summary.unreferenced_vertices = vertices.unreferenced;
   summary.box = vertices.box;
-  return {TriangleMesh(summary), stream.dropped_repeated_vertex_faces(), stream.triangulated_polygons()};
+  result.summary = TriangleMesh(summary);
+  result.dropped_repeated_vertex_faces = stream.dropped_repeated_vertex_faces();
+  result.triangulated_polygons = stream.triangulated_polygons();
+  return result;
 }
 
 StreamedResult measure_streamed(TriangleStream& stream, DistanceMethod& method, const DistanceOptions& options,
@@ -245,13 +310,12 @@ StreamedResult measure_streamed(TriangleStream& stream, DistanceMethod& method, 
   return result;
 }
 
-StreamedResult measure_streamed_vertices(TriangleStream& stream, DistanceMethod& method,
+StreamedResult measure_streamed_vertices(TriangleStream& stream, VertexSums& sums, DistanceMethod& method,
                                          const DistanceOptions& options, std::size_t histogram_bins,
                                          std::size_t chunk_faces, std::size_t expected_samples,
                                          const ProgressFn& progress) {
   const std::size_t run = method.independent_run();
   if (run == 0) throw Error(method.name() + ": answers every sample from them all; REF cannot be streamed");
-  VertexSums sums = vertex_sums(stream, chunk_faces, progress);
   StreamedResult result;
   result.samples.kind = SampleSpec{SampleSpec::Kind::Vertices}.to_string();
   StatisticsAccumulator statistics(options.max_error, histogram_bins, expected_samples);
@@ -270,26 +334,9 @@ StreamedResult measure_streamed_vertices(TriangleStream& stream, DistanceMethod&
   for (std::size_t first = 0; first < n; first += chunk_faces) {
     ++result.chunks;
     const std::size_t last = std::min(n, first + chunk_faces);
-    SampleSet samples;  // room for the block at once: growing by doubling wrote each array twice over
-    samples.positions.reserve(last - first);
-    samples.normals.reserve(last - first);
-    samples.weights.reserve(last - first);
-    for (std::size_t v = first; v < last; ++v) {
-      // The normal made unit as TriangleMesh::vertex_normals makes it (zero where its length is
-      // not > 0), here rather than in a pass of its own over the sums; a zero one skipped as
-      // sample_vertices skips it.
-      const double length = sums.normals[v].norm();
-      const Vec3 normal = length > 0 ? Vec3(sums.normals[v] / length) : Vec3::Zero();
-      if (!sums.referenced[v]) {
-        ++result.samples.skipped_unreferenced_vertices;
-      } else if (normal.isZero()) {
-        ++result.samples.skipped_zero_normal_vertices;
-      } else {
-        samples.positions.push_back(stream.position(static_cast<int>(v)));
-        samples.normals.push_back(normal);
-        samples.weights.push_back(sums.third_areas[v]);
-      }
-    }
+    SampleSet samples = vertex_samples(stream, sums, first, last);
+    result.samples.skipped_unreferenced_vertices += samples.skipped_unreferenced_vertices;
+    result.samples.skipped_zero_normal_vertices += samples.skipped_zero_normal_vertices;
     sums.release(first, last);
     pending.append(std::move(samples));
     const std::size_t ready = pending.size() / run * run;

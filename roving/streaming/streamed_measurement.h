@@ -7,6 +7,8 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
+#include <memory>
 #include <optional>
 
 #include "roving/core/distance_method.h"
@@ -21,15 +23,47 @@ namespace roving {
 // faces holds about 100 MB (its triangles, samples and distances) while it is measured.
 constexpr std::size_t kDefaultChunkFaces = std::size_t{1} << 20;
 
+// Each vertex's sums over the faces that use it, in the file's order, and whether any does: what
+// vertex samples are made of (33 bytes a vertex). Its pages go back to the system as the
+// measurement passes its vertices.
+struct VertexSums {
+  // Pages of their own from the kernel, on 4 KiB pages: on this project's machines (virtual ones)
+  // 1.6 GiB of fresh 2 MiB pages (the heap's, huge_pages.cpp) took 3.7 to 20 s of faults, 4 KiB ones 0.7 to 1.4 s.
+  explicit VertexSums(std::size_t n);
+  Vec3* normals;  // summed cross products, made unit as each sample is made
+  double* third_areas;
+  std::uint8_t* referenced;
+
+  // Vertices [first, last) are no longer needed: their whole pages go back to the system, so
+  // that the sums shrink as the vertices' distances (the statistics) grow.
+  void release(std::size_t first, std::size_t last);
+
+ private:
+  struct Unmap {
+    std::size_t bytes;
+    void operator()(void* pages) const;
+  };
+  std::unique_ptr<void, Unmap> pages_;
+};
+
 // What TriangleMesh derives from the whole mesh, found in one pass over the stream: the same
 // counts, box and area (summed in TriangleMesh's blocks and order), and the faces dropped for
-// repeating a vertex.
+// repeating a vertex; and, where asked, the vertex sums, from the same pass.
 struct StreamedReference {
   TriangleMesh summary;
   std::size_t dropped_repeated_vertex_faces = 0, triangulated_polygons = 0;
+  std::optional<VertexSums> vertex_sums;
 };
 // `progress` hears of the file's faces read.
-StreamedReference summarise(TriangleStream& stream, std::size_t chunk_faces, const ProgressFn& progress = {});
+StreamedReference summarise(TriangleStream& stream, std::size_t chunk_faces, const ProgressFn& progress = {},
+                            bool with_vertex_sums = false);
+
+// REF's file read a block of faces at a time, and the vertex sums of its first pass where its
+// vertices are the samples.
+struct ReferenceStream {
+  TriangleStream& file;
+  std::optional<VertexSums> vertex_sums;
+};
 
 struct StreamedResult {
   Statistics statistics;
@@ -62,12 +96,12 @@ StreamedResult measure_streamed(TriangleStream& stream, DistanceMethod& method, 
 // Measures REF's vertex samples (make_samples' "vertices": each vertex a kept face uses whose
 // normal is not zero, at its position, with the unit sum of its faces' cross products and a third of
 // their area, in vertex order) against the TEST `method` was built for, as measure_streamed does
-// its faces: one pass over the file's faces sums each vertex's in the file's order, as
-// TriangleMesh::vertex_normals sums them (the same bits), then the vertices are measured
-// `chunk_faces` at a time. Beside the stream's positions it holds 33 bytes a vertex, not REF's
-// faces; the figures are the whole reference's, bit for bit. `progress` hears of the faces read,
-// then of the samples done of `expected_samples`. Throws roving::Error where REF gives no sample.
-StreamedResult measure_streamed_vertices(TriangleStream& stream, DistanceMethod& method,
+// its faces: the file's first pass (summarise) summed each vertex's faces in the file's order, as
+// TriangleMesh::vertex_normals sums them (the same bits); the vertices are measured `chunk_faces`
+// at a time, their sums released as they go. Beside the stream's positions it holds 33 bytes a
+// vertex, not REF's faces; the figures are the whole reference's, bit for bit. `progress` hears of
+// the samples done of `expected_samples`. Throws roving::Error where REF gives no sample.
+StreamedResult measure_streamed_vertices(TriangleStream& stream, VertexSums& sums, DistanceMethod& method,
                                          const DistanceOptions& options, std::size_t histogram_bins,
                                          std::size_t chunk_faces, std::size_t expected_samples,
                                          const ProgressFn& progress = {});
