@@ -161,15 +161,30 @@ MeasureRun measure_run(const MeasureArguments& args, std::string& stage, Progres
     stage = fmt::format("reading the reference {} {} faces at a time", args.reference_path, plan.chunk_faces);
     progress.stage("reading " + file_name(args.reference_path));
     streamed.emplace(ReferenceStream{*stream, std::nullopt});
-    run.a = streamed_model(*streamed, plan.chunk_faces, progress.callback(),
-                           plan.sample_spec.kind == SampleSpec::Kind::Vertices);
+    // REF's faces are read on another thread (mostly one core's parsing) while TEST is loaded and
+    // the method built for it on this one (the GL methods' contexts live here).
+    auto reading = std::async(std::launch::async, [&] {
+      auto model = streamed_model(*streamed, plan.chunk_faces, progress.callback(),
+                                  plan.sample_spec.kind == SampleSpec::Kind::Vertices);
+      report.load_seconds[0] = watch.seconds();  // REF's own, beside TEST's loading and the build
+      return model;
+    });
+    try {
+      run.b = given_b ? std::move(given_b) : test_load.get();
+      if (run.b->type == ModelType::Mesh) plan.method_built_seconds = plan.method->build(test_surface(*run.b));
+    } catch (...) {
+      run.a = reading.get();  // where both fail, the reference's error is the one reported
+      throw;
+    }
+    run.a = reading.get();
   } else {
     stage = fmt::format("loading the reference {}", args.reference_path);
     progress.stage("loading " + file_name(args.reference_path));
     run.a = std::make_unique<Model>(load(args.reference_path, plan.reference_type, true));
   }
-  report.load_seconds[0] = watch.seconds();
-  if (given_b) {
+  if (!stream) report.load_seconds[0] = watch.seconds();
+  if (run.b) {  // loaded beside a streamed REF
+  } else if (given_b) {
     run.b = std::move(given_b);
   } else {
     stage = fmt::format("loading the test {}", args.test_path);

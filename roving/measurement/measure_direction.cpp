@@ -35,7 +35,7 @@ void measure_streamed_direction(const Model& a, const TriangleMesh& test_mesh, R
                       test_mesh.triangle_count(), plan.method->name());
   progress.stage("measuring");
   validate_options(*plan.method, plan.options);
-  d.result.build_seconds = plan.method->build(test_mesh);
+  d.result.build_seconds = plan.method_built_seconds ? *plan.method_built_seconds : plan.method->build(test_mesh);
   const TriangleMesh& m = a.mesh.mesh;
   TriangleStream& stream = source.file;
   StreamedResult streamed =
@@ -46,6 +46,7 @@ void measure_streamed_direction(const Model& a, const TriangleMesh& test_mesh, R
                              slice ? slice->last - slice->first : m.triangle_count() - m.degenerate_triangle_count(),
                              progress.callback(), slice);
   plan.method->release();
+  plan.method_built_seconds.reset();
   d.samples = std::move(streamed.samples);
   if (slice) {  // what the part holds: the slice's figures, and the count of the whole's skipped faces
     d.result.signed_distance = std::move(streamed.slice.signed_distance);

@@ -54,6 +54,8 @@ struct MeasurePlan {
   bool correspondences = false;                  // each direction's Correspondences kept
   std::optional<Shard> shard;                    // --shard: one slice of the samples
   std::size_t chunk_faces = kDefaultChunkFaces;  // --chunk
+  // Set where `method` was built for TEST already, beside a streamed REF's reading: its seconds.
+  std::optional<double> method_built_seconds;
 };
 
 // --samples area:auto: the first round's samples, and the most it may take.
