@@ -2,7 +2,10 @@
 #include "roving/formats/meshes/ply_triangle_stream.h"
 
 #include <fmt/format.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
+#include <atomic>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -35,14 +38,15 @@ PlyTriangleStream::PlyTriangleStream(const std::string& path, const PlyTriangleL
   (layout.coordinates_double ? double_positions_.resize(3 * layout.vertex_count)
                              : float_positions_.resize(3 * layout.vertex_count));
   referenced_.assign(layout.vertex_count, false);
-  constexpr std::size_t kBlock = 1 << 16;  // vertices read at once
+  // Read a million vertices at a time, each block's copied and checked on every core; where one
+  // is not finite, the first such is named.
+  constexpr std::size_t kBlock = 1 << 20;
   for (std::size_t first = 0; first < layout.vertex_count; first += kBlock) {
     const std::size_t count = std::min(kBlock, layout.vertex_count - first);
     buffer_.resize(count * layout.vertex_stride);
     read_at(file_.get(), path, layout.vertices_at + first * layout.vertex_stride, buffer_.data(), buffer_.size());
-    for (std::size_t i = 0; i < count; ++i) {
+    const auto copy = [&](std::size_t i, double xyz[3]) {
       const char* item = buffer_.data() + i * layout.vertex_stride;
-      double xyz[3];
       for (int axis = 0; axis < 3; ++axis) {
         const char* at = item + layout.coordinate_offset[axis];
         if (layout.coordinates_double) {
@@ -53,7 +57,21 @@ PlyTriangleStream::PlyTriangleStream(const std::string& path, const PlyTriangleL
           xyz[axis] = float_positions_[3 * (first + i) + axis];
         }
       }
-      if (!(std::isfinite(xyz[0]) && std::isfinite(xyz[1]) && std::isfinite(xyz[2]))) {
+      return std::isfinite(xyz[0]) && std::isfinite(xyz[1]) && std::isfinite(xyz[2]);
+    };
+    std::atomic<bool> all_finite{true};
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, 16384), [&](const tbb::blocked_range<std::size_t>& range) {
+      bool finite = true;
+      for (std::size_t i = range.begin(); i != range.end(); ++i) {
+        double xyz[3];
+        finite = copy(i, xyz) && finite;
+      }
+      if (!finite) all_finite = false;
+    });
+    if (all_finite) continue;
+    for (std::size_t i = 0; i < count; ++i) {
+      double xyz[3];
+      if (!copy(i, xyz)) {
         throw Error(fmt::format("{}: vertex {} has a non-finite coordinate ({}, {}, {}); expected finite numbers",
                                 path, first + i, xyz[0], xyz[1], xyz[2]));
       }
