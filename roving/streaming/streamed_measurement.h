@@ -27,8 +27,8 @@ constexpr std::size_t kDefaultChunkFaces = std::size_t{1} << 20;
 // vertex samples are made of (33 bytes a vertex). Its pages go back to the system as the
 // measurement passes its vertices.
 struct VertexSums {
-  // Pages of their own from the kernel, on 4 KiB pages: on this project's machines (virtual ones)
-  // 1.6 GiB of fresh 2 MiB pages (the heap's, huge_pages.cpp) took 3.7 to 20 s of faults, 4 KiB ones 0.7 to 1.4 s.
+  // Pages of their own from the kernel (not the heap's: one_heap.cpp keeps what it is given), each
+  // block's handed back as the measurement passes it.
   explicit VertexSums(std::size_t n);
   Vec3* normals;  // summed cross products, made unit as each sample is made
   double* third_areas;
