@@ -42,6 +42,25 @@ TEST(Cli, MeasuresAndWritesEveryOutput) {
   fs::remove_all(folder);
 }
 
+// `--samples-out -` writes the rows to standard output, the same bytes as to a file, and nothing
+// else (no text report) so that they pipe; with `--json -` as well, a clear error.
+TEST(Cli, SamplesOutDashWritesTheRowsToStandardOutput) {
+  const fs::path folder = fs::temp_directory_path() / ("roving-cli-dash-" + std::to_string(::getpid()));
+  fs::create_directories(folder);
+  const std::string csv = (folder / "samples.csv").string(), json = (folder / "report.json").string();
+  const std::string pair = "measure " + bunny() + " " + bunny() + " --samples area:300 --quiet";
+  const CliRun to_file = run_cli(pair + " --samples-out " + csv);
+  ASSERT_EQ(to_file.exit_code, 0) << to_file.err;
+  const CliRun piped = run_cli(pair + " --samples-out - --json " + json);
+  ASSERT_EQ(piped.exit_code, 0) << piped.err;
+  std::ifstream rows(csv);
+  EXPECT_EQ(piped.out, std::string(std::istreambuf_iterator<char>(rows), std::istreambuf_iterator<char>()));
+  EXPECT_FALSE(fs::exists(folder / "-"));
+  EXPECT_EQ(nlohmann::json::parse(std::ifstream(json))["samples"]["count"], 300);
+  expect_error(pair + " --samples-out - --json -", {"--json - and --samples-out -", "standard output"});
+  fs::remove_all(folder);
+}
+
 // A plain run gives up REF's geometry once it is sampled (run_measure); one with a heat map keeps
 // it. The report and every sample's figures must not tell them apart.
 TEST(Cli, ReleasingTheReferenceChangesNothingReported) {

@@ -336,7 +336,7 @@ std::unique_ptr<CommandLine> make_command_line() {
              "samples, an exact, nearest-point or exact roving (GL cameras) method, no threshold, per-sample output or picture; the certified "
              "Hausdorff interval is bounded block by block); 0: always read whole")
       ->capture_default_str();
-  measure->add_option("--samples-out", args.samples_csv_path, "write one CSV row per sample");
+  measure->add_option("--samples-out", args.samples_csv_path, "write one CSV row per sample (-: standard output, instead of the text report)");
   measure->add_option(
       "--heatmap", args.heatmap_path,
       "write REF coloured by d as PLY (per face or vertex on a mesh or voxels; points otherwise); with "

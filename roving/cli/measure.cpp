@@ -8,7 +8,9 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <future>
@@ -263,13 +265,16 @@ void write_measure_outputs(const MeasureArguments& args, const MeasureRun& run, 
   // they moved into place, so a failed run changes none of them.
   stage = "writing the outputs";
   std::vector<std::unique_ptr<AtomicFile>> outputs;
-  if (!args.samples_csv_path.empty()) {
-    outputs.push_back(std::make_unique<AtomicFile>(args.samples_csv_path));
+  const auto write_samples = [&](std::FILE* out) {
     for (const DirectionReport& d : report.directions) {
-      write_samples_csv(outputs.back()->stream(), d.samples, d.result, d.label,
-                        &d == &report.directions.front(), d.colour_pairs ? &*d.colour_pairs : nullptr,
-                        d.correspondences ? &*d.correspondences : nullptr);
+      write_samples_csv(out, d.samples, d.result, d.label, &d == &report.directions.front(),
+                        d.colour_pairs ? &*d.colour_pairs : nullptr, d.correspondences ? &*d.correspondences : nullptr);
     }
+  };
+  const bool samples_to_stdout = args.samples_csv_path == "-";
+  if (!args.samples_csv_path.empty() && !samples_to_stdout) {
+    outputs.push_back(std::make_unique<AtomicFile>(args.samples_csv_path));
+    write_samples(outputs.back()->stream());
     outputs.back()->close_stream();
   }
   // One heat map per direction, each on its own reference (under --symmetric, A's then B's).
@@ -375,11 +380,20 @@ void write_measure_outputs(const MeasureArguments& args, const MeasureRun& run, 
     outputs.back()->close_stream();
   }
   for (const auto& output : outputs) output->commit();
+  if (samples_to_stdout) {  // after the files, which are then whole whatever becomes of the pipe
+    stage = "writing the samples to standard output";
+    write_samples(stdout);
+    if (std::fflush(stdout) != 0 || std::ferror(stdout)) {
+      throw Error(fmt::format("--samples-out -: writing to standard output failed ({})", std::strerror(errno)));
+    }
+  }
 }
 
 int run_measure(const MeasureArguments& args, std::string& stage) {
   Progress progress(args.quiet);
-  const bool text_to_stdout = args.json_path != "-";
+  // Standard output carries the text report, or what --json - or --samples-out - asks for alone.
+  const bool samples_to_stdout = args.samples_csv_path == "-";
+  const bool text_to_stdout = args.json_path != "-" && !samples_to_stdout;
   const MeasureRun run = measure_run(args, stage, progress, [&](const MeasureRun& described) {
     if (!text_to_stdout) return;  // the header as soon as the models are known
     progress.clear();
@@ -403,7 +417,7 @@ int run_measure(const MeasureArguments& args, std::string& stage) {
                              report.total_seconds, args.shard_out));
     return 0;
   }
-  write_stdout(text_to_stdout ? format_body(report) : to_json(report).dump(2) + "\n");
+  if (!samples_to_stdout) write_stdout(text_to_stdout ? format_body(report) : to_json(report).dump(2) + "\n");
 
   return apply_gates(run.plan.gates, gate_values(report), run.plan.gate_on);
 }

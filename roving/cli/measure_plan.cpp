@@ -35,6 +35,9 @@ void require_writable_paths(const MeasureArguments& args) {
     if (given.empty()) continue;
     for (const std::string& path : heatmap_paths(given, args.symmetric)) outputs.emplace_back(option, path);
   }
+  if (args.json_path == "-" && args.samples_csv_path == "-") {
+    throw Error("--json - and --samples-out -: only one of them can write to standard output; give the other a file");
+  }
   for (const auto& [option, path] : outputs) {
     std::error_code error;
     if (!path.empty() && path != "-" && std::filesystem::is_directory(path, error)) {
