@@ -185,13 +185,14 @@ MeasureRun measure_run(const MeasureArguments& args, std::string& stage, Progres
     run.a = std::make_unique<Model>(load(args.reference_path, plan.reference_type, true));
   }
   if (!stream) report.load_seconds[0] = watch.seconds();
-  if (run.b) {  // loaded beside a streamed REF
-  } else if (given_b) {
-    run.b = std::move(given_b);
-  } else {
-    stage = fmt::format("loading the test {}", args.test_path);
-    progress.stage("loading " + file_name(args.test_path));
-    run.b = test_load.get();
+  if (!run.b) {  // else loaded beside a streamed REF
+    if (given_b) {
+      run.b = std::move(given_b);
+    } else {
+      stage = fmt::format("loading the test {}", args.test_path);
+      progress.stage("loading " + file_name(args.test_path));
+      run.b = test_load.get();
+    }
   }
   if (tnt_files && tnt_files->trajectories) {
     stage = fmt::format("registering the test {} to the reference {} as run.py does (its trajectory {})",

@@ -24,11 +24,9 @@ namespace roving {
 constexpr std::size_t kDefaultChunkFaces = std::size_t{1} << 20;
 
 // Each vertex's sums over the faces that use it, in the file's order, and whether any does: what
-// vertex samples are made of (33 bytes a vertex). Its pages go back to the system as the
-// measurement passes its vertices.
+// vertex samples are made of (33 bytes a vertex), on pages of their own from the kernel (not the
+// heap's, which one_heap.cpp never hands back).
 struct VertexSums {
-  // Pages of their own from the kernel (not the heap's: one_heap.cpp keeps what it is given), each
-  // block's handed back as the measurement passes it.
   explicit VertexSums(std::size_t n);
   Vec3* normals;  // summed cross products, made unit as each sample is made
   double* third_areas;
